@@ -1,0 +1,39 @@
+// A small strict parser for "--key value" and "--flag" command lines, shared by
+// the components and the structloc CLI: unknown options are errors with a hint.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "strict_xml.hpp"
+
+namespace structloc::config {
+
+struct OptionSpec {
+  std::string name;  // without the leading "--"
+  bool takes_value = true;
+  std::string help;
+};
+
+class CommandLine {
+ public:
+  // Throws ConfigError on an unknown option or a missing value.
+  CommandLine(int argc, const char* const* argv, int first, const std::vector<OptionSpec>& specs);
+
+  bool Has(const std::string& name) const { return values_.count(name) != 0; }
+  std::optional<std::string> Get(const std::string& name) const;
+  std::string GetOr(const std::string& name, const std::string& fallback) const;
+  std::string Required(const std::string& name) const;
+  double Number(const std::string& name, double fallback) const;
+  long long Integer(const std::string& name, long long fallback) const;
+
+  static std::string Usage(const std::vector<OptionSpec>& specs);
+
+ private:
+  std::map<std::string, std::string> values_;
+};
+
+}  // namespace structloc::config

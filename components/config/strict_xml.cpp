@@ -1,0 +1,144 @@
+// Implementation of the strict XML reader: parsing, typed attributes, errors with file:line.
+#include "strict_xml.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace structloc::config {
+
+XmlFile XmlFile::Load(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw ConfigError(path + ": cannot open file");
+  XmlFile file;
+  file.path_ = path;
+  file.doc_ = std::make_unique<tinyxml2::XMLDocument>();
+  if (file.doc_->LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
+    std::ostringstream msg;
+    msg << path << ":" << file.doc_->ErrorLineNum() << ": malformed XML: " << file.doc_->ErrorStr();
+    throw ConfigError(msg.str());
+  }
+  if (file.doc_->RootElement() == nullptr) throw ConfigError(path + ": no root element");
+  return file;
+}
+
+const tinyxml2::XMLElement& XmlFile::Root() const { return *doc_->RootElement(); }
+
+const tinyxml2::XMLElement& XmlFile::Root(const std::string& expected_name) const {
+  const auto& root = Root();
+  if (expected_name != root.Name()) {
+    Fail(root, "root element is <" + std::string(root.Name()) + ">, expected <" + expected_name +
+                   ">");
+  }
+  return root;
+}
+
+void XmlFile::Fail(const tinyxml2::XMLElement& where, const std::string& what) const {
+  std::ostringstream msg;
+  msg << path_ << ":" << where.GetLineNum() << ": <" << where.Name() << ">: " << what;
+  throw ConfigError(msg.str());
+}
+
+AttributeReader::AttributeReader(const XmlFile& file, const tinyxml2::XMLElement& element)
+    : file_(file), element_(element) {}
+
+bool AttributeReader::Has(const char* name) const { return element_.Attribute(name) != nullptr; }
+
+const char* AttributeReader::Raw(const char* name) {
+  read_.insert(name);
+  return element_.Attribute(name);
+}
+
+void AttributeReader::Fail(const std::string& what) const { file_.Fail(element_, what); }
+
+std::optional<double> AttributeReader::OptionalDouble(const char* name) {
+  const char* raw = Raw(name);
+  if (raw == nullptr) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(raw, &end);
+  if (end == raw || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+    Fail(std::string("attribute ") + name + "=\"" + raw + "\" is not a finite number");
+  }
+  return value;
+}
+
+double AttributeReader::Double(const char* name) {
+  auto value = OptionalDouble(name);
+  if (!value) Fail(std::string("missing attribute ") + name);
+  return *value;
+}
+
+double AttributeReader::PositiveDouble(const char* name) {
+  const double value = Double(name);
+  if (!(value > 0.0)) Fail(std::string("attribute ") + name + " must be > 0");
+  return value;
+}
+
+double AttributeReader::NonNegativeDouble(const char* name) {
+  const double value = Double(name);
+  if (value < 0.0) Fail(std::string("attribute ") + name + " must be >= 0");
+  return value;
+}
+
+std::optional<long long> AttributeReader::OptionalInteger(const char* name) {
+  const char* raw = Raw(name);
+  if (raw == nullptr) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(raw, &end, 10);
+  if (end == raw || *end != '\0' || errno == ERANGE) {
+    Fail(std::string("attribute ") + name + "=\"" + raw + "\" is not an integer");
+  }
+  return value;
+}
+
+long long AttributeReader::Integer(const char* name) {
+  auto value = OptionalInteger(name);
+  if (!value) Fail(std::string("missing attribute ") + name);
+  return *value;
+}
+
+bool AttributeReader::Bool(const char* name) {
+  const std::string value = String(name);
+  if (value == "true") return true;
+  if (value == "false") return false;
+  Fail(std::string("attribute ") + name + "=\"" + value + "\" must be true or false");
+}
+
+std::optional<std::string> AttributeReader::OptionalString(const char* name) {
+  const char* raw = Raw(name);
+  if (raw == nullptr) return std::nullopt;
+  return std::string(raw);
+}
+
+std::string AttributeReader::String(const char* name) {
+  auto value = OptionalString(name);
+  if (!value) Fail(std::string("missing attribute ") + name);
+  return *value;
+}
+
+void AttributeReader::Finish() const {
+  std::string unknown;
+  for (const auto* a = element_.FirstAttribute(); a != nullptr; a = a->Next()) {
+    if (read_.count(a->Name()) == 0) unknown += (unknown.empty() ? "" : ", ") + std::string(a->Name());
+  }
+  if (!unknown.empty()) Fail("unknown attribute(s): " + unknown);
+}
+
+void RequireChildNames(const XmlFile& file, const tinyxml2::XMLElement& parent,
+                       const std::set<std::string>& allowed) {
+  for (const auto* child = parent.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (allowed.count(child->Name()) == 0) {
+      std::string names;
+      for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + a;
+      file.Fail(*child, "unknown element inside <" + std::string(parent.Name()) +
+                            ">; allowed: " + names);
+    }
+  }
+}
+
+}  // namespace structloc::config

@@ -1,0 +1,66 @@
+// Shared component main loop (see header).
+#include "component_runtime.hpp"
+
+#include <iostream>
+
+#include "shutdown_signal.hpp"
+
+#ifndef STRUCTLOC_SHARE_DIR
+#error "STRUCTLOC_SHARE_DIR must be defined by the build"
+#endif
+
+namespace structloc::dds {
+
+std::vector<config::OptionSpec> StandardOptions() {
+  return {
+      {"domain", true, "DDS domain id (default 0)"},
+      {"qos", true,
+       "Fast DDS QoS profiles file (default " STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml)"},
+      {"participant-profile", true,
+       "participant profile in the QoS file (default structloc_localhost)"},
+      {"help", false, "print the options and exit"},
+  };
+}
+
+double WallClockSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+int RunComponent(int argc, char** argv, const std::string& name,
+                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory) {
+  ShutdownSignal shutdown;  // before any DDS thread exists
+  auto specs = StandardOptions();
+  specs.insert(specs.end(), extra_options.begin(), extra_options.end());
+  try {
+    const config::CommandLine cli(argc, argv, 1, specs);
+    if (cli.Has("help")) {
+      std::cout << "usage: " << argv[0] << " [options]\n" << config::CommandLine::Usage(specs);
+      return 0;
+    }
+    NodeOptions options;
+    options.name = name;
+    options.domain_id = static_cast<int>(cli.Integer("domain", 0));
+    options.qos_file = cli.GetOr("qos", STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml");
+    options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
+    Node node(options);
+    auto component = factory(node, cli);
+    std::cout << node.EndpointReport() << std::flush;
+    std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;
+    while (!shutdown.WaitFor(component->Period())) component->Step();
+    component->Stop();
+    std::cout << name << ": stopped cleanly" << std::endl;
+    return 0;
+  } catch (const config::ConfigError& e) {
+    std::cerr << name << ": configuration error: " << e.what() << std::endl;
+    return 2;
+  } catch (const QosError& e) {
+    std::cerr << name << ": configuration error: " << e.what() << std::endl;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << name << ": error: " << e.what() << std::endl;
+    return 1;
+  }
+}
+
+}  // namespace structloc::dds

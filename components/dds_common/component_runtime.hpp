@@ -1,0 +1,42 @@
+// The main loop every component executable shares: standard options (domain,
+// QoS file, participant profile), node creation, endpoint report, a periodic
+// Step(), clean stop on SIGINT/SIGTERM, and exit code 2 with a message on bad
+// configuration.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command_line.hpp"
+#include "node.hpp"
+
+namespace structloc::dds {
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  // Called every Period() on the main thread until a stop signal arrives.
+  virtual void Step() = 0;
+  virtual std::chrono::milliseconds Period() const { return std::chrono::milliseconds(100); }
+  // Called once after the stop signal, before the node is destroyed.
+  virtual void Stop() {}
+};
+
+using ComponentFactory =
+    std::function<std::unique_ptr<Component>(Node& node, const config::CommandLine& cli)>;
+
+// Options every component accepts, documented with their defaults.
+std::vector<config::OptionSpec> StandardOptions();
+
+// Parses the command line, builds the node and runs the component.
+// Returns the process exit code (0 clean stop, 2 configuration error, 1 other failure).
+int RunComponent(int argc, char** argv, const std::string& name,
+                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory);
+
+// Wall-clock seconds since the epoch, for stamps of live data.
+double WallClockSeconds();
+
+}  // namespace structloc::dds

@@ -1,0 +1,28 @@
+// HealthReport -> DiagnosticArray conversion.
+#include "diagnostics.hpp"
+
+#include "ros_conversions.hpp"
+
+namespace structloc::dds {
+
+diagnostic_msgs::msg::DiagnosticArray ToDiagnosticArray(const std::string& component,
+                                                        const HealthReport& report,
+                                                        double stamp_seconds) {
+  diagnostic_msgs::msg::DiagnosticArray array;
+  array.header().stamp(ToRosTime(stamp_seconds));
+  diagnostic_msgs::msg::DiagnosticStatus status;
+  status.level(static_cast<uint8_t>(report.level));
+  status.name("structloc/" + component);
+  status.message(report.message);
+  status.hardware_id(component);
+  for (const auto& [key, value] : report.values) {
+    diagnostic_msgs::msg::KeyValue kv;
+    kv.key(key);
+    kv.value(value);
+    status.values().push_back(kv);
+  }
+  array.status().push_back(status);
+  return array;
+}
+
+}  // namespace structloc::dds

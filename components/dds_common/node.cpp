@@ -1,0 +1,52 @@
+// Node: participant creation from a validated QoS file, and clean teardown.
+#include "node.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+
+#include <sstream>
+
+namespace structloc::dds {
+
+Node::Node(const NodeOptions& options)
+    : options_(options), qos_(QosProfiles::Load(options.qos_file)) {
+  if (options.domain_id < 0 || options.domain_id > 232) {
+    throw std::runtime_error("domain id " + std::to_string(options.domain_id) +
+                             " is outside 0..232");
+  }
+  auto participant_qos = qos_.Participant(options.participant_profile);
+  participant_qos.name(options.name);
+  participant_ = eprosima::fastdds::dds::DomainParticipantFactory::get_instance()
+                     ->create_participant(options.domain_id, participant_qos);
+  if (participant_ == nullptr) {
+    throw std::runtime_error("cannot create a DDS participant on domain " +
+                             std::to_string(options.domain_id) + " with profile '" +
+                             options.participant_profile + "' of " + options.qos_file);
+  }
+  publisher_ = participant_->create_publisher(eprosima::fastdds::dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(eprosima::fastdds::dds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw std::runtime_error("cannot create publisher/subscriber");
+  }
+}
+
+Node::~Node() {
+  if (participant_ != nullptr) {
+    participant_->delete_contained_entities();
+    eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(
+        participant_);
+  }
+}
+
+std::string Node::Describe(const TopicSpec& topic, const std::string& type_name) {
+  return topic.name + "  [" + type_name + "]  qos=" + topic.qos_profile;
+}
+
+std::string Node::EndpointReport() const {
+  std::ostringstream out;
+  out << options_.name << " on domain " << options_.domain_id << " (participant profile '"
+      << options_.participant_profile << "' from " << options_.qos_file << ")\n";
+  for (const auto& e : endpoints_) out << "  " << e << "\n";
+  return out.str();
+}
+
+}  // namespace structloc::dds

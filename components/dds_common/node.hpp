@@ -1,0 +1,144 @@
+// A DDS participant with one publisher and one subscriber, the way a ROS 2
+// node looks on the wire: typed writers and callback readers created from the
+// topic table and QoS profiles by name. Components are thin adapters on top.
+#pragma once
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <atomic>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "qos_profiles.hpp"
+#include "topics.hpp"
+
+namespace structloc::dds {
+
+struct NodeOptions {
+  std::string name;                                   // shown in reports and diagnostics
+  int domain_id = 0;                                  // DDS domain, 0..232
+  std::string qos_file;                               // Fast DDS profiles XML
+  std::string participant_profile = "structloc_localhost";
+};
+
+// A typed DataWriter handle; Write returns false when DDS refused the sample.
+template <class PubSubType>
+class TopicWriter {
+ public:
+  using Message = typename PubSubType::type;
+  TopicWriter() = default;
+  explicit TopicWriter(eprosima::fastdds::dds::DataWriter* writer) : writer_(writer) {}
+  bool Write(Message& message) { return writer_ != nullptr && writer_->write(&message); }
+  size_t MatchedReaders() const {
+    eprosima::fastdds::dds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return static_cast<size_t>(status.current_count);
+  }
+  eprosima::fastdds::dds::DataWriter* Raw() const { return writer_; }
+
+ private:
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+};
+
+class Node {
+ public:
+  // Throws QosError or std::runtime_error naming what is wrong.
+  explicit Node(const NodeOptions& options);
+  ~Node();
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  template <class PubSubType>
+  TopicWriter<PubSubType> CreateWriter(const TopicSpec& topic) {
+    auto* dds_topic = TopicFor<PubSubType>(topic.name);
+    auto* writer = publisher_->create_datawriter(dds_topic, qos_.Writer(*publisher_, topic.qos_profile));
+    if (writer == nullptr) throw std::runtime_error("cannot create writer for " + topic.name);
+    endpoints_.push_back("publishes  " + Describe(topic, dds_topic->get_type_name()));
+    return TopicWriter<PubSubType>(writer);
+  }
+
+  // `callback` runs on a DDS thread for every valid sample; exceptions it
+  // throws are caught and logged so one bad sample cannot stop the component.
+  template <class PubSubType>
+  void Subscribe(const TopicSpec& topic,
+                 std::function<void(const typename PubSubType::type&)> callback) {
+    auto* dds_topic = TopicFor<PubSubType>(topic.name);
+    auto listener = std::make_unique<CallbackListener<PubSubType>>(options_.name, topic.name,
+                                                                   std::move(callback));
+    auto* reader = subscriber_->create_datareader(
+        dds_topic, qos_.Reader(*subscriber_, topic.qos_profile), listener.get());
+    if (reader == nullptr) throw std::runtime_error("cannot create reader for " + topic.name);
+    listeners_.push_back(std::move(listener));
+    endpoints_.push_back("subscribes " + Describe(topic, dds_topic->get_type_name()));
+  }
+
+  // One line per endpoint: direction, topic, DDS type name, QoS profile.
+  std::string EndpointReport() const;
+  const NodeOptions& Options() const { return options_; }
+
+ private:
+  template <class PubSubType>
+  class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
+   public:
+    CallbackListener(std::string node, std::string topic,
+                     std::function<void(const typename PubSubType::type&)> callback)
+        : node_(std::move(node)), topic_(std::move(topic)), callback_(std::move(callback)) {}
+    void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+      typename PubSubType::type sample;
+      eprosima::fastdds::dds::SampleInfo info;
+      while (reader->take_next_sample(&sample, &info) ==
+             eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data) continue;
+        try {
+          callback_(sample);
+        } catch (const std::exception& e) {
+          std::cerr << node_ << ": error handling a sample on " << topic_ << ": " << e.what()
+                    << std::endl;
+        }
+      }
+    }
+
+   private:
+    std::string node_;
+    std::string topic_;
+    std::function<void(const typename PubSubType::type&)> callback_;
+  };
+
+  template <class PubSubType>
+  eprosima::fastdds::dds::Topic* TopicFor(const std::string& name) {
+    auto it = topics_.find(name);
+    if (it != topics_.end()) return it->second;
+    eprosima::fastdds::dds::TypeSupport type(new PubSubType());
+    if (participant_->find_type(type.get_type_name()).empty()) type.register_type(participant_);
+    auto* topic = participant_->create_topic(name, type.get_type_name(),
+                                             eprosima::fastdds::dds::TOPIC_QOS_DEFAULT);
+    if (topic == nullptr) throw std::runtime_error("cannot create topic " + name);
+    topics_[name] = topic;
+    return topic;
+  }
+
+  static std::string Describe(const TopicSpec& topic, const std::string& type_name);
+
+  NodeOptions options_;
+  QosProfiles qos_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
+  std::vector<std::string> endpoints_;
+};
+
+}  // namespace structloc::dds

@@ -1,0 +1,155 @@
+// QoS profile validation and lookup (see qos_profiles.hpp).
+#include "qos_profiles.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+
+#include <cstdlib>
+#include <map>
+
+#include "strict_xml.hpp"
+
+namespace structloc::dds {
+namespace {
+
+using eprosima::fastrtps::types::ReturnCode_t;
+
+constexpr long kMaxDepth = 100000;
+
+const std::map<std::string, std::set<std::string>>& KnownKinds() {
+  static const std::map<std::string, std::set<std::string>> kinds = {
+      {"reliability", {"BEST_EFFORT", "RELIABLE"}},
+      {"durability", {"VOLATILE", "TRANSIENT_LOCAL", "TRANSIENT", "PERSISTENT"}},
+      {"historyQos", {"KEEP_LAST", "KEEP_ALL"}},
+      {"liveliness", {"AUTOMATIC", "MANUAL_BY_PARTICIPANT", "MANUAL_BY_TOPIC"}},
+      {"ownership", {"SHARED", "EXCLUSIVE"}},
+      {"destinationOrder", {"BY_RECEPTION_TIMESTAMP", "BY_SOURCE_TIMESTAMP"}},
+      {"publishMode", {"SYNCHRONOUS", "ASYNCHRONOUS"}},
+  };
+  return kinds;
+}
+
+bool IsNonNegativeInteger(const char* text, long max, long* out) {
+  if (text == nullptr || *text == '\0') return false;
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (*end != '\0' || value < 0 || value > max) return false;
+  *out = value;
+  return true;
+}
+
+// Walks one profile element and rejects values Fast DDS would accept silently.
+void CheckValues(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
+  for (const auto* child = element.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string name = child->Name();
+    const char* text = child->GetText();
+    long value = 0;
+    if (name == "depth") {
+      if (!IsNonNegativeInteger(text, kMaxDepth, &value) || value < 1) {
+        file.Fail(*child, "history depth '" + std::string(text ? text : "") +
+                              "' must be an integer from 1 to " + std::to_string(kMaxDepth));
+      }
+    } else if (name == "sec" || name == "nanosec") {
+      const std::string t = text ? text : "";
+      const bool infinite = t == "DURATION_INFINITY" || t == "DURATION_INFINITE_SEC" ||
+                            t == "DURATION_INFINITE_NSEC";
+      if (!infinite && !IsNonNegativeInteger(text, 2147483647L, &value)) {
+        file.Fail(*child, "duration '" + t + "' must be a non-negative integer");
+      }
+    } else if (name == "kind") {
+      const auto& kinds = KnownKinds();
+      auto it = kinds.find(element.Name());
+      const std::string t = text ? text : "";
+      if (it != kinds.end() && it->second.count(t) == 0) {
+        file.Fail(*child, "unknown " + std::string(element.Name()) + " kind '" + t + "'");
+      }
+    }
+    CheckValues(file, *child);
+  }
+}
+
+std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
+  const char* name = element.Attribute("profile_name");
+  if (name == nullptr || *name == '\0') file.Fail(element, "profile without profile_name");
+  return name;
+}
+
+}  // namespace
+
+QosProfiles QosProfiles::Load(const std::string& path) {
+  QosProfiles result;
+  result.path_ = path;
+  try {
+    const auto file = config::XmlFile::Load(path);
+    const auto& root = file.Root();
+    const tinyxml2::XMLElement* profiles =
+        std::string(root.Name()) == "profiles" ? &root : root.FirstChildElement("profiles");
+    if (std::string(root.Name()) != "dds" && profiles != &root) {
+      file.Fail(root, "root element must be <dds> or <profiles>");
+    }
+    if (profiles == nullptr) file.Fail(root, "no <profiles> element");
+    for (const auto* e = profiles->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+      const std::string kind = e->Name();
+      std::set<std::string>* names = nullptr;
+      if (kind == "participant") names = &result.participant_profiles_;
+      if (kind == "data_writer" || kind == "publisher") names = &result.writer_profiles_;
+      if (kind == "data_reader" || kind == "subscriber") names = &result.reader_profiles_;
+      if (names == nullptr) continue;
+      const std::string name = ProfileName(file, *e);
+      if (!names->insert(name).second) file.Fail(*e, "duplicate profile '" + name + "'");
+      CheckValues(file, *e);
+    }
+  } catch (const config::ConfigError& e) {
+    throw QosError(std::string("QoS profiles: ") + e.what());
+  }
+  if (result.participant_profiles_.empty()) {
+    throw QosError("QoS profiles: " + path + ": defines no <participant> profile");
+  }
+  auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
+  if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path +
+                   ": Fast DDS rejected the file (see its log above for the element)");
+  }
+  return result;
+}
+
+eprosima::fastdds::dds::DomainParticipantQos QosProfiles::Participant(
+    const std::string& profile) const {
+  eprosima::fastdds::dds::DomainParticipantQos qos;
+  if (participant_profiles_.count(profile) == 0 ||
+      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()
+              ->get_participant_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path_ + ": no participant profile '" + profile + "'");
+  }
+  return qos;
+}
+
+eprosima::fastdds::dds::DataWriterQos QosProfiles::Writer(
+    eprosima::fastdds::dds::Publisher& publisher, const std::string& profile) const {
+  eprosima::fastdds::dds::DataWriterQos qos;
+  if (writer_profiles_.count(profile) == 0 ||
+      publisher.get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path_ + ": no data_writer profile '" + profile + "'");
+  }
+  if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS &&
+      qos.history().depth < 1) {
+    throw QosError("QoS profiles: " + path_ + ": data_writer '" + profile + "' has depth < 1");
+  }
+  return qos;
+}
+
+eprosima::fastdds::dds::DataReaderQos QosProfiles::Reader(
+    eprosima::fastdds::dds::Subscriber& subscriber, const std::string& profile) const {
+  eprosima::fastdds::dds::DataReaderQos qos;
+  if (reader_profiles_.count(profile) == 0 ||
+      subscriber.get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path_ + ": no data_reader profile '" + profile + "'");
+  }
+  if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS &&
+      qos.history().depth < 1) {
+    throw QosError("QoS profiles: " + path_ + ": data_reader '" + profile + "' has depth < 1");
+  }
+  return qos;
+}
+
+}  // namespace structloc::dds

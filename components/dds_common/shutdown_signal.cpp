@@ -1,0 +1,37 @@
+// ShutdownSignal: synchronous signal collection (see header).
+#include "shutdown_signal.hpp"
+
+#include <pthread.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <ctime>
+
+namespace structloc::dds {
+namespace {
+sigset_t StopSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  return set;
+}
+}  // namespace
+
+ShutdownSignal::ShutdownSignal() {
+  const sigset_t set = StopSignals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
+
+bool ShutdownSignal::WaitFor(std::chrono::milliseconds timeout) {
+  if (received_) return true;
+  const sigset_t set = StopSignals();
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(timeout.count() / 1000);
+  ts.tv_nsec = static_cast<long>((timeout.count() % 1000) * 1000000L);
+  const int sig = sigtimedwait(&set, nullptr, &ts);
+  if (sig == SIGINT || sig == SIGTERM) received_ = true;
+  return received_;
+}
+
+}  // namespace structloc::dds
