@@ -1,0 +1,115 @@
+// The three component executables as real processes on a loopback DDS domain:
+// they start, report their endpoints, exchange samples, stop cleanly on
+// SIGINT/SIGTERM, and exit non-zero fast on bad configuration.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <mutex>
+
+#include "child_process.hpp"
+#include "dds_test_support.hpp"
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+
+namespace structloc {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::BinPath;
+using testing::ChildProcess;
+
+constexpr int kDomain = 103;
+
+std::vector<std::string> Args(int domain, const std::string& qos = testing::ShippedQos()) {
+  return {"--domain", std::to_string(domain), "--qos", qos};
+}
+
+// Latest diagnostic key/values per component name.
+class DiagnosticsListener {
+ public:
+  explicit DiagnosticsListener(dds::Node& node) {
+    node.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+        dds::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          for (const auto& s : a.status()) {
+            for (const auto& kv : s.values()) latest_[s.name()][kv.key()] = kv.value();
+          }
+        });
+  }
+  long Value(const std::string& component, const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto c = latest_.find(component);
+    if (c == latest_.end()) return -1;
+    auto k = c->second.find(key);
+    return k == c->second.end() ? -1 : std::stol(k->second);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::map<std::string, std::string>> latest_;
+};
+
+TEST(Components, ExchangeSamplesAndStopCleanly) {
+  dds::Node observer(testing::TestNodeOptions("observer", kDomain));
+  DiagnosticsListener diagnostics(observer);
+  ChildProcess simulator(BinPath("structloc_simulator"), Args(kDomain));
+  ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
+  ChildProcess calibration(BinPath("structloc_calibration"), Args(kDomain));
+
+  EXPECT_TRUE(testing::WaitUntil(
+      [&] { return diagnostics.Value("structloc/localisation", "odom_received") > 0; }, 15s))
+      << localisation.Output();
+  EXPECT_TRUE(testing::WaitUntil(
+      [&] { return diagnostics.Value("structloc/calibration", "encoder_samples") > 0; }, 15s))
+      << calibration.Output();
+
+  simulator.Signal(SIGINT);
+  localisation.Signal(SIGTERM);
+  calibration.Signal(SIGTERM);
+  EXPECT_EQ(simulator.WaitExit(5s), 0) << simulator.Output();
+  EXPECT_EQ(localisation.WaitExit(5s), 0) << localisation.Output();
+  EXPECT_EQ(calibration.WaitExit(5s), 0) << calibration.Output();
+  const auto report = localisation.Output();
+  EXPECT_NE(report.find("subscribes rt/scan  [sensor_msgs::msg::dds_::LaserScan_]"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("publishes  rt/pose"), std::string::npos) << report;
+  EXPECT_NE(report.find("stopped cleanly"), std::string::npos) << report;
+}
+
+TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
+  const std::string path = "/tmp/structloc_components_broken_" + std::to_string(getpid()) + ".xml";
+  {
+    std::ifstream in(testing::ShippedQos());
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    text.replace(text.find("<depth>5</depth>"), 16, "<depth>0</depth>");
+    std::ofstream(path) << text;
+  }
+  for (const auto* exe : {"structloc_simulator", "structloc_localisation", "structloc_calibration"}) {
+    const auto start = std::chrono::steady_clock::now();
+    ChildProcess child(BinPath(exe), Args(kDomain + 1, path));
+    const auto code = child.WaitExit(5s);
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    ASSERT_TRUE(code.has_value()) << exe << " did not exit";
+    EXPECT_NE(*code, 0) << exe;
+    EXPECT_LT(elapsed, 1s) << exe;
+    const auto out = child.Output();
+    EXPECT_NE(out.find(path), std::string::npos) << out;
+    EXPECT_NE(out.find("history depth '0'"), std::string::npos) << out;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(Components, MissingQosFileAndUnknownOptionAreConfigurationErrors) {
+  ChildProcess missing(BinPath("structloc_localisation"), Args(kDomain + 1, "/nonexistent.xml"));
+  EXPECT_EQ(missing.WaitExit(5s), 2);
+  EXPECT_NE(missing.Output().find("/nonexistent.xml: cannot open file"), std::string::npos)
+      << missing.Output();
+  ChildProcess unknown(BinPath("structloc_simulator"), {"--no-such-option", "1"});
+  EXPECT_EQ(unknown.WaitExit(5s), 2);
+  EXPECT_NE(unknown.Output().find("unknown option '--no-such-option'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace structloc

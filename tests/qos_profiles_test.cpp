@@ -1,0 +1,123 @@
+// The shipped QoS profiles load through the same code the components use and
+// carry the values we rely on; broken files are rejected with file and problem.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+#include "dds_test_support.hpp"
+#include "qos_profiles.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+
+namespace structloc {
+namespace {
+
+using eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
+using eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS;
+using eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS;
+using eprosima::fastdds::dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+using eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
+
+constexpr int kDomain = 102;
+
+TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
+  dds::Node node(testing::TestNodeOptions("qos_test", kDomain));  // loads the file
+  const auto qos = dds::QosProfiles::Load(testing::ShippedQos());
+  for (const auto* name : {"structloc_localhost", "structloc_network"}) {
+    const auto pq = qos.Participant(name);
+    EXPECT_EQ(pq.wire_protocol().builtin.discovery_config.leaseDuration.seconds, 3) << name;
+  }
+  const auto localhost = qos.Participant("structloc_localhost");
+  EXPECT_FALSE(localhost.transport().use_builtin_transports);
+  EXPECT_EQ(localhost.transport().user_transports.size(), 2u);
+
+  // Build a throwaway participant to read writer/reader profiles through Fast DDS.
+  auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
+  auto* participant = factory->create_participant(kDomain, localhost);
+  ASSERT_NE(participant, nullptr);
+  auto* pub = participant->create_publisher(eprosima::fastdds::dds::PUBLISHER_QOS_DEFAULT);
+  auto* sub = participant->create_subscriber(eprosima::fastdds::dds::SUBSCRIBER_QOS_DEFAULT);
+  struct Expected {
+    const char* profile;
+    eprosima::fastdds::dds::ReliabilityQosPolicyKind reliability;
+    eprosima::fastdds::dds::DurabilityQosPolicyKind durability;
+    int depth;
+  };
+  for (const auto& e : {Expected{"sensor_data", BEST_EFFORT_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 5},
+                        Expected{"reliable_state", RELIABLE_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 10},
+                        Expected{"latched_result", RELIABLE_RELIABILITY_QOS,
+                                 TRANSIENT_LOCAL_DURABILITY_QOS, 1}}) {
+    const auto w = qos.Writer(*pub, e.profile);
+    const auto r = qos.Reader(*sub, e.profile);
+    EXPECT_EQ(w.reliability().kind, e.reliability) << e.profile;
+    EXPECT_EQ(r.reliability().kind, e.reliability) << e.profile;
+    EXPECT_EQ(w.durability().kind, e.durability) << e.profile;
+    EXPECT_EQ(r.durability().kind, e.durability) << e.profile;
+    EXPECT_EQ(w.history().kind, KEEP_LAST_HISTORY_QOS) << e.profile;
+    EXPECT_EQ(w.history().depth, e.depth) << e.profile;
+    EXPECT_EQ(r.history().depth, e.depth) << e.profile;
+  }
+  EXPECT_THROW(qos.Writer(*pub, "no_such_profile"), dds::QosError);
+  participant->delete_contained_entities();
+  factory->delete_participant(participant);
+}
+
+// Writes a copy of the shipped file with one substitution applied.
+std::string BrokenCopy(const std::string& tag, const std::string& from, const std::string& to) {
+  std::ifstream in(testing::ShippedQos());
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const auto pos = text.find(from);
+  if (pos == std::string::npos) throw std::runtime_error("pattern not in shipped file: " + from);
+  text.replace(pos, from.size(), to);
+  const std::string path = "/tmp/structloc_qos_broken_" + tag + "_" + std::to_string(getpid()) + ".xml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+struct BrokenCase {
+  const char* tag;
+  const char* from;
+  const char* to;
+  const char* expected_problem;
+};
+
+class BrokenQos : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenQos, IsRejectedNamingFileLineAndProblem) {
+  const auto& c = GetParam();
+  const std::string path = BrokenCopy(c.tag, c.from, c.to);
+  try {
+    dds::QosProfiles::Load(path);
+    ADD_FAILURE() << "a broken profile file was accepted: " << c.tag;
+  } catch (const dds::QosError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(c.expected_problem), std::string::npos) << what;
+    EXPECT_TRUE(std::regex_search(what, std::regex(":[0-9]+:"))) << "no line number: " << what;
+  }
+  std::remove(path.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BrokenQos,
+    ::testing::Values(
+        BrokenCase{"depth0", "<depth>5</depth>", "<depth>0</depth>", "history depth '0'"},
+        BrokenCase{"depthneg", "<depth>10</depth>", "<depth>-3</depth>", "history depth '-3'"},
+        BrokenCase{"kind", "<kind>BEST_EFFORT</kind>", "<kind>BEST_EFORT</kind>",
+                   "unknown reliability kind"},
+        BrokenCase{"duration", "<sec>3</sec>", "<sec>-1</sec>", "duration '-1'"},
+        BrokenCase{"malformed", "</participant>", "</participnt>", "malformed XML"},
+        BrokenCase{"duplicate", "profile_name=\"structloc_network\"",
+                   "profile_name=\"structloc_localhost\"", "duplicate profile"}),
+    [](const auto& info) { return std::string(info.param.tag); });
+
+TEST(QosProfiles, MissingFileIsAnError) {
+  EXPECT_THROW(dds::QosProfiles::Load("/nonexistent/structloc_qos.xml"), dds::QosError);
+}
+
+}  // namespace
+}  // namespace structloc
