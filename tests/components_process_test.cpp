@@ -3,8 +3,10 @@
 // SIGINT/SIGTERM, and exit non-zero fast on bad configuration.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
@@ -14,8 +16,11 @@ namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-using testing::BinPath;
-using testing::ChildProcess;
+using process::ChildProcess;
+
+std::string BinPath(const std::string& name) {
+  return std::string(STRUCTLOC_BIN_DIR) + "/" + name;
+}
 
 constexpr int kDomain = 103;
 
@@ -57,18 +62,18 @@ TEST(Components, ExchangeSamplesAndStopCleanly) {
 
   EXPECT_TRUE(testing::WaitUntil(
       [&] { return diagnostics.Value("structloc/localisation", "odom_received") > 0; }, 15s))
-      << localisation.Output();
+      << localisation.CapturedOutput();
   EXPECT_TRUE(testing::WaitUntil(
       [&] { return diagnostics.Value("structloc/calibration", "encoder_samples") > 0; }, 15s))
-      << calibration.Output();
+      << calibration.CapturedOutput();
 
   simulator.Signal(SIGINT);
   localisation.Signal(SIGTERM);
   calibration.Signal(SIGTERM);
-  EXPECT_EQ(simulator.WaitExit(5s), 0) << simulator.Output();
-  EXPECT_EQ(localisation.WaitExit(5s), 0) << localisation.Output();
-  EXPECT_EQ(calibration.WaitExit(5s), 0) << calibration.Output();
-  const auto report = localisation.Output();
+  EXPECT_EQ(simulator.WaitExit(5s), 0) << simulator.CapturedOutput();
+  EXPECT_EQ(localisation.WaitExit(5s), 0) << localisation.CapturedOutput();
+  EXPECT_EQ(calibration.WaitExit(5s), 0) << calibration.CapturedOutput();
+  const auto report = localisation.CapturedOutput();
   EXPECT_NE(report.find("subscribes rt/scan  [sensor_msgs::msg::dds_::LaserScan_]"),
             std::string::npos)
       << report;
@@ -86,7 +91,8 @@ TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
     text.replace(text.find("<depth>5</depth>"), 16, "<depth>0</depth>");
     std::ofstream(path) << text;
   }
-  for (const auto* exe : {"structloc_simulator", "structloc_localisation", "structloc_calibration"}) {
+  for (const auto* exe :
+       {"structloc_simulator", "structloc_localisation", "structloc_calibration"}) {
     const auto start = std::chrono::steady_clock::now();
     ChildProcess child(BinPath(exe), Args(kDomain + 1, path));
     const auto code = child.WaitExit(5s);
@@ -94,7 +100,7 @@ TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
     ASSERT_TRUE(code.has_value()) << exe << " did not exit";
     EXPECT_NE(*code, 0) << exe;
     EXPECT_LT(elapsed, 1s) << exe;
-    const auto out = child.Output();
+    const auto out = child.CapturedOutput();
     EXPECT_NE(out.find(path), std::string::npos) << out;
     EXPECT_NE(out.find("history depth '0'"), std::string::npos) << out;
   }
@@ -104,11 +110,11 @@ TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
 TEST(Components, MissingQosFileAndUnknownOptionAreConfigurationErrors) {
   ChildProcess missing(BinPath("structloc_localisation"), Args(kDomain + 1, "/nonexistent.xml"));
   EXPECT_EQ(missing.WaitExit(5s), 2);
-  EXPECT_NE(missing.Output().find("/nonexistent.xml: cannot open file"), std::string::npos)
-      << missing.Output();
+  EXPECT_NE(missing.CapturedOutput().find("/nonexistent.xml: cannot open file"), std::string::npos)
+      << missing.CapturedOutput();
   ChildProcess unknown(BinPath("structloc_simulator"), {"--no-such-option", "1"});
   EXPECT_EQ(unknown.WaitExit(5s), 2);
-  EXPECT_NE(unknown.Output().find("unknown option '--no-such-option'"), std::string::npos);
+  EXPECT_NE(unknown.CapturedOutput().find("unknown option '--no-such-option'"), std::string::npos);
 }
 
 }  // namespace

@@ -18,7 +18,9 @@ inline std::string SourcePath(const std::string& relative) {
   return std::string(STRUCTLOC_SOURCE_DIR) + "/" + relative;
 }
 
-inline std::string ShippedQos() { return SourcePath("qos/structloc_qos.xml"); }
+inline std::string ShippedQos() {
+  return SourcePath("qos/structloc_qos.xml");
+}
 
 inline bool WaitUntil(const std::function<bool()>& predicate, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;

@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "builtin_interfaces/msg/TimePubSubTypes.h"
+#include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "diagnostic_msgs/msg/DiagnosticStatusPubSubTypes.h"
 #include "diagnostic_msgs/msg/KeyValuePubSubTypes.h"
-#include "dds_test_support.hpp"
 #include "geometry_msgs/msg/PointPubSubTypes.h"
 #include "geometry_msgs/msg/PosePubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovariancePubSubTypes.h"
@@ -295,7 +295,9 @@ class IdlRoundTrip : public ::testing::Test {
   Filler fill_;
 };
 
-dds::TopicSpec TestTopic(const std::string& name) { return {"rt/structloc_test/" + name, "reliable_state"}; }
+dds::TopicSpec TestTopic(const std::string& name) {
+  return {"rt/structloc_test/" + name, "reliable_state"};
+}
 
 TEST_F(IdlRoundTrip, LaserScanOnRtScan) {
   EXPECT_EQ(dds::topics::kScan.name, "rt/scan");
@@ -306,9 +308,8 @@ TEST_F(IdlRoundTrip, LaserScanOnRtScan) {
 
 TEST_F(IdlRoundTrip, OdometryOnRtOdom) {
   EXPECT_EQ(dds::topics::kOdom.name, "rt/odom");
-  ExpectRoundTrip<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom,
-                                                     "nav_msgs::msg::dds_::Odometry_",
-                                                     fill_.Odometry());
+  ExpectRoundTrip<nav_msgs::msg::OdometryPubSubType>(
+      dds::topics::kOdom, "nav_msgs::msg::dds_::Odometry_", fill_.Odometry());
 }
 
 TEST_F(IdlRoundTrip, PoseWithCovarianceStampedOnRtPoseAndInitialPose) {
@@ -350,8 +351,8 @@ TEST_F(IdlRoundTrip, NestedRosTypesOnTheirOwn) {
       TestTopic("point"), "geometry_msgs::msg::dds_::Point_", fill_.Point());
   ExpectRoundTrip<geometry_msgs::msg::QuaternionPubSubType>(
       TestTopic("quaternion"), "geometry_msgs::msg::dds_::Quaternion_", fill_.Quaternion());
-  ExpectRoundTrip<geometry_msgs::msg::PosePubSubType>(TestTopic("pose"),
-                                                      "geometry_msgs::msg::dds_::Pose_", fill_.Pose());
+  ExpectRoundTrip<geometry_msgs::msg::PosePubSubType>(
+      TestTopic("pose"), "geometry_msgs::msg::dds_::Pose_", fill_.Pose());
   ExpectRoundTrip<geometry_msgs::msg::PoseWithCovariancePubSubType>(
       TestTopic("pose_cov"), "geometry_msgs::msg::dds_::PoseWithCovariance_",
       fill_.PoseWithCovariance());
@@ -388,8 +389,7 @@ TEST_F(IdlRoundTrip, StructlocMessages) {
   ExpectRoundTrip<structloc_msgs::msg::WallFeaturePubSubType>(
       TestTopic("wall"), "structloc_msgs::msg::dds_::WallFeature_", fill_.WallFeature());
   ExpectRoundTrip<structloc_msgs::msg::PointFeaturePubSubType>(
-      TestTopic("point_feature"), "structloc_msgs::msg::dds_::PointFeature_",
-      fill_.PointFeature());
+      TestTopic("point_feature"), "structloc_msgs::msg::dds_::PointFeature_", fill_.PointFeature());
   ExpectRoundTrip<structloc_msgs::msg::StepTimingsPubSubType>(
       TestTopic("timings"), "structloc_msgs::msg::dds_::StepTimings_", fill_.StepTimings());
   ExpectRoundTrip<structloc_msgs::msg::RobotParametersPubSubType>(

@@ -45,10 +45,10 @@ TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
     eprosima::fastdds::dds::DurabilityQosPolicyKind durability;
     int depth;
   };
-  for (const auto& e : {Expected{"sensor_data", BEST_EFFORT_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 5},
-                        Expected{"reliable_state", RELIABLE_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 10},
-                        Expected{"latched_result", RELIABLE_RELIABILITY_QOS,
-                                 TRANSIENT_LOCAL_DURABILITY_QOS, 1}}) {
+  for (const auto& e :
+       {Expected{"sensor_data", BEST_EFFORT_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 5},
+        Expected{"reliable_state", RELIABLE_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 10},
+        Expected{"latched_result", RELIABLE_RELIABILITY_QOS, TRANSIENT_LOCAL_DURABILITY_QOS, 1}}) {
     const auto w = qos.Writer(*pub, e.profile);
     const auto r = qos.Reader(*sub, e.profile);
     EXPECT_EQ(w.reliability().kind, e.reliability) << e.profile;
@@ -73,7 +73,8 @@ std::string BrokenCopy(const std::string& tag, const std::string& from, const st
   const auto pos = text.find(from);
   if (pos == std::string::npos) throw std::runtime_error("pattern not in shipped file: " + from);
   text.replace(pos, from.size(), to);
-  const std::string path = "/tmp/structloc_qos_broken_" + tag + "_" + std::to_string(getpid()) + ".xml";
+  const std::string path =
+      "/tmp/structloc_qos_broken_" + tag + "_" + std::to_string(getpid()) + ".xml";
   std::ofstream(path) << text;
   return path;
 }

@@ -14,7 +14,8 @@ CalibrationComponent::CalibrationComponent(dds::Node& node)
       dds::topics::kWheelEncoders,
       [this](const structloc_msgs::msg::WheelEncoders&) { ++encoder_samples_; });
   node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++fixes_; });
+      dds::topics::kPose,
+      [this](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++fixes_; });
 }
 
 void CalibrationComponent::Step() {

@@ -24,13 +24,15 @@ XmlFile XmlFile::Load(const std::string& path) {
   return file;
 }
 
-const tinyxml2::XMLElement& XmlFile::Root() const { return *doc_->RootElement(); }
+const tinyxml2::XMLElement& XmlFile::Root() const {
+  return *doc_->RootElement();
+}
 
 const tinyxml2::XMLElement& XmlFile::Root(const std::string& expected_name) const {
   const auto& root = Root();
   if (expected_name != root.Name()) {
-    Fail(root, "root element is <" + std::string(root.Name()) + ">, expected <" + expected_name +
-                   ">");
+    Fail(root,
+         "root element is <" + std::string(root.Name()) + ">, expected <" + expected_name + ">");
   }
   return root;
 }
@@ -44,14 +46,18 @@ void XmlFile::Fail(const tinyxml2::XMLElement& where, const std::string& what) c
 AttributeReader::AttributeReader(const XmlFile& file, const tinyxml2::XMLElement& element)
     : file_(file), element_(element) {}
 
-bool AttributeReader::Has(const char* name) const { return element_.Attribute(name) != nullptr; }
+bool AttributeReader::Has(const char* name) const {
+  return element_.Attribute(name) != nullptr;
+}
 
 const char* AttributeReader::Raw(const char* name) {
   read_.insert(name);
   return element_.Attribute(name);
 }
 
-void AttributeReader::Fail(const std::string& what) const { file_.Fail(element_, what); }
+void AttributeReader::Fail(const std::string& what) const {
+  file_.Fail(element_, what);
+}
 
 std::optional<double> AttributeReader::OptionalDouble(const char* name) {
   const char* raw = Raw(name);
@@ -123,7 +129,8 @@ std::string AttributeReader::String(const char* name) {
 void AttributeReader::Finish() const {
   std::string unknown;
   for (const auto* a = element_.FirstAttribute(); a != nullptr; a = a->Next()) {
-    if (read_.count(a->Name()) == 0) unknown += (unknown.empty() ? "" : ", ") + std::string(a->Name());
+    if (read_.count(a->Name()) == 0)
+      unknown += (unknown.empty() ? "" : ", ") + std::string(a->Name());
   }
   if (!unknown.empty()) Fail("unknown attribute(s): " + unknown);
 }
@@ -135,8 +142,8 @@ void RequireChildNames(const XmlFile& file, const tinyxml2::XMLElement& parent,
     if (allowed.count(child->Name()) == 0) {
       std::string names;
       for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + a;
-      file.Fail(*child, "unknown element inside <" + std::string(parent.Name()) +
-                            ">; allowed: " + names);
+      file.Fail(*child,
+                "unknown element inside <" + std::string(parent.Name()) + ">; allowed: " + names);
     }
   }
 }

@@ -23,13 +23,12 @@ std::vector<config::OptionSpec> StandardOptions() {
 }
 
 double WallClockSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 int RunComponent(int argc, char** argv, const std::string& name,
                  std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory) {
-  ShutdownSignal shutdown;  // before any DDS thread exists
+  process::ShutdownSignal shutdown;  // before any DDS thread exists
   auto specs = StandardOptions();
   specs.insert(specs.end(), extra_options.begin(), extra_options.end());
   try {

@@ -15,8 +15,9 @@ Node::Node(const NodeOptions& options)
   }
   auto participant_qos = qos_.Participant(options.participant_profile);
   participant_qos.name(options.name);
-  participant_ = eprosima::fastdds::dds::DomainParticipantFactory::get_instance()
-                     ->create_participant(options.domain_id, participant_qos);
+  participant_ =
+      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->create_participant(
+          options.domain_id, participant_qos);
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(options.domain_id) + " with profile '" +

@@ -27,9 +27,9 @@
 namespace structloc::dds {
 
 struct NodeOptions {
-  std::string name;                                   // shown in reports and diagnostics
-  int domain_id = 0;                                  // DDS domain, 0..232
-  std::string qos_file;                               // Fast DDS profiles XML
+  std::string name;      // shown in reports and diagnostics
+  int domain_id = 0;     // DDS domain, 0..232
+  std::string qos_file;  // Fast DDS profiles XML
   std::string participant_profile = "structloc_localhost";
 };
 
@@ -63,7 +63,8 @@ class Node {
   template <class PubSubType>
   TopicWriter<PubSubType> CreateWriter(const TopicSpec& topic) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
-    auto* writer = publisher_->create_datawriter(dds_topic, qos_.Writer(*publisher_, topic.qos_profile));
+    auto* writer =
+        publisher_->create_datawriter(dds_topic, qos_.Writer(*publisher_, topic.qos_profile));
     if (writer == nullptr) throw std::runtime_error("cannot create writer for " + topic.name);
     endpoints_.push_back("publishes  " + Describe(topic, dds_topic->get_type_name()));
     return TopicWriter<PubSubType>(writer);

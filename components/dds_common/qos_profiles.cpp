@@ -51,8 +51,8 @@ void CheckValues(const config::XmlFile& file, const tinyxml2::XMLElement& elemen
       }
     } else if (name == "sec" || name == "nanosec") {
       const std::string t = text ? text : "";
-      const bool infinite = t == "DURATION_INFINITY" || t == "DURATION_INFINITE_SEC" ||
-                            t == "DURATION_INFINITE_NSEC";
+      const bool infinite =
+          t == "DURATION_INFINITY" || t == "DURATION_INFINITE_SEC" || t == "DURATION_INFINITE_NSEC";
       if (!infinite && !IsNonNegativeInteger(text, 2147483647L, &value)) {
         file.Fail(*child, "duration '" + t + "' must be a non-negative integer");
       }

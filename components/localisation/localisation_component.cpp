@@ -11,8 +11,8 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
       pose_(node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
           dds::topics::kPose)),
       tf_(node.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds::topics::kTf)),
-      features_(node.CreateWriter<structloc_msgs::msg::ScanFeaturesPubSubType>(
-          dds::topics::kFeatures)),
+      features_(
+          node.CreateWriter<structloc_msgs::msg::ScanFeaturesPubSubType>(dds::topics::kFeatures)),
       status_(node.CreateWriter<structloc_msgs::msg::LocalisationStatusPubSubType>(
           dds::topics::kStatus)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(

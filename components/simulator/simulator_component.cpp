@@ -19,7 +19,8 @@ nav_msgs::msg::Odometry StandingStill(double stamp, const char* frame) {
 SimulatorComponent::SimulatorComponent(dds::Node& node, const SimulatorComponentOptions& options)
     : options_(options),
       odom_(node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
-      ground_truth_(node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kGroundTruth)),
+      ground_truth_(
+          node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kGroundTruth)),
       encoders_(node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(
           dds::topics::kWheelEncoders)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(

@@ -5,7 +5,7 @@
 
 #include <chrono>
 
-namespace structloc::dds {
+namespace structloc::process {
 
 class ShutdownSignal {
  public:
@@ -19,4 +19,4 @@ class ShutdownSignal {
   bool received_ = false;
 };
 
-}  // namespace structloc::dds
+}  // namespace structloc::process

@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <ctime>
 
-namespace structloc::dds {
+namespace structloc::process {
 namespace {
 sigset_t StopSignals() {
   sigset_t set;
@@ -34,4 +34,4 @@ bool ShutdownSignal::WaitFor(std::chrono::milliseconds timeout) {
   return received_;
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::process

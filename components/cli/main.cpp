@@ -1,0 +1,54 @@
+// structloc: the command-line front end (launch, demo and, as they land,
+// simulate, replay, calibrate, render). Each subcommand calls the same core
+// libraries as the components.
+#include <unistd.h>
+
+#include <climits>
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "subcommands.hpp"
+
+namespace {
+
+std::string ExecutableDir() {
+  char path[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof(path) - 1);
+  if (n <= 0) return ".";
+  path[n] = '\0';
+  std::string p(path);
+  return p.substr(0, p.find_last_of('/'));
+}
+
+struct Subcommand {
+  const char* name;
+  int (*run)(const structloc::cli::Invocation&);
+  const char* help;
+};
+
+const Subcommand kSubcommands[] = {
+    {"launch", structloc::cli::LaunchCommand,
+     "FILE.launch.xml [NAME:=VALUE ...] [--duration S]  start components from a launch file"},
+    {"demo", structloc::cli::DemoCommand, "run the main demo"},
+};
+
+void Usage() {
+  std::cerr << "usage: structloc SUBCOMMAND ...\n";
+  for (const auto& s : kSubcommands) std::cerr << "  " << s.name << " " << s.help << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0) {
+    Usage();
+    return argc < 2 ? 2 : 0;
+  }
+  for (const auto& s : kSubcommands) {
+    if (std::strcmp(argv[1], s.name) == 0) return s.run({argc, argv, ExecutableDir()});
+  }
+  std::cerr << "structloc: unknown subcommand '" << argv[1] << "'\n";
+  Usage();
+  return 2;
+}

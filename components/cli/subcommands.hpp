@@ -1,0 +1,18 @@
+// The structloc CLI's subcommands; each lives in its own file and returns the
+// process exit code (0 success, 1 failure, 2 usage or configuration error).
+#pragma once
+
+#include <string>
+
+namespace structloc::cli {
+
+struct Invocation {
+  int argc;
+  char** argv;          // argv[0] is "structloc", argv[1] the subcommand
+  std::string bin_dir;  // folder of the structloc executable (and the components)
+};
+
+int LaunchCommand(const Invocation& invocation);
+int DemoCommand(const Invocation& invocation);
+
+}  // namespace structloc::cli

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# structloc's one-command entry point: installs the Debian packages the project
+# needs (idempotent, non-interactive; as root or through sudo), configures and
+# builds into build/, then runs what was asked:
+#   ./setup.sh demo    the main job: simulated robot localised live, summary + picture
+#   ./setup.sh test    every test (ctest), non-zero exit when one fails
+#   ./setup.sh build   dependencies and build only
+#   ./setup.sh deps    dependencies only
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+build_dir="${STRUCTLOC_BUILD_DIR:-$here/build}"
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+packages=(
+  build-essential cmake g++ make pkg-config
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  libeigen3-dev libopencv-dev libtinyxml2-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  iproute2 procps
+)
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+install_dependencies() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ "${#missing[@]}" -eq 0 ]; then
+    echo "setup: all Debian packages present"
+    return
+  fi
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  as_root apt-get update -qq
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build_dir" -j "$jobs"
+  echo "setup: built into $build_dir (executables in $build_dir/bin)"
+}
+
+run_tests() {
+  cd "$build_dir"
+  ctest --output-on-failure -j "$jobs" --timeout 600
+}
+
+run_demo() {
+  "$build_dir/bin/structloc" demo
+}
+
+case "${1:-}" in
+  deps) install_dependencies ;;
+  build) install_dependencies; build ;;
+  test) install_dependencies; build; run_tests ;;
+  demo) install_dependencies; build; run_demo ;;
+  *)
+    echo "usage: ./setup.sh demo|test|build|deps" >&2
+    exit 2
+    ;;
+esac

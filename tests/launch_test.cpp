@@ -1,0 +1,109 @@
+// Launch files: every shipped one reads cleanly and names executables we
+// build; broken ones are rejected with file:line; the real launch file starts
+// the components, which exit cleanly when the launch ends.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "child_process.hpp"
+#include "launch_file.hpp"
+#include "strict_xml.hpp"
+
+namespace structloc {
+namespace {
+
+using namespace std::chrono_literals;
+
+process::LaunchContext Context() {
+  return {STRUCTLOC_SOURCE_DIR, STRUCTLOC_BIN_DIR, {}};
+}
+
+TEST(LaunchFiles, EveryShippedLaunchFileReadsAndNamesBuiltExecutables) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml")) {
+    if (entry.path().extension() != ".xml") continue;
+    ++count;
+    const auto description = process::ReadLaunchFile(entry.path().string(), Context());
+    for (const auto& node : description.nodes) {
+      EXPECT_TRUE(std::filesystem::exists(node.executable)) << node.executable;
+    }
+  }
+  EXPECT_GT(count, 0);
+}
+
+TEST(LaunchFiles, OverridesReplaceDefaultsAndUnknownOverridesAreErrors) {
+  auto context = Context();
+  context.overrides["domain"] = "42";
+  const auto d = process::ReadLaunchFile(
+      std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/structloc.launch.xml", context);
+  ASSERT_FALSE(d.nodes.empty());
+  EXPECT_EQ(d.nodes[0].arguments[0], "--domain");
+  EXPECT_EQ(d.nodes[0].arguments[1], "42");
+  EXPECT_EQ(d.arguments.at("qos"), std::string(STRUCTLOC_SOURCE_DIR) + "/qos/structloc_qos.xml");
+  context.overrides["no_such_arg"] = "1";
+  EXPECT_THROW(process::ReadLaunchFile(
+                   std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/structloc.launch.xml", context),
+               config::ConfigError);
+}
+
+std::string WriteTemp(const std::string& text) {
+  const std::string path = "/tmp/structloc_launch_test_" + std::to_string(getpid()) + ".xml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+struct BrokenLaunch {
+  const char* text;
+  const char* problem;
+};
+
+class BrokenLaunchFile : public ::testing::TestWithParam<BrokenLaunch> {};
+
+TEST_P(BrokenLaunchFile, IsRejectedWithFileLineAndProblem) {
+  const std::string path = WriteTemp(GetParam().text);
+  try {
+    process::ReadLaunchFile(path, Context());
+    ADD_FAILURE() << "accepted: " << GetParam().text;
+  } catch (const config::ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ":"), std::string::npos) << what;
+    EXPECT_NE(what.find(GetParam().problem), std::string::npos) << what;
+  }
+  std::remove(path.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BrokenLaunchFile,
+    ::testing::Values(
+        BrokenLaunch{"<launch><nod pkg='structloc' exec='x'/></launch>", "unknown element"},
+        BrokenLaunch{"<launch><node pkg='structloc' exec='x' colour='red'/></launch>",
+                     "unknown attribute(s): colour"},
+        BrokenLaunch{"<launch><node pkg='other' exec='x'/></launch>", "pkg must be"},
+        BrokenLaunch{"<launch><node pkg='structloc' exec='x'><param name='a' value='$(var b)'/>"
+                     "</node></launch>",
+                     "$(var b) names no <arg>"},
+        BrokenLaunch{"<launch><arg name='a'/><node pkg='structloc' exec='x'/></launch>",
+                     "has no default"},
+        BrokenLaunch{"<launch><node pkg='structloc' exec='x'></launch>", "malformed XML"},
+        BrokenLaunch{"<launch/>", "launches no <node>"}));
+
+TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
+  process::ChildProcess launch(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+      {"launch", std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/structloc.launch.xml",
+       "domain:=104", "--duration", "2"});
+  const auto code = launch.WaitExit(20s);
+  const auto out = launch.CapturedOutput();
+  ASSERT_TRUE(code.has_value()) << out;
+  EXPECT_EQ(*code, 0) << out;
+  for (const auto* name : {"simulator", "localisation", "calibration"}) {
+    EXPECT_NE(out.find(std::string("[launch] ") + name + " exited with code 0"), std::string::npos)
+        << out;
+  }
+  EXPECT_NE(out.find("on domain 104"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace structloc
