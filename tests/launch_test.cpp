@@ -55,6 +55,7 @@ std::string WriteTemp(const std::string& text) {
 }
 
 struct BrokenLaunch {
+  const char* tag;
   const char* text;
   const char* problem;
 };
@@ -77,17 +78,24 @@ TEST_P(BrokenLaunchFile, IsRejectedWithFileLineAndProblem) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, BrokenLaunchFile,
     ::testing::Values(
-        BrokenLaunch{"<launch><nod pkg='structloc' exec='x'/></launch>", "unknown element"},
-        BrokenLaunch{"<launch><node pkg='structloc' exec='x' colour='red'/></launch>",
+        BrokenLaunch{"UnknownElement", "<launch><nod pkg='structloc' exec='x'/></launch>",
+                     "unknown element"},
+        BrokenLaunch{"UnknownAttribute",
+                     "<launch><node pkg='structloc' exec='x' colour='red'/></launch>",
                      "unknown attribute(s): colour"},
-        BrokenLaunch{"<launch><node pkg='other' exec='x'/></launch>", "pkg must be"},
-        BrokenLaunch{"<launch><node pkg='structloc' exec='x'><param name='a' value='$(var b)'/>"
+        BrokenLaunch{"WrongPackage", "<launch><node pkg='other' exec='x'/></launch>",
+                     "pkg must be"},
+        BrokenLaunch{"UndeclaredVar",
+                     "<launch><node pkg='structloc' exec='x'><param name='a' value='$(var b)'/>"
                      "</node></launch>",
                      "$(var b) names no <arg>"},
-        BrokenLaunch{"<launch><arg name='a'/><node pkg='structloc' exec='x'/></launch>",
+        BrokenLaunch{"ArgWithoutDefault",
+                     "<launch><arg name='a'/><node pkg='structloc' exec='x'/></launch>",
                      "has no default"},
-        BrokenLaunch{"<launch><node pkg='structloc' exec='x'></launch>", "malformed XML"},
-        BrokenLaunch{"<launch/>", "launches no <node>"}));
+        BrokenLaunch{"Malformed", "<launch><node pkg='structloc' exec='x'></launch>",
+                     "malformed XML"},
+        BrokenLaunch{"NoNodes", "<launch/>", "launches no <node>"}),
+    [](const auto& info) { return std::string(info.param.tag); });
 
 TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
   process::ChildProcess launch(
