@@ -1,0 +1,75 @@
+// Corner extraction (see header).
+#include "corner_extraction.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace structloc::localisation {
+
+Eigen::Matrix2d PointSums::Scatter() const {
+  const Eigen::Vector2d m = Mean();
+  Eigen::Matrix2d c;
+  const double k = n > 1 ? 1.0 / (n - 1) : 1.0;
+  c(0, 0) = std::max(0.0, (sxx - n * m.x() * m.x()) * k);
+  c(1, 1) = std::max(0.0, (syy - n * m.y() * m.y()) * k);
+  c(0, 1) = c(1, 0) = (sxy - n * m.x() * m.y()) * k;
+  return c;
+}
+
+void CornerOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("corners: ") + what);
+  };
+  require(next_windows >= 1, "next_windows must be >= 1");
+  require(angle_tolerance_rad > 0.0 && angle_tolerance_rad < geometry::kPi / 2,
+          "angle_tolerance_rad must be in (0, pi/2)");
+  require(gate_m > 0.0, "gate_m must be > 0");
+  require(min_cluster_size >= 1, "min_cluster_size must be >= 1");
+  require(min_point_sigma_m > 0.0, "min_point_sigma_m must be > 0");
+}
+
+void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
+                    const ExpectedFeatures& expected, const CornerOptions& o, int window_points,
+                    std::vector<PointSums>& work, std::vector<PointCluster>& out) {
+  out.clear();
+  const size_t ne = expected.corners.size();
+  if (ne == 0) return;
+  work.assign(ne, PointSums{});
+  const double min_sin = std::cos(o.angle_tolerance_rad);  // |sin(angle)| near 1
+  const double gate2 = o.gate_m * o.gate_m;
+  const size_t n = windows.size();
+  const size_t k = static_cast<size_t>(o.next_windows);
+  for (size_t i = 0; i < n; ++i) {
+    if (!windows[i].valid) continue;
+    const auto& p = windows[i].line;
+    for (size_t j = 1; j <= k; ++j) {
+      if (!wraps && i + j >= n) break;
+      const auto& q = windows[(i + j) % n];
+      if (!q.valid) continue;
+      const double det = p.cos_alpha * q.line.sin_alpha - p.sin_alpha * q.line.cos_alpha;
+      if (std::abs(det) < min_sin) continue;
+      // EQ 31 by Cramer's rule.
+      const double x = (p.r * q.line.sin_alpha - q.line.r * p.sin_alpha) / det;
+      const double y = (p.cos_alpha * q.line.r - q.line.cos_alpha * p.r) / det;
+      const int e = NearestWithin(expected.corners, x, y, gate2);
+      if (e >= 0) work[static_cast<size_t>(e)].Add(x, y);
+    }
+  }
+  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  for (size_t e = 0; e < ne; ++e) {
+    const auto& s = work[e];
+    if (s.n < o.min_cluster_size) continue;
+    PointCluster c;
+    c.expected_index = static_cast<int>(e);
+    c.members = static_cast<int>(s.n);
+    c.mean = s.Mean();
+    c.refined = c.mean;
+    // Overlapping windows make members strongly correlated: count roughly one
+    // independent estimate per window length.
+    const double independent = std::max(1.0, s.n / window_points);
+    c.covariance = s.Scatter() / independent + floor2 * Eigen::Matrix2d::Identity();
+    out.push_back(c);
+  }
+}
+
+}  // namespace structloc::localisation

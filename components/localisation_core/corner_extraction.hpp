@@ -1,0 +1,28 @@
+// Step 4 (SPEC 4, EQ 31): corners from intersecting each window's line with
+// the lines of the next k windows when they meet at pi/2 +- tolerance; the
+// intersections pile up at each corner and are gated around expected corners.
+#pragma once
+
+#include <vector>
+
+#include "expected_features.hpp"
+#include "line_fit.hpp"
+#include "point_cluster.hpp"
+
+namespace structloc::localisation {
+
+struct CornerOptions {
+  int next_windows = 5;                            // k: windows after i intersected with i
+  double angle_tolerance_rad = geometry::kPi / 8;  // around pi/2
+  double gate_m = 0.2;                             // distance gate around an expected corner
+  int min_cluster_size = 1;
+  double min_point_sigma_m = 0.005;  // floor of a corner's standard deviation
+  void Validate() const;
+};
+
+void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
+                    const ExpectedFeatures& expected, const CornerOptions& options,
+                    int window_points, std::vector<PointSums>& work,
+                    std::vector<PointCluster>& out);
+
+}  // namespace structloc::localisation

@@ -1,0 +1,69 @@
+// De-skewing (see header).
+#include "deskew.hpp"
+
+#include <cmath>
+
+namespace structloc::localisation {
+
+void BeamMotion::Reserve(size_t n) {
+  x.reserve(n);
+  y.reserve(n);
+  c.reserve(n);
+  s.reserve(n);
+}
+
+void BeamMotion::Resize(size_t n) {
+  x.resize(n);
+  y.resize(n);
+  c.resize(n);
+  s.resize(n);
+}
+
+void LinearBeamMotion(const geometry::Pose2D& first_to_last, size_t count, BeamMotion& motion) {
+  motion.Resize(count);
+  const double steps = count > 1 ? static_cast<double>(count - 1) : 1.0;
+  // Rotation by a constant step per beam: cos/sin by recurrence.
+  const double dtheta = first_to_last.theta / steps;
+  const double cd = std::cos(dtheta), sd = std::sin(dtheta);
+  double c = 1.0, s = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double f = static_cast<double>(i) / steps;
+    motion.x[i] = f * first_to_last.x;
+    motion.y[i] = f * first_to_last.y;
+    motion.c[i] = c;
+    motion.s[i] = s;
+    const double cn = c * cd - s * sd;
+    s = s * cd + c * sd;
+    c = cn;
+  }
+}
+
+bool BeamMotionFromHistory(const OdometryHistory& history, const geometry::Pose2D& mount,
+                           double stamp, double time_increment, size_t count, BeamMotion& motion) {
+  const double last = stamp + time_increment * static_cast<double>(count ? count - 1 : 0);
+  const auto base_ref = history.At(stamp);
+  if (!base_ref || !history.At(last)) return false;
+  const geometry::Pose2D ref = geometry::Compose(*base_ref, mount);
+  const geometry::Pose2D ref_inv = geometry::Inverse(ref);
+  motion.Resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const auto base = history.At(stamp + time_increment * static_cast<double>(i));
+    const geometry::Pose2D rel = geometry::Compose(ref_inv, geometry::Compose(*base, mount));
+    motion.x[i] = rel.x;
+    motion.y[i] = rel.y;
+    motion.c[i] = std::cos(rel.theta);
+    motion.s[i] = std::sin(rel.theta);
+  }
+  return true;
+}
+
+void Deskew(const BeamMotion& motion, ScanPoints& points) {
+  for (size_t k = 0; k < points.Size(); ++k) {
+    const size_t b = static_cast<size_t>(points.beam[k]);
+    const double px = points.x[k], py = points.y[k];
+    points.x[k] = motion.x[b] + motion.c[b] * px - motion.s[b] * py;
+    points.y[k] = motion.y[b] + motion.s[b] * px + motion.c[b] * py;
+  }
+}
+
+}  // namespace structloc::localisation

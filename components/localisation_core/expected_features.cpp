@@ -1,0 +1,80 @@
+// Expected features (see header).
+#include "expected_features.hpp"
+
+#include <cmath>
+
+namespace structloc::localisation {
+
+std::vector<WallLineModel> GroupCollinearWalls(const world::WorldModel& world, double r_tolerance_m,
+                                               double alpha_tolerance_rad) {
+  std::vector<WallLineModel> lines;
+  for (size_t i = 0; i < world.Walls().size(); ++i) {
+    const auto& w = world.Walls()[i];
+    bool grouped = false;
+    for (auto& l : lines) {
+      if (std::abs(l.line.r - w.line.r) <= r_tolerance_m &&
+          std::abs(geometry::WrapAngle(l.line.alpha - w.line.alpha)) <= alpha_tolerance_rad) {
+        l.walls.push_back(static_cast<int>(i));
+        grouped = true;
+        break;
+      }
+    }
+    if (!grouped) lines.push_back({w.line, {static_cast<int>(i)}, w.id});
+  }
+  return lines;
+}
+
+void ExpectedFeatures::Reserve(size_t l, size_t c, size_t y) {
+  walls.reserve(l);
+  corners.reserve(c);
+  cylinders.reserve(y);
+}
+
+void ComputeExpectedFeatures(const world::WorldModel& world,
+                             const std::vector<WallLineModel>& lines,
+                             const std::vector<int>& wall_line_of,
+                             const world::Visibility& visibility, const geometry::Pose2D& pose,
+                             ExpectedFeatures& out) {
+  out.walls.clear();
+  out.corners.clear();
+  out.cylinders.clear();
+  for (const auto& vw : visibility.walls) {
+    const int line_index = wall_line_of[static_cast<size_t>(vw.index)];
+    const auto& model = lines[static_cast<size_t>(line_index)];
+    const double cw = std::cos(model.line.alpha), sw = std::sin(model.line.alpha);
+    const double t1 = -sw * vw.first.x() + cw * vw.first.y();
+    const double t2 = -sw * vw.last.x() + cw * vw.last.y();
+    ExpectedWall* existing = nullptr;
+    for (auto& e : out.walls) {
+      if (e.line_index == line_index) existing = &e;
+    }
+    if (existing != nullptr) {
+      existing->extent_lo = std::min({existing->extent_lo, t1, t2});
+      existing->extent_hi = std::max({existing->extent_hi, t1, t2});
+      continue;
+    }
+    ExpectedWall e;
+    e.line_index = line_index;
+    e.model_id = model.model_id;
+    e.world = model.line;
+    e.world_c = cw;
+    e.world_s = sw;
+    e.r = model.line.r - (pose.x * cw + pose.y * sw);
+    const double a = model.line.alpha - pose.theta;
+    e.c = std::cos(a);
+    e.s = std::sin(a);
+    e.extent_lo = std::min(t1, t2);
+    e.extent_hi = std::max(t1, t2);
+    out.walls.push_back(e);
+  }
+  for (int i : visibility.corners) {
+    const auto& c = world.Corners()[static_cast<size_t>(i)];
+    out.corners.push_back({i, c.id, c.position, pose.ApplyInverse(c.position), 0.0});
+  }
+  for (int i : visibility.cylinders) {
+    const auto& c = world.Cylinders()[static_cast<size_t>(i)];
+    out.cylinders.push_back({i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius});
+  }
+}
+
+}  // namespace structloc::localisation

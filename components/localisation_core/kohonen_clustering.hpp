@@ -1,0 +1,33 @@
+// The clustering the thesis tried and rejected (SPEC 3.4, EQ 21-22): a
+// self-organising map with one neuron per expected wall, initialised at the
+// expected (r, alpha) and trained on randomly drawn window lines with a
+// decreasing learning rate and shrinking neighbourhood. Kept as a selectable
+// strategy so that its cost and results can be compared with the expectation
+// gates. Deterministic for a given generator state.
+#pragma once
+
+#include <random>
+#include <vector>
+
+#include "expected_features.hpp"
+#include "line_fit.hpp"
+#include "wall_clustering.hpp"
+
+namespace structloc::localisation {
+
+struct KohonenOptions {
+  int iterations = 2000;               // training steps per scan
+  double initial_learning_rate = 0.3;  // eta(0), decreasing linearly to 0
+  double initial_neighbourhood = 1.0;  // sigma(0) in neuron-index units, shrinking to 0
+  void Validate() const;
+};
+
+// Window i -> expected wall index, or -1: nearest trained neuron within the
+// gates of `cluster_options`. Neurons keep the expected walls' order.
+void AssignWindowsByKohonen(const std::vector<WindowLine>& windows,
+                            const ExpectedFeatures& expected,
+                            const WallClusterOptions& cluster_options,
+                            const KohonenOptions& options, std::mt19937& rng,
+                            std::vector<int>& assignment);
+
+}  // namespace structloc::localisation

@@ -1,0 +1,56 @@
+// All parameters of the localisation pipeline: one options struct per step
+// with the thesis' Table 6 values as defaults (other defaults documented where
+// they are declared), validated as a whole, and loadable from an XML
+// parameter file in which every key must be present and none may be unknown.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "corner_extraction.hpp"
+#include "cylinder_extraction.hpp"
+#include "kohonen_clustering.hpp"
+#include "line_fit.hpp"
+#include "pose_solver.hpp"
+#include "prefilter.hpp"
+#include "wall_clustering.hpp"
+
+namespace structloc::localisation {
+
+enum class WallStrategy { kExpectation, kKohonen };
+
+struct VisibilitySettings {
+  double field_of_view_rad = 2.0 * geometry::kPi;  // thesis scanner: full circle
+  double min_visible_length_m = 0.3;               // shorter visible wall parts are not expected
+  double max_incidence_rad = 1.309;                // 75 deg: more oblique views are not expected
+  double refresh_distance_m = 0.25;                // recompute visibility after this much travel
+  double refresh_angle_rad = 0.2;                  // ... or rotation (limited fields of view only)
+};
+
+struct LocaliserOptions {
+  PrefilterOptions prefilter;
+  LineFitOptions line_fit;
+  WallStrategy wall_strategy = WallStrategy::kExpectation;
+  WallClusterOptions walls;
+  KohonenOptions kohonen;
+  uint32_t kohonen_seed = 1;  // seeds the Kohonen strategy's generator
+  bool use_corners = true;
+  CornerOptions corners;
+  bool use_cylinders = true;
+  CylinderOptions cylinders;
+  SolverOptions solver;
+  VisibilitySettings visibility;
+  geometry::Pose2D sensor_mount;  // laser pose on the robot (base_link -> laser)
+  double max_correction_m = 0.5;  // larger corrections of the odometry are refused
+  double max_correction_rad = 0.35;
+  int max_beams = 4096;  // buffers are sized for this many beams
+
+  // Throws std::invalid_argument naming the broken option ("walls: gate_r_m ...").
+  void Validate() const;
+};
+
+// Reads a <localisation_params> file (see maps/params/*.xml). Throws
+// config::ConfigError naming file, line and problem, including invalid values.
+LocaliserOptions LoadLocaliserOptions(const std::string& path);
+
+}  // namespace structloc::localisation

@@ -1,0 +1,136 @@
+// Wall clustering by expectation (see header).
+#include "wall_clustering.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace structloc::localisation {
+
+void WallClusterOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("walls: ") + what);
+  };
+  require(gate_r_m > 0.0, "gate_r_m must be > 0");
+  require(gate_alpha_rad > 0.0 && gate_alpha_rad < geometry::kPi / 2,
+          "gate_alpha_rad must be in (0, pi/2)");
+  require(min_cluster_size >= 1, "min_cluster_size must be >= 1");
+  require(std::isfinite(extent_margin_m), "extent_margin_m must be finite");
+  require(min_point_sigma_m > 0.0, "min_point_sigma_m must be > 0");
+}
+
+void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
+                                const ExpectedFeatures& expected, const geometry::Pose2D& pose,
+                                const WallClusterOptions& o, std::vector<int>& assignment) {
+  assignment.assign(windows.size(), -1);
+  if (expected.walls.empty()) return;
+  const double min_dot = std::cos(o.gate_alpha_rad);
+  const double inv_r2 = 1.0 / (o.gate_r_m * o.gate_r_m);
+  // 1 - cos(d) ~ d^2 / 2: normalised angular distance without atan2.
+  const double inv_a2 = 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
+  const double pc = std::cos(pose.theta), ps = std::sin(pose.theta);
+  const bool check_extent = o.extent_margin_m > 0.0;
+  for (size_t i = 0; i < windows.size(); ++i) {
+    const auto& w = windows[i];
+    if (!w.valid) continue;
+    const auto& l = w.line;
+    int best = -1;
+    double best_d = 3.0;  // > 2 = outside both gates
+    for (size_t e = 0; e < expected.walls.size(); ++e) {
+      const auto& x = expected.walls[e];
+      double dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
+      double r = l.r;
+      if (dot < 0.0) {  // the fit's normal points the other way: flip it
+        dot = -dot;
+        r = -r;
+      }
+      if (dot < min_dot) continue;
+      const double dr = r - x.r;
+      if (dr * dr * inv_r2 > 1.0) continue;
+      const double d = dr * dr * inv_r2 + (1.0 - dot) * inv_a2;
+      if (d >= best_d) continue;
+      if (check_extent) {
+        const double wx = pose.x + pc * l.xm - ps * l.ym;
+        const double wy = pose.y + ps * l.xm + pc * l.ym;
+        const double t = -x.world_s * wx + x.world_c * wy;
+        if (t < x.extent_lo - o.extent_margin_m || t > x.extent_hi + o.extent_margin_m) continue;
+      }
+      best = static_cast<int>(e);
+      best_d = d;
+    }
+    assignment[i] = best;
+  }
+}
+
+void WallClusterWork::Reserve(size_t points, size_t expected) {
+  point_label.reserve(points);
+  sums.reserve(expected);
+  r_sum.reserve(expected);
+  c_sum.reserve(expected);
+  s_sum.reserve(expected);
+  count.reserve(expected);
+}
+
+void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
+                       const ScanPoints& points, int window_points,
+                       const ExpectedFeatures& expected, const WallClusterOptions& o,
+                       WallClusterWork& work, std::vector<WallCluster>& out) {
+  out.clear();
+  const size_t ne = expected.walls.size();
+  const size_t np = points.Size();
+  work.sums.assign(ne, LineSums{});
+  work.r_sum.assign(ne, 0.0);
+  work.c_sum.assign(ne, 0.0);
+  work.s_sum.assign(ne, 0.0);
+  work.count.assign(ne, 0);
+  work.point_label.assign(np, -1);
+  for (size_t i = 0; i < windows.size(); ++i) {
+    const int e = assignment[i];
+    if (e < 0) continue;
+    const auto& x = expected.walls[static_cast<size_t>(e)];
+    const auto& l = windows[i].line;
+    const double sign = (l.cos_alpha * x.c + l.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
+    work.r_sum[static_cast<size_t>(e)] += sign * l.r;
+    work.c_sum[static_cast<size_t>(e)] += sign * l.cos_alpha;
+    work.s_sum[static_cast<size_t>(e)] += sign * l.sin_alpha;
+    ++work.count[static_cast<size_t>(e)];
+    for (int j = 0; j < window_points; ++j) {
+      const size_t k = (static_cast<size_t>(windows[i].first) + static_cast<size_t>(j)) % np;
+      int& label = work.point_label[k];
+      label = (label == -1 || label == e) ? e : -2;  // -2: claimed by two walls
+    }
+  }
+  // Sums relative to each cluster's first point would be ideal; the sensor
+  // origin is close enough for indoor ranges in double precision.
+  for (size_t k = 0; k < np; ++k) {
+    const int e = work.point_label[k];
+    if (e >= 0) work.sums[static_cast<size_t>(e)].Add(points.x[k], points.y[k]);
+  }
+  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  for (size_t e = 0; e < ne; ++e) {
+    const int n = work.count[e];
+    if (n < o.min_cluster_size || work.sums[e].n < 3) continue;
+    const auto& x = expected.walls[e];
+    WallCluster cl;
+    cl.expected_index = static_cast<int>(e);
+    cl.members = n;
+    cl.mean_r = work.r_sum[e] / n;
+    cl.mean_alpha = std::atan2(work.s_sum[e], work.c_sum[e]);
+    const LineEstimate fit = FitLine(work.sums[e], 0.0, 0.0);
+    if (fit.degenerate) continue;
+    const double sign = (fit.cos_alpha * x.c + fit.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
+    const double c = sign * fit.cos_alpha, s = sign * fit.sin_alpha;
+    cl.refined_r = sign * fit.r;
+    cl.refined_alpha = std::atan2(s, c);
+    cl.points = static_cast<int>(work.sums[e].n);
+    // Residual e_k = x_k c + y_k s - r: d/dr = -1, d/dalpha = t_k (along-line coordinate).
+    const double npts = work.sums[e].n;
+    const double sigma2 = std::max(fit.sse / std::max(1.0, npts - 2.0), floor2);
+    const double tm = -fit.xm * s + fit.ym * c;
+    Eigen::Matrix2d info;
+    info << npts, -npts * tm, -npts * tm, fit.along_spread + npts * tm * tm;
+    cl.covariance = sigma2 * info.inverse();
+    out.push_back(cl);
+  }
+}
+
+}  // namespace structloc::localisation

@@ -1,0 +1,65 @@
+// Visibility computation (see header).
+#include "visibility.hpp"
+
+#include <cmath>
+
+namespace structloc::world {
+namespace {
+
+bool InView(const geometry::Pose2D& sensor, const Eigen::Vector2d& p, const VisibilityOptions& o) {
+  const Eigen::Vector2d d = p - sensor.Translation();
+  const double range = d.norm();
+  if (range < o.min_range_m || range > o.max_range_m) return false;
+  if (o.field_of_view_rad >= 2.0 * geometry::kPi - 1e-9) return true;
+  const double bearing = geometry::WrapAngle(std::atan2(d.y(), d.x()) - sensor.theta);
+  return std::abs(bearing) <= 0.5 * o.field_of_view_rad;
+}
+
+}  // namespace
+
+void ComputeVisibility(const WorldModel& world, const Scene& scene, const geometry::Pose2D& sensor,
+                       const VisibilityOptions& o, Visibility& result) {
+  result.walls.clear();
+  result.corners.clear();
+  result.cylinders.clear();
+  const Eigen::Vector2d origin = sensor.Translation();
+  const double cos_max_incidence = std::cos(o.max_incidence_rad);
+  for (size_t i = 0; i < world.Walls().size(); ++i) {
+    const auto& w = world.Walls()[i];
+    const double length = w.Length();
+    const int samples = std::max(2, static_cast<int>(std::ceil(length / o.sample_spacing_m)) + 1);
+    const Eigen::Vector2d normal(std::cos(w.line.alpha), std::sin(w.line.alpha));
+    VisibleWall vw;
+    vw.index = static_cast<int>(i);
+    bool any = false;
+    for (int k = 0; k < samples; ++k) {
+      const Eigen::Vector2d p = w.a + (w.b - w.a) * (static_cast<double>(k) / (samples - 1));
+      if (!InView(sensor, p, o)) continue;
+      const Eigen::Vector2d ray = (p - origin).normalized();
+      if (std::abs(ray.dot(normal)) < cos_max_incidence) continue;
+      if (scene.Occluded(origin, p, o.occlusion_margin_m)) continue;
+      if (!any) vw.first = p;
+      vw.last = p;
+      vw.visible_length_m += length / (samples - 1);
+      any = true;
+    }
+    if (any && vw.visible_length_m >= o.min_visible_length_m) result.walls.push_back(vw);
+  }
+  for (size_t i = 0; i < world.Corners().size(); ++i) {
+    const Eigen::Vector2d p = world.Corners()[i].position;
+    if (InView(sensor, p, o) && !scene.Occluded(origin, p, o.occlusion_margin_m)) {
+      result.corners.push_back(static_cast<int>(i));
+    }
+  }
+  for (size_t i = 0; i < world.Cylinders().size(); ++i) {
+    const auto& c = world.Cylinders()[i];
+    const Eigen::Vector2d to_centre = c.centre - origin;
+    if (to_centre.norm() <= c.radius) continue;
+    const Eigen::Vector2d near = c.centre - c.radius * to_centre.normalized();
+    if (InView(sensor, near, o) && !scene.Occluded(origin, near, o.occlusion_margin_m)) {
+      result.cylinders.push_back(static_cast<int>(i));
+    }
+  }
+}
+
+}  // namespace structloc::world
