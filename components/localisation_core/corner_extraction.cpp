@@ -42,10 +42,15 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
   for (size_t i = 0; i < n; ++i) {
     if (!windows[i].valid) continue;
     const auto& p = windows[i].line;
-    for (size_t j = 1; j <= k; ++j) {
+    // The next k usable windows: windows straddling the corner itself fail the
+    // rms check, so the search looks up to one window length further.
+    const size_t reach = k + static_cast<size_t>(window_points);
+    size_t used = 0;
+    for (size_t j = 1; j <= reach && used < k; ++j) {
       if (!wraps && i + j >= n) break;
       const auto& q = windows[(i + j) % n];
       if (!q.valid) continue;
+      ++used;
       const double det = p.cos_alpha * q.line.sin_alpha - p.sin_alpha * q.line.cos_alpha;
       if (std::abs(det) < min_sin) continue;
       // EQ 31 by Cramer's rule.

@@ -15,7 +15,7 @@ namespace structloc::localisation {
 
 struct LineFitOptions {
   int window_points = 7;    // Table 6: number of elements in line fitting
-  double max_rms_m = 0.05;  // windows whose points scatter more than this about their
+  double max_rms_m = 0.03;  // windows whose points scatter more than this about their
                             // line (corners, depth jumps, clutter) are not used
   void Validate() const;
 };
