@@ -3,6 +3,7 @@
 // random rooms with corners, pillars and clutter for statistical tests.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <random>
 #include <vector>
 

@@ -1,6 +1,7 @@
 // Corner extraction (see header).
 #include "corner_extraction.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
 

@@ -74,7 +74,7 @@ void AssignWindowsByKohonen(const std::vector<WindowLine>& windows,
     for (size_t e = 0; e < ne; ++e) {  // EQ 21
       const double k = static_cast<double>(e) - static_cast<double>(winner);
       const double lambda = std::exp(-k * k / (2.0 * sigma * sigma));
-      if (lambda < 1e-3) continue;
+      if (lambda < 0.05) continue;  // tiny repeated pulls make neurons drift onto other walls
       double r, a;
       Oriented(l, neurons[e], &r, &a);
       neurons[e].r += eta * lambda * (r - neurons[e].r);

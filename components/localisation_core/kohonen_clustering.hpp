@@ -18,7 +18,9 @@ namespace structloc::localisation {
 struct KohonenOptions {
   int iterations = 2000;               // training steps per scan
   double initial_learning_rate = 0.3;  // eta(0), decreasing linearly to 0
-  double initial_neighbourhood = 1.0;  // sigma(0) in neuron-index units, shrinking to 0
+  // sigma(0) in neuron-index units, shrinking to 0; wider neighbourhoods drag
+  // the neurons of different walls onto one wall.
+  double initial_neighbourhood = 0.3;
   void Validate() const;
 };
 

@@ -1,6 +1,7 @@
 // The whole position update (see header).
 #include "localiser.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
@@ -113,8 +114,12 @@ void Localiser::Reject(const UpdateInput& input, const char* why) {
   result_.rejection = why;
   result_.lost = true;
   result_.lost_reason = LostReason::kRejectedInput;
-  result_.pose = input.odometry_pose;
-  result_.covariance = input.odometry_covariance;
+  // Never hand out a NaN: an unusable prior falls back to the last good pose.
+  const bool prior_ok = geometry::IsFinite(input.odometry_pose);
+  result_.pose = prior_ok ? input.odometry_pose : last_pose_;
+  result_.covariance = prior_ok && ValidCovariance(input.odometry_covariance)
+                           ? input.odometry_covariance
+                           : last_covariance_;
 }
 
 const LocalisationResult& Localiser::Update(const UpdateInput& input) {
@@ -189,6 +194,8 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   // 6. Pose.
   Finish(input, sensor_prior, sensor_prior_cov);
   const auto t6 = Clock::now();
+  last_pose_ = result_.pose;
+  last_covariance_ = result_.covariance;
   auto& times = result_.times;
   times.prefilter_us = Us(t0, t1);
   times.line_fit_us = Us(t1, t2);

@@ -110,6 +110,9 @@ class Localiser {
   std::vector<PointMeasurement> point_measurements_;
   SolveOutput solve_;
   LocalisationResult result_;
+  // Last output, the fallback when an input's own prior is unusable.
+  geometry::Pose2D last_pose_;
+  Eigen::Matrix3d last_covariance_ = 1e4 * Eigen::Matrix3d::Identity();
 };
 
 }  // namespace structloc::localisation

@@ -1,6 +1,7 @@
 // Wall clustering by expectation (see header).
 #include "wall_clustering.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
 
