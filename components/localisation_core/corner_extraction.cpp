@@ -49,7 +49,7 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
     size_t used = 0;
     for (size_t j = 1; j <= reach && used < k; ++j) {
       if (!wraps && i + j >= n) break;
-      const auto& q = windows[(i + j) % n];
+      const auto& q = windows[i + j < n ? i + j : i + j - n];
       if (!q.valid) continue;
       ++used;
       const double det = p.cos_alpha * q.line.sin_alpha - p.sin_alpha * q.line.cos_alpha;

@@ -56,7 +56,7 @@ void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
   for (size_t i = 0; i < windows; ++i) {
     if (i > 0) {
       const size_t leaving = i - 1;
-      const size_t entering = (i + o - 1) % n;
+      const size_t entering = i + o - 1 < n ? i + o - 1 : i + o - 1 - n;
       sums.Remove(points.x[leaving] - ox, points.y[leaving] - oy);
       sums.Add(points.x[entering] - ox, points.y[entering] - oy);
     }

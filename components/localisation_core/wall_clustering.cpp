@@ -69,6 +69,7 @@ void WallClusterWork::Reserve(size_t points, size_t expected) {
   c_sum.reserve(expected);
   s_sum.reserve(expected);
   count.reserve(expected);
+  labelled_end.reserve(expected);
 }
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
@@ -83,6 +84,7 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
   work.c_sum.assign(ne, 0.0);
   work.s_sum.assign(ne, 0.0);
   work.count.assign(ne, 0);
+  work.labelled_end.assign(ne, 0);
   work.point_label.assign(np, -1);
   for (size_t i = 0; i < windows.size(); ++i) {
     const int e = assignment[i];
@@ -94,11 +96,16 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
     work.c_sum[static_cast<size_t>(e)] += sign * l.cos_alpha;
     work.s_sum[static_cast<size_t>(e)] += sign * l.sin_alpha;
     ++work.count[static_cast<size_t>(e)];
-    for (int j = 0; j < window_points; ++j) {
-      const size_t k = (static_cast<size_t>(windows[i].first) + static_cast<size_t>(j)) % np;
-      int& label = work.point_label[k];
+    // Windows come in scan order, so the points of this window before
+    // labelled_end[e] already carry label e: label each point once per run.
+    const size_t first = static_cast<size_t>(windows[i].first);
+    const size_t end = first + static_cast<size_t>(window_points);
+    size_t& done = work.labelled_end[static_cast<size_t>(e)];
+    for (size_t u = std::max(first, done); u < end; ++u) {
+      int& label = work.point_label[u < np ? u : u - np];
       label = (label == -1 || label == e) ? e : -2;  // -2: claimed by two walls
     }
+    done = std::max(done, end);
   }
   // Sums relative to each cluster's first point would be ideal; the sensor
   // origin is close enough for indoor ranges in double precision.

@@ -48,6 +48,7 @@ struct WallClusterWork {
   std::vector<LineSums> sums;
   std::vector<double> r_sum, c_sum, s_sum;
   std::vector<int> count;
+  std::vector<size_t> labelled_end;  // per expected wall: points labelled so far
   void Reserve(size_t points, size_t expected);
 };
 

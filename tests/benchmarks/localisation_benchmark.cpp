@@ -1,0 +1,173 @@
+// Speed of the position update, measured with Google Benchmark: one benchmark
+// per pipeline step and for the whole update, on the office floor seen from
+// the hall (walls, corners and pillars all active), with per-update median and
+// p99 as counters and the beam-count complexity fitted. Prints figures; it
+// asserts nothing (speed goals live here, not in timed unit tests).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "corner_extraction.hpp"
+#include "cylinder_extraction.hpp"
+#include "office_scene.hpp"
+
+namespace structloc {
+namespace {
+
+using localisation::Localiser;
+
+double FieldOfView(int beams) {
+  return beams == 300 ? 2 * geometry::kPi : 1.5 * geometry::kPi;
+}
+
+// Every intermediate of one update, prepared with the step functions.
+struct Prepared {
+  testing::OfficeScene office;
+  testing::SyntheticScan scan;
+  localisation::BeamDirections directions;
+  localisation::ScanPoints points;
+  std::vector<unsigned char> keep;
+  std::vector<localisation::WindowLine> windows;
+  localisation::ExpectedFeatures expected;
+  geometry::Pose2D sensor_prior;
+  std::vector<int> assignment;
+  localisation::WallClusterWork wall_work;
+  std::vector<localisation::WallCluster> walls;
+
+  explicit Prepared(int beams) : office(FieldOfView(beams)) {
+    std::mt19937 rng(1);
+    scan = office.Scan(beams, rng);
+    const auto input = office.Input(scan);
+    sensor_prior = geometry::Compose(input.odometry_pose, office.options.sensor_mount);
+    directions.Update(scan.View());
+    localisation::PrefilterStats stats;
+    RangeGate(scan.View(), directions, office.options.prefilter, points, stats);
+    RejectUnsupported(office.options.prefilter, points, keep, stats);
+    Thin(office.options.prefilter, points, stats);
+    FitWindowLines(points, office.options.line_fit, windows);
+    const auto lines = localisation::GroupCollinearWalls(office.world);
+    std::vector<int> line_of(office.world.Walls().size());
+    for (size_t l = 0; l < lines.size(); ++l) {
+      for (int w : lines[l].walls) line_of[static_cast<size_t>(w)] = static_cast<int>(l);
+    }
+    world::VisibilityOptions vo;
+    vo.min_range_m = office.options.prefilter.min_range_m;
+    vo.max_range_m = office.options.prefilter.max_range_m;
+    vo.field_of_view_rad = office.options.visibility.field_of_view_rad;
+    world::Visibility visibility;
+    ComputeVisibility(office.world, office.scene, sensor_prior, vo, visibility);
+    ComputeExpectedFeatures(office.world, lines, line_of, visibility, sensor_prior, expected);
+    AssignWindowsByExpectation(windows, expected, sensor_prior, office.options.walls, assignment);
+    BuildWallClusters(windows, assignment, points, office.options.line_fit.window_points, expected,
+                      office.options.walls, wall_work, walls);
+  }
+};
+
+void BM_Prefilter(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  localisation::ScanPoints points;
+  points.Reserve(4096);
+  for (auto _ : state) {
+    localisation::PrefilterStats stats;
+    RangeGate(p.scan.View(), p.directions, p.office.options.prefilter, points, stats);
+    RejectUnsupported(p.office.options.prefilter, points, p.keep, stats);
+    Thin(p.office.options.prefilter, points, stats);
+    benchmark::DoNotOptimize(points.x.data());
+  }
+}
+
+void BM_LineFit(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  std::vector<localisation::WindowLine> windows;
+  windows.reserve(4096);
+  for (auto _ : state) {
+    FitWindowLines(p.points, p.office.options.line_fit, windows);
+    benchmark::DoNotOptimize(windows.data());
+  }
+}
+
+void BM_WallClustering(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, p.office.options.walls,
+                               p.assignment);
+    BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
+                      p.expected, p.office.options.walls, p.wall_work, p.walls);
+    benchmark::DoNotOptimize(p.walls.data());
+  }
+}
+
+void BM_Corners(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  std::vector<localisation::PointSums> work;
+  std::vector<localisation::PointCluster> out;
+  work.reserve(64);
+  out.reserve(64);
+  for (auto _ : state) {
+    ExtractCorners(p.windows, p.points.wraps, p.expected, p.office.options.corners,
+                   p.office.options.line_fit.window_points, work, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+
+void BM_Cylinders(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  localisation::CylinderWork work;
+  work.Reserve(4096, 64);
+  std::vector<localisation::PointCluster> out;
+  out.reserve(64);
+  for (auto _ : state) {
+    ExtractCylinders(p.windows, p.points, p.expected, p.office.options.cylinders,
+                     p.office.options.line_fit.window_points, work, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+
+// The whole update, each call timed on its own for median and p99.
+void BM_Update(benchmark::State& state) {
+  const int beams = static_cast<int>(state.range(0));
+  testing::OfficeScene office(FieldOfView(beams));
+  Localiser localiser(office.world, office.options);
+  std::mt19937 rng(2);
+  std::vector<testing::SyntheticScan> scans;
+  for (int i = 0; i < 16; ++i) scans.push_back(office.Scan(beams, rng));
+  std::vector<localisation::UpdateInput> inputs;
+  for (const auto& s : scans) inputs.push_back(office.Input(s));
+  std::vector<double> times;
+  times.reserve(1 << 20);
+  size_t i = 0;
+  double solve_us = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto& r = localiser.Update(inputs[i++ % inputs.size()]);
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(r.pose);
+    solve_us += r.times.solve_us;
+    if (times.size() < times.capacity()) {
+      times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    }
+  }
+  std::sort(times.begin(), times.end());
+  state.counters["median_us"] = times[times.size() / 2];
+  state.counters["p99_us"] = times[std::min(times.size() - 1, times.size() * 99 / 100)];
+  state.counters["solve_us"] = solve_us / static_cast<double>(state.iterations());
+  state.SetComplexityN(beams);
+}
+
+BENCHMARK(BM_Prefilter)->Arg(300)->Arg(1081);
+BENCHMARK(BM_LineFit)->Arg(300)->Arg(1081);
+BENCHMARK(BM_WallClustering)->Arg(300)->Arg(1081);
+BENCHMARK(BM_Corners)->Arg(300)->Arg(1081);
+BENCHMARK(BM_Cylinders)->Arg(300)->Arg(1081);
+BENCHMARK(BM_Update)->Arg(300)->Arg(1081);
+// Time against beam count (270 deg scans): Google Benchmark fits the complexity.
+void BM_UpdateScaling(benchmark::State& state) {
+  BM_Update(state);
+}
+BENCHMARK(BM_UpdateScaling)->Arg(541)->Arg(1081)->Arg(2161)->Arg(4001)->Complexity();
+
+}  // namespace
+}  // namespace structloc
+
+BENCHMARK_MAIN();
