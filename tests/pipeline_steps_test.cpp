@@ -168,6 +168,28 @@ TEST(Deskew, LinearMotionMovesBeamsIntoTheFirstBeamFrame) {
   EXPECT_NEAR(pts.y[0], std::sin(0.2), 1e-12);
 }
 
+TEST(Deskew, BeamMotionFromAnOdometryHistoryMatchesTheAnalyticMotion) {
+  // Base drives at 1 m/s along x while turning at 0.5 rad/s; odometry at 100 Hz.
+  OdometryHistory history;
+  auto base_at = [](double t) {
+    const double w = 0.5, v = 1.0;  // exact arc
+    return geometry::Pose2D{v / w * std::sin(w * t), v / w * (1 - std::cos(w * t)), w * t};
+  };
+  for (int k = 0; k <= 100; ++k) history.Add(0.01 * k, base_at(0.01 * k));
+  const geometry::Pose2D mount{0.2, 0.05, 0.1};
+  BeamMotion motion;
+  ASSERT_TRUE(BeamMotionFromHistory(history, mount, 0.3, 1e-4, 1000, motion));
+  const geometry::Pose2D ref = geometry::Compose(base_at(0.3), mount);
+  for (size_t i : {0u, 499u, 999u}) {
+    const geometry::Pose2D truth =
+        geometry::Between(ref, geometry::Compose(base_at(0.3 + 1e-4 * i), mount));
+    EXPECT_NEAR(motion.x[i], truth.x, 1e-5) << i;
+    EXPECT_NEAR(motion.y[i], truth.y, 1e-5) << i;
+    EXPECT_NEAR(std::atan2(motion.s[i], motion.c[i]), truth.theta, 1e-9) << i;
+  }
+  EXPECT_FALSE(BeamMotionFromHistory(history, mount, 0.95, 1e-4, 1000, motion));  // past the end
+}
+
 TEST(OdometryHistory, InterpolatesAndRefusesOutOfOrderAndNonFinite) {
   OdometryHistory h(4);
   EXPECT_EQ(h.Add(1.0, {0, 0, 3.0}), OdometryHistory::AddResult::kAdded);

@@ -10,6 +10,7 @@
 
 #include "corner_extraction.hpp"
 #include "cylinder_extraction.hpp"
+#include "kohonen_clustering.hpp"
 #include "office_scene.hpp"
 
 namespace structloc {
@@ -98,6 +99,19 @@ void BM_WallClustering(benchmark::State& state) {
   }
 }
 
+// The thesis' rejected alternative, for comparison with BM_WallClustering.
+void BM_WallClusteringKohonen(benchmark::State& state) {
+  Prepared p(static_cast<int>(state.range(0)));
+  std::mt19937 rng(1);
+  for (auto _ : state) {
+    AssignWindowsByKohonen(p.windows, p.expected, p.office.options.walls, p.office.options.kohonen,
+                           rng, p.assignment);
+    BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
+                      p.expected, p.office.options.walls, p.wall_work, p.walls);
+    benchmark::DoNotOptimize(p.walls.data());
+  }
+}
+
 void BM_Corners(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   std::vector<localisation::PointSums> work;
@@ -158,6 +172,7 @@ void BM_Update(benchmark::State& state) {
 BENCHMARK(BM_Prefilter)->Arg(300)->Arg(1081);
 BENCHMARK(BM_LineFit)->Arg(300)->Arg(1081);
 BENCHMARK(BM_WallClustering)->Arg(300)->Arg(1081);
+BENCHMARK(BM_WallClusteringKohonen)->Arg(300)->Arg(1081);
 BENCHMARK(BM_Corners)->Arg(300)->Arg(1081);
 BENCHMARK(BM_Cylinders)->Arg(300)->Arg(1081);
 BENCHMARK(BM_Update)->Arg(300)->Arg(1081);
