@@ -31,6 +31,10 @@ const Subcommand kSubcommands[] = {
     {"launch", structloc::cli::LaunchCommand,
      "FILE.launch.xml [NAME:=VALUE ...] [--duration S]  start components from a launch file"},
     {"demo", structloc::cli::DemoCommand, "run the main demo"},
+    {"simulate", structloc::cli::SimulateCommand,
+     "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
+    {"render", structloc::cli::RenderCommand,
+     "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
 };
 
 void Usage() {

@@ -14,5 +14,7 @@ struct Invocation {
 
 int LaunchCommand(const Invocation& invocation);
 int DemoCommand(const Invocation& invocation);
+int SimulateCommand(const Invocation& invocation);
+int RenderCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

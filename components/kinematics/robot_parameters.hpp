@@ -1,0 +1,52 @@
+// The tricycle robot's odometry parameters (SI units, radians), as read from a
+// robot parameter file shared by the simulator's odometry, the localisation and
+// the calibration:
+//   <robot wheel_radius="0.185" axle_distance="0.62" steering_offset="0"
+//          traction_ticks_per_rev="4096" traction_counter_bits="32"
+//          steering_rad_per_tick="0.000767" steering_zero_tick="0"
+//          [sensor_x="0" sensor_y="0" sensor_theta="0"]/>
+// The reference point is the middle of the rear axle. steering angle =
+// (steering_ticks - steering_zero_tick) * steering_rad_per_tick + steering_offset;
+// traction wheel angle increment = (tick difference modulo 2^bits) * 2 pi /
+// traction_ticks_per_rev; distance = wheel_radius * wheel angle (EQ 46).
+// sensor_* is the pose on the robot of the sensor whose position fixes the
+// calibration uses (default: the reference point itself).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "pose2d.hpp"
+
+namespace structloc::kinematics {
+
+struct RobotParameters {
+  double wheel_radius = 0.185;   // m, traction (front) wheel
+  double axle_distance = 0.62;   // m, front wheel axis to rear axle
+  double steering_offset = 0.0;  // rad
+  double traction_ticks_per_rev = 4096;
+  int traction_counter_bits = 32;  // counter wraps at 2^bits
+  double steering_rad_per_tick = 0.000767;
+  double steering_zero_tick = 0;
+  geometry::Pose2D sensor;  // fix sensor on the robot
+
+  // Throws std::invalid_argument naming the broken parameter.
+  void Validate() const;
+
+  // Decoding raw encoder readings.
+  double SteeringAngle(double steering_ticks) const {
+    return (steering_ticks - steering_zero_tick) * steering_rad_per_tick + steering_offset;
+  }
+  // Signed tick difference from `previous` to `current` across a counter wrap.
+  int64_t TickDelta(uint64_t previous, uint64_t current) const;
+  double WheelAngle(int64_t tick_delta) const {
+    return static_cast<double>(tick_delta) * 2.0 * geometry::kPi / traction_ticks_per_rev;
+  }
+};
+
+RobotParameters LoadRobotParameters(const std::string& path);
+// Writes a parameter file (the calibration's output); throws on I/O failure.
+void SaveRobotParameters(const RobotParameters& p, const std::string& path,
+                         const std::string& comment);
+
+}  // namespace structloc::kinematics

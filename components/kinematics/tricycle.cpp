@@ -1,0 +1,43 @@
+// Tricycle kinematics and dead reckoning (see header).
+#include "tricycle.hpp"
+
+#include <cmath>
+
+namespace structloc::kinematics {
+
+geometry::Pose2D Advance(const geometry::Pose2D& pose, double wheel_angle, double steering,
+                         double wheel_radius, double axle_distance) {
+  const double s = wheel_angle * wheel_radius;  // front wheel path length
+  const double ds = s * std::cos(steering);     // reference point travel (EQ 46)
+  const double dtheta = s * std::sin(steering) / axle_distance;
+  // Exact integration along the arc (EQ 47 with constant v and omega).
+  double fx, fy;
+  if (std::abs(dtheta) < 1e-9) {
+    fx = ds * (1.0 - dtheta * dtheta / 6.0);
+    fy = ds * dtheta / 2.0;
+  } else {
+    fx = ds * std::sin(dtheta) / dtheta;
+    fy = ds * (1.0 - std::cos(dtheta)) / dtheta;
+  }
+  const double c = std::cos(pose.theta), sn = std::sin(pose.theta);
+  return {pose.x + c * fx - sn * fy, pose.y + sn * fx + c * fy,
+          geometry::WrapAngle(pose.theta + dtheta)};
+}
+
+DeadReckoning::DeadReckoning(const RobotParameters& parameters, const geometry::Pose2D& start)
+    : parameters_(parameters), pose_(start) {}
+
+void DeadReckoning::Add(uint64_t traction_ticks, double steering_ticks) {
+  const double steering = parameters_.SteeringAngle(steering_ticks);
+  if (last_ticks_) {
+    const double wheel =
+        parameters_.WheelAngle(parameters_.TickDelta(*last_ticks_, traction_ticks));
+    pose_ =
+        Advance(pose_, wheel, last_steering_, parameters_.wheel_radius, parameters_.axle_distance);
+    distance_ += std::abs(wheel * parameters_.wheel_radius);
+  }
+  last_ticks_ = traction_ticks;
+  last_steering_ = steering;
+}
+
+}  // namespace structloc::kinematics

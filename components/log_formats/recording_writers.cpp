@@ -1,0 +1,111 @@
+// Recording writers (see header).
+#include "recording_writers.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <stdexcept>
+
+namespace structloc::logs {
+namespace {
+
+void Open(std::ofstream& out, const std::string& path) {
+  out.open(path);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << std::setprecision(9);
+}
+
+void Check(std::ofstream& out, const std::string& path) {
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace
+
+CarmenWriter::CarmenWriter(const std::string& path) : path_(path) {
+  Open(out_, path);
+  out_ << "# CARMEN log written by structloc\n"
+       << "# ODOM x y theta tv rv accel ipc_timestamp hostname logger_timestamp\n"
+       << "# ROBOTLASER1 laser_type start_angle fov angular_res max_range accuracy remission_mode "
+          "num_readings [range] num_remissions laser_x laser_y laser_theta robot_x robot_y "
+          "robot_theta tv rv forward_safety_dist side_safety_dist turn_axis ipc_timestamp "
+          "hostname logger_timestamp\n";
+}
+
+void CarmenWriter::Comment(const std::string& text) {
+  out_ << "# " << text << "\n";
+}
+
+void CarmenWriter::Odometry(double t, const geometry::Pose2D& p, double tv, double rv) {
+  out_ << std::fixed << std::setprecision(6) << "ODOM " << p.x << " " << p.y << " " << p.theta
+       << " " << tv << " " << rv << " 0 " << t << " structloc " << t << "\n";
+  Check(out_, path_);
+}
+
+void CarmenWriter::RobotLaser(double t, const CarmenLaser& l, const std::vector<float>& ranges,
+                              const geometry::Pose2D& lp, const geometry::Pose2D& rp, double tv,
+                              double rv) {
+  out_ << std::fixed << std::setprecision(6) << "ROBOTLASER1 0 " << l.start_angle << " "
+       << l.field_of_view << " " << l.angular_resolution << " " << l.max_range << " " << l.accuracy
+       << " 0 " << ranges.size();
+  out_ << std::setprecision(3);
+  for (float r : ranges)
+    out_ << " " << (std::isfinite(r) ? static_cast<double>(r) : l.max_range + 1.0);
+  out_ << std::setprecision(6) << " 0 " << lp.x << " " << lp.y << " " << lp.theta << " " << rp.x
+       << " " << rp.y << " " << rp.theta << " " << tv << " " << rv << " 0 0 0 " << t
+       << " structloc " << t << "\n";
+  Check(out_, path_);
+}
+
+void CarmenWriter::Close() {
+  out_.close();
+  if (out_.fail()) throw std::runtime_error(path_ + ": close failed");
+}
+
+TumWriter::TumWriter(const std::string& path) : path_(path) {
+  Open(out_, path);
+  out_ << "# timestamp x y z qx qy qz qw\n";
+}
+
+void TumWriter::Pose(double t, const geometry::Pose2D& p) {
+  out_ << std::fixed << std::setprecision(6) << t << " " << std::setprecision(6) << p.x << " "
+       << p.y << " 0 0 0 " << std::setprecision(9) << std::sin(0.5 * p.theta) << " "
+       << std::cos(0.5 * p.theta) << "\n";
+  Check(out_, path_);
+}
+
+void TumWriter::Close() {
+  out_.close();
+}
+
+EncodersCsvWriter::EncodersCsvWriter(const std::string& path) : path_(path) {
+  Open(out_, path);
+  out_ << "t,traction_ticks,steering_ticks\n";
+}
+
+void EncodersCsvWriter::Sample(double t, uint64_t traction, int64_t steering) {
+  out_ << std::fixed << std::setprecision(6) << t << "," << traction << "," << steering << "\n";
+  Check(out_, path_);
+}
+
+void EncodersCsvWriter::Close() {
+  out_.close();
+}
+
+FixesCsvWriter::FixesCsvWriter(const std::string& path, bool with_variances)
+    : path_(path), with_variances_(with_variances) {
+  Open(out_, path);
+  out_ << "t,x,y,theta" << (with_variances ? ",var_x,var_y,var_theta" : "") << "\n";
+}
+
+void FixesCsvWriter::Fix(double t, const geometry::Pose2D& p, double vx, double vy, double vt) {
+  out_ << std::fixed << std::setprecision(6) << t << "," << p.x << "," << p.y << ","
+       << std::setprecision(9) << p.theta;
+  if (with_variances_) out_ << std::scientific << "," << vx << "," << vy << "," << vt;
+  out_ << "\n";
+  Check(out_, path_);
+}
+
+void FixesCsvWriter::Close() {
+  out_.close();
+}
+
+}  // namespace structloc::logs

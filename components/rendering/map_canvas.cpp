@@ -1,0 +1,95 @@
+// MapCanvas drawing (see header).
+#include "map_canvas.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace structloc::rendering {
+namespace {
+constexpr int kLegendBand = 70;
+}  // namespace
+
+MapCanvas::MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre, int margin_px)
+    : bounds_(bounds), scale_(pixels_per_metre), margin_(margin_px) {
+  const int w = static_cast<int>((bounds[2] - bounds[0]) * scale_) + 2 * margin_;
+  // A band of kLegendBand pixels above the map holds the legend; 30 below, the title.
+  const int h = static_cast<int>((bounds[3] - bounds[1]) * scale_) + 2 * margin_ + 30 + kLegendBand;
+  image_ = cv::Mat(std::max(h, 100), std::max(w, 100), CV_8UC3, cv::Scalar(255, 255, 255));
+}
+
+cv::Point MapCanvas::ToPixel(const Eigen::Vector2d& p) const {
+  return {static_cast<int>(margin_ + (p.x() - bounds_[0]) * scale_),
+          static_cast<int>(image_.rows - margin_ - 30 - (p.y() - bounds_[1]) * scale_)};
+}
+
+void MapCanvas::DrawWorld(const world::WorldModel& world) {
+  for (const auto& w : world.Walls())
+    cv::line(image_, ToPixel(w.a), ToPixel(w.b), colours::kWall, 3);
+  for (const auto& c : world.Cylinders()) {
+    cv::circle(image_, ToPixel(c.centre), std::max(2, static_cast<int>(c.radius * scale_)),
+               colours::kPillar, cv::FILLED, cv::LINE_AA);
+  }
+  for (const auto& c : world.Corners()) {
+    const cv::Point p = ToPixel(c.position);
+    cv::rectangle(image_, p - cv::Point(3, 3), p + cv::Point(3, 3), colours::kWall, 1);
+  }
+}
+
+void MapCanvas::DrawObstacles(const world::Scene& obstacles, const cv::Scalar& colour) {
+  for (const auto& s : obstacles.segments) cv::line(image_, ToPixel(s.a), ToPixel(s.b), colour, 2);
+  for (const auto& c : obstacles.circles) {
+    cv::circle(image_, ToPixel(c.centre), std::max(2, static_cast<int>(c.radius * scale_)), colour,
+               2, cv::LINE_AA);
+  }
+}
+
+void MapCanvas::DrawPath(const std::vector<Eigen::Vector2d>& points, const cv::Scalar& colour,
+                         int thickness) {
+  for (size_t i = 1; i < points.size(); ++i) {
+    cv::line(image_, ToPixel(points[i - 1]), ToPixel(points[i]), colour, thickness, cv::LINE_AA);
+  }
+}
+
+void MapCanvas::DrawPose(const geometry::Pose2D& pose, const cv::Scalar& colour, double size_m) {
+  const Eigen::Vector2d tip = pose.Apply({size_m, 0.0});
+  const Eigen::Vector2d left = pose.Apply({-0.5 * size_m, 0.4 * size_m});
+  const Eigen::Vector2d right = pose.Apply({-0.5 * size_m, -0.4 * size_m});
+  const std::vector<cv::Point> triangle = {ToPixel(tip), ToPixel(left), ToPixel(right)};
+  cv::fillConvexPoly(image_, triangle, colour, cv::LINE_AA);
+}
+
+void MapCanvas::DrawPoints(const std::vector<Eigen::Vector2d>& points, const cv::Scalar& colour,
+                           int radius_px) {
+  for (const auto& p : points) cv::circle(image_, ToPixel(p), radius_px, colour, cv::FILLED);
+}
+
+void MapCanvas::DrawMarker(const Eigen::Vector2d& p, const std::string& label,
+                           const cv::Scalar& colour) {
+  const cv::Point px = ToPixel(p);
+  cv::circle(image_, px, 5, colour, 2, cv::LINE_AA);
+  cv::putText(image_, label, px + cv::Point(7, -7), cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1,
+              cv::LINE_AA);
+}
+
+void MapCanvas::DrawLegend(const std::vector<std::pair<cv::Scalar, std::string>>& entries) {
+  // Two columns in the band above the map.
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const int x = margin_ + static_cast<int>(i % 2) * std::max(280, image_.cols / 2 - margin_);
+    const int y = 18 + static_cast<int>(i / 2) * 20;
+    cv::line(image_, {x, y}, {x + 25, y}, entries[i].first, 3);
+    cv::putText(image_, entries[i].second, {x + 33, y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+}
+
+void MapCanvas::DrawTitle(const std::string& text) {
+  cv::putText(image_, text, {margin_, image_.rows - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.55,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+}
+
+void MapCanvas::Save(const std::string& path) const {
+  if (!cv::imwrite(path, image_)) throw std::runtime_error(path + ": cannot write the PNG");
+}
+
+}  // namespace structloc::rendering

@@ -1,0 +1,58 @@
+// Draws maps, scenes, paths, poses and scans into a PNG with OpenCV: the
+// pictures of `structloc render`, the replay's --plot and the demo's
+// Fig. 44-style summary. DDS-free. Map frame x right, y up.
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "pose2d.hpp"
+#include "ray_cast.hpp"
+#include "world_model.hpp"
+
+namespace structloc::rendering {
+
+class MapCanvas {
+ public:
+  // bounds: min x, min y, max x, max y of what must be visible (metres).
+  MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre = 40.0, int margin_px = 40);
+
+  void DrawWorld(const world::WorldModel& world);
+  void DrawObstacles(const world::Scene& obstacles, const cv::Scalar& colour);
+  void DrawPath(const std::vector<Eigen::Vector2d>& points, const cv::Scalar& colour,
+                int thickness = 2);
+  void DrawPose(const geometry::Pose2D& pose, const cv::Scalar& colour, double size_m = 0.4);
+  void DrawPoints(const std::vector<Eigen::Vector2d>& points, const cv::Scalar& colour,
+                  int radius_px = 2);
+  void DrawMarker(const Eigen::Vector2d& p, const std::string& label, const cv::Scalar& colour);
+  // Legend entries (colour, text), drawn top left.
+  void DrawLegend(const std::vector<std::pair<cv::Scalar, std::string>>& entries);
+  void DrawTitle(const std::string& text);
+  // Throws std::runtime_error when the file cannot be written.
+  void Save(const std::string& path) const;
+
+  cv::Point ToPixel(const Eigen::Vector2d& p) const;
+
+ private:
+  Eigen::Vector4d bounds_;
+  double scale_;
+  int margin_;
+  cv::Mat image_;
+};
+
+// Colours used consistently across pictures (BGR).
+namespace colours {
+inline const cv::Scalar kWall(40, 40, 40);
+inline const cv::Scalar kPillar(90, 90, 90);
+inline const cv::Scalar kObstacle(0, 140, 255);
+inline const cv::Scalar kPerson(200, 0, 200);
+inline const cv::Scalar kTruth(0, 150, 0);
+inline const cv::Scalar kOdometry(0, 0, 220);
+inline const cv::Scalar kEstimate(220, 90, 0);
+inline const cv::Scalar kScan(255, 0, 0);
+inline const cv::Scalar kPlanned(170, 170, 170);
+}  // namespace colours
+
+}  // namespace structloc::rendering

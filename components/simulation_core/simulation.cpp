@@ -1,0 +1,238 @@
+// The simulation (see header).
+#include "simulation.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace structloc::simulation {
+namespace {
+
+constexpr double kMaxSteering = 80.0 * geometry::kPi / 180.0;
+
+// Position of a walker along a closed polyline after `distance` metres.
+Eigen::Vector2d AlongLoop(const std::vector<Eigen::Vector2d>& points, double distance) {
+  double total = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    total += (points[(i + 1) % points.size()] - points[i]).norm();
+  }
+  if (total <= 0.0) return points.front();
+  double d = std::fmod(distance, total);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d a = points[i], b = points[(i + 1) % points.size()];
+    const double len = (b - a).norm();
+    if (d <= len && len > 0.0) return a + (b - a) * (d / len);
+    d -= len;
+  }
+  return points.front();
+}
+
+// Independent, reproducible random streams derived from the scenario seed.
+std::mt19937 Engine(uint32_t seed, uint32_t stream) {
+  std::seed_seq sequence{seed, stream};
+  return std::mt19937(sequence);
+}
+
+}  // namespace
+
+Simulation::Simulation(const Scenario& scenario)
+    : scenario_(scenario),
+      true_params_(scenario.TrueParameters()),
+      dead_reckoning_(scenario.nominal),
+      motion_rng_(Engine(scenario.seed, 1)),
+      laser_rng_(Engine(scenario.seed, 2)) {
+  state_.truth = scenario.initial_pose;
+  wheel_ticks_ = static_cast<double>(scenario.errors.traction_start_tick);
+  const uint64_t mask = (uint64_t{1} << scenario.nominal.traction_counter_bits) - 1;
+  state_.traction_ticks =
+      static_cast<uint64_t>(static_cast<int64_t>(std::floor(wheel_ticks_))) & mask;
+  state_.steering_ticks = static_cast<int64_t>(std::llround(scenario.nominal.steering_zero_tick));
+  dead_reckoning_.Add(state_.traction_ticks, static_cast<double>(state_.steering_ticks));
+  last_truth_ = state_.truth;
+  const auto& l = scenario.laser;
+  const bool full = l.field_of_view_rad >= 2 * geometry::kPi - 1e-9;
+  scan_.angle_increment =
+      full ? l.field_of_view_rad / l.beams : l.field_of_view_rad / (l.beams - 1);
+  scan_.angle_min = full ? -geometry::kPi : -0.5 * l.field_of_view_rad;
+  // A rotating scanner: one revolution per 1/rate, beams spread over its field of view.
+  const double beams_per_rev = 2 * geometry::kPi / scan_.angle_increment;
+  scan_.time_increment = 1.0 / (l.rate_hz * beams_per_rev);
+  scan_.scan_time = 1.0 / l.rate_hz;
+  scan_.range_min = l.min_range_m;
+  scan_.range_max = l.max_range_m;
+  scan_.ranges.reserve(static_cast<size_t>(l.beams));
+}
+
+bool Simulation::Finished() const {
+  return state_.time >= scenario_.duration_s - 1e-9 || (path_done_ && state_.time >= dwell_until_);
+}
+
+void Simulation::CommandVelocity(double linear, double angular) {
+  cmd_linear_ = linear;
+  cmd_angular_ = angular;
+}
+
+std::vector<world::Circle> Simulation::People() const {
+  std::vector<world::Circle> people;
+  for (const auto& p : scenario_.people) {
+    people.push_back({AlongLoop(p.waypoints, p.speed_m_s * state_.time), p.radius_m});
+  }
+  return people;
+}
+
+world::Scene Simulation::SceneAt(double t) const {
+  world::Scene scene = world::Scene::FromWorld(*scenario_.world);
+  scene.Add(scenario_.obstacles);
+  for (const auto& p : scenario_.people) {
+    scene.circles.push_back({AlongLoop(p.waypoints, p.speed_m_s * t), p.radius_m});
+  }
+  return scene;
+}
+
+// Path following with the true pose (an ideal guidance, so that the robot
+// stays on its path whatever its odometry believes): pure pursuit for a
+// rear-axle reference point, steering = atan(curvature * axle distance). The
+// wheel rate is what the robot commands with its nominal wheel radius.
+void Simulation::Control(double* wheel_rate, double* steering) {
+  const auto& path = scenario_.path;
+  const auto& nominal = scenario_.nominal;
+  *wheel_rate = 0.0;
+  *steering = 0.0;
+  if (path.mode == PathSpec::Mode::kCmdVel) {
+    const double v = cmd_linear_, w = cmd_angular_;
+    if (std::abs(v) < 1e-6 && std::abs(w) < 1e-6) return;
+    *steering = std::abs(v) < 1e-6 ? std::copysign(geometry::kPi / 2, w)
+                                   : std::atan(w * nominal.axle_distance / v);
+    *steering = std::clamp(*steering, -geometry::kPi / 2, geometry::kPi / 2);
+    const double c = std::cos(*steering);
+    *wheel_rate = std::abs(c) > 1e-3 ? v / (nominal.wheel_radius * c)
+                                     : w * nominal.axle_distance / nominal.wheel_radius;
+    return;
+  }
+  if (path_done_ || state_.time < dwell_until_) return;
+  const Eigen::Vector2d here = state_.truth.Translation();
+  const Eigen::Vector2d target = path.waypoints[waypoint_];
+  const bool last = waypoint_ + 1 == path.waypoints.size();
+  const bool stop_here = path.mode == PathSpec::Mode::kStopLookMove || (last && !path.loop);
+  const double distance = (target - here).norm();
+  const double reach = stop_here ? 0.05 : path.lookahead_m;
+  if (distance < reach) {
+    if (path.mode == PathSpec::Mode::kStopLookMove) dwell_until_ = state_.time + path.dwell_s;
+    if (last && !path.loop) {
+      path_done_ = true;  // finished once the last dwell is over
+    } else {
+      waypoint_ = (waypoint_ + 1) % path.waypoints.size();
+    }
+    return;
+  }
+  const Eigen::Vector2d local = state_.truth.ApplyInverse(target);
+  const double ld = std::max(local.norm(), 1e-3);
+  const double curvature = 2.0 * local.y() / (ld * ld);
+  *steering = std::clamp(std::atan(curvature * nominal.axle_distance), -kMaxSteering, kMaxSteering);
+  // Slow down near a stop and in sharp turns.
+  double speed = path.speed_m_s * std::max(0.2, std::cos(*steering));
+  if (stop_here) speed = std::min(speed, std::max(0.05, 1.5 * distance));
+  *wheel_rate = speed / (nominal.wheel_radius * std::cos(*steering));
+}
+
+const SimState& Simulation::Step() {
+  const double dt = scenario_.step_s;
+  double wheel_rate = 0.0, steering_cmd = 0.0;
+  Control(&wheel_rate, &steering_cmd);
+  // The robot servoes its steering so that its *nominal* decoding reads the
+  // command; physically the wheel then stands at command + offset error.
+  const double steering_true =
+      steering_cmd + (true_params_.steering_offset - scenario_.nominal.steering_offset);
+  const double wheel_angle = wheel_rate * dt;
+  std::normal_distribution<double> slip(0.0, scenario_.errors.wheel_slip_std);
+  const double slip_factor = scenario_.errors.wheel_slip_std > 0 ? 1.0 + slip(motion_rng_) : 1.0;
+  last_truth_ = state_.truth;
+  last_odometry_ = state_.odometry;
+  last_step_time_ = state_.time;
+  state_.truth = kinematics::Advance(state_.truth, wheel_angle * slip_factor, steering_true,
+                                     true_params_.wheel_radius, true_params_.axle_distance);
+  state_.time += dt;
+  state_.steering_true_rad = steering_true;
+  // Encoders: the traction counter counts wheel rotation (slip included: the
+  // wheel turns, the robot slides), quantised and wrapped; the absolute
+  // steering encoder reads the physical angle with the true offset.
+  wheel_ticks_ += wheel_angle * scenario_.nominal.traction_ticks_per_rev / (2 * geometry::kPi);
+  const uint64_t mask = (uint64_t{1} << scenario_.nominal.traction_counter_bits) - 1;
+  state_.traction_ticks =
+      static_cast<uint64_t>(static_cast<int64_t>(std::floor(wheel_ticks_))) & mask;
+  state_.steering_ticks = static_cast<int64_t>(std::llround(
+      (steering_true - true_params_.steering_offset) / true_params_.steering_rad_per_tick +
+      true_params_.steering_zero_tick));
+  dead_reckoning_.Add(state_.traction_ticks, static_cast<double>(state_.steering_ticks));
+  state_.odometry = dead_reckoning_.Pose();
+  const geometry::Pose2D delta = geometry::Between(last_odometry_, state_.odometry);
+  state_.odom_linear = delta.x / dt;
+  state_.odom_angular = delta.theta / dt;
+  CastBeams(last_truth_, state_.truth, last_step_time_, state_.time);
+  return state_;
+}
+
+void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0,
+                           double t1) {
+  const auto& l = scenario_.laser;
+  const world::Scene scene = SceneAt(t1);
+  for (;;) {
+    const double scan_start = scan_index_ * scan_.scan_time;
+    const double t = scan_start + next_beam_ * scan_.time_increment;
+    if (t > t1 + 1e-12) return;
+    const double f = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+    const geometry::Pose2D base = geometry::Interpolate(from, to, f);
+    if (next_beam_ == 0) {
+      scan_.stamp = t;
+      scan_.truth = base;
+      scan_.odometry = geometry::Interpolate(last_odometry_, state_.odometry, f);
+      scan_.ranges.clear();
+    }
+    scan_.ranges.push_back(Measure(scene, geometry::Compose(base, l.mount), next_beam_));
+    if (++next_beam_ == l.beams) {
+      completed_ = scan_;
+      next_beam_ = 0;
+      ++scan_index_;
+    }
+  }
+}
+
+float Simulation::Measure(const world::Scene& scene, const geometry::Pose2D& laser_pose, int beam) {
+  const auto& l = scenario_.laser;
+  const double bearing = scan_.angle_min + beam * scan_.angle_increment;
+  for (const auto& [from, to] : l.blocked_sectors) {
+    if (bearing >= from && bearing <= to) return static_cast<float>(0.5 * l.min_range_m);
+  }
+  const double a = laser_pose.theta + bearing;
+  double range = scene.Cast(laser_pose.Translation(), {std::cos(a), std::sin(a)}, l.max_range_m);
+  const double true_range = range;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  if (std::isfinite(range)) {
+    // Mixed pixel: the spot straddles a depth jump and returns an average.
+    if (beam > 0 && std::isfinite(previous_true_range_) &&
+        std::abs(range - previous_true_range_) > 0.2 && u(laser_rng_) < l.mixed_pixel_probability) {
+      const double mix = u(laser_rng_);
+      range = mix * range + (1.0 - mix) * previous_true_range_;
+    }
+    if (u(laser_rng_) < l.spurious_probability) {
+      range = l.min_range_m + u(laser_rng_) * (range - l.min_range_m);
+    }
+    if (l.noise_std_m > 0)
+      range += std::normal_distribution<double>(0.0, l.noise_std_m)(laser_rng_);
+    if (l.resolution_m > 0) range = l.resolution_m * std::round(range / l.resolution_m);
+    range = std::max(range, 0.0);
+  }
+  previous_true_range_ = true_range;
+  if (!std::isfinite(range) || range > l.max_range_m) {
+    return l.no_return_is_max ? static_cast<float>(l.max_range_m + 1.0)
+                              : std::numeric_limits<float>::infinity();
+  }
+  return static_cast<float>(range);
+}
+
+std::optional<SimScan> Simulation::TakeScan() {
+  std::optional<SimScan> out;
+  out.swap(completed_);
+  return out;
+}
+
+}  // namespace structloc::simulation
