@@ -46,7 +46,7 @@ int RunComponent(int argc, char** argv, const std::string& name,
     auto component = factory(node, cli);
     std::cout << node.EndpointReport() << std::flush;
     std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;
-    while (!shutdown.WaitFor(component->Period())) component->Step();
+    while (!component->Done() && !shutdown.WaitFor(component->Period())) component->Step();
     component->Stop();
     std::cout << name << ": stopped cleanly" << std::endl;
     return 0;

@@ -23,6 +23,8 @@ class Component {
   virtual std::chrono::milliseconds Period() const { return std::chrono::milliseconds(100); }
   // Called once after the stop signal, before the node is destroyed.
   virtual void Stop() {}
+  // True when the component has finished its work and the process should exit 0.
+  virtual bool Done() const { return false; }
 };
 
 using ComponentFactory =

@@ -32,12 +32,10 @@ void DeadReckoning::Add(uint64_t traction_ticks, double steering_ticks) {
   if (last_ticks_) {
     const double wheel =
         parameters_.WheelAngle(parameters_.TickDelta(*last_ticks_, traction_ticks));
-    pose_ =
-        Advance(pose_, wheel, last_steering_, parameters_.wheel_radius, parameters_.axle_distance);
+    pose_ = Advance(pose_, wheel, steering, parameters_.wheel_radius, parameters_.axle_distance);
     distance_ += std::abs(wheel * parameters_.wheel_radius);
   }
   last_ticks_ = traction_ticks;
-  last_steering_ = steering;
 }
 
 }  // namespace structloc::kinematics

@@ -22,7 +22,8 @@ class DeadReckoning {
  public:
   explicit DeadReckoning(const RobotParameters& parameters, const geometry::Pose2D& start = {});
   // Feeds one encoder sample; the first only sets the reference counter. The
-  // steering angle of the previous sample applies to the motion since then.
+  // steering angle reported with a sample applies to the wheel motion that
+  // ended at it (the convention of the simulator and of our recordings).
   void Add(uint64_t traction_ticks, double steering_ticks);
   const geometry::Pose2D& Pose() const { return pose_; }
   double Distance() const { return distance_; }
@@ -31,7 +32,6 @@ class DeadReckoning {
   RobotParameters parameters_;
   geometry::Pose2D pose_;
   std::optional<uint64_t> last_ticks_;
-  double last_steering_ = 0.0;
   double distance_ = 0.0;
 };
 

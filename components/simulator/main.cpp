@@ -1,16 +1,34 @@
 // structloc_simulator: entry point of the simulator component.
 #include "simulator_component.hpp"
 
+#ifndef STRUCTLOC_SHARE_DIR
+#error "STRUCTLOC_SHARE_DIR must be defined by the build"
+#endif
+
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
   return structloc::dds::RunComponent(
-      argc, argv, "simulator", {{"rate-hz", true, "sensor publication rate in Hz (default 10)"}},
+      argc, argv, "simulator",
+      {{"scenario", true,
+        "scenario XML (default " STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml)"},
+       {"time-scale", true,
+        "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
+       {"seed", true, "override the scenario's seed"},
+       {"exit-when-done", false, "exit when the scenario ends"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
-        structloc::simulator::SimulatorComponentOptions options;
-        options.rate_hz = cli.Number("rate-hz", options.rate_hz);
-        if (!(options.rate_hz > 0.0 && options.rate_hz <= 1000.0)) {
-          throw ConfigError("--rate-hz must be in (0, 1000]");
+        auto scenario = structloc::simulation::LoadScenario(
+            cli.GetOr("scenario", STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml"));
+        if (cli.Has("seed")) {
+          const long long seed = cli.Integer("seed", 0);
+          if (seed < 0 || seed > 0xffffffffLL) throw ConfigError("--seed must be 0..4294967295");
+          scenario.seed = static_cast<uint32_t>(seed);
         }
-        return std::make_unique<structloc::simulator::SimulatorComponent>(node, options);
+        structloc::simulator::SimulatorComponentOptions options;
+        options.time_scale = cli.Number("time-scale", options.time_scale);
+        if (!(options.time_scale >= 0.0 && options.time_scale <= 1000.0)) {
+          throw ConfigError("--time-scale must be in [0, 1000]");
+        }
+        options.exit_when_done = cli.Has("exit-when-done");
+        return std::make_unique<structloc::simulator::SimulatorComponent>(node, scenario, options);
       });
 }

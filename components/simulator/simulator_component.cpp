@@ -1,56 +1,100 @@
 // Simulator component (see header).
 #include "simulator_component.hpp"
 
+#include <cmath>
+#include <iostream>
+
 #include "diagnostics.hpp"
-#include "ros_conversions.hpp"
+#include "sim_conversions.hpp"
 
 namespace structloc::simulator {
-namespace {
-nav_msgs::msg::Odometry StandingStill(double stamp, const char* frame) {
-  nav_msgs::msg::Odometry odom;
-  odom.header().stamp(dds::ToRosTime(stamp));
-  odom.header().frame_id(frame);
-  odom.child_frame_id("base_link");
-  odom.pose().pose().orientation(dds::ToQuaternion(0.0));
-  return odom;
-}
-}  // namespace
 
-SimulatorComponent::SimulatorComponent(dds::Node& node, const SimulatorComponentOptions& options)
+SimulatorComponent::SimulatorComponent(dds::Node& node, const simulation::Scenario& scenario,
+                                       const SimulatorComponentOptions& options)
     : options_(options),
+      sim_(scenario),
+      scan_(node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan)),
       odom_(node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
       ground_truth_(
           node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kGroundTruth)),
       encoders_(node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(
           dds::topics::kWheelEncoders)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)) {
-  node.Subscribe<geometry_msgs::msg::TwistPubSubType>(dds::topics::kCmdVel,
-                                                      [](const geometry_msgs::msg::Twist&) {});
+          dds::topics::kDiagnostics)),
+      clock_offset_s_(std::floor(dds::WallClockSeconds())),
+      wall_start_(std::chrono::steady_clock::now()) {
+  node.Subscribe<geometry_msgs::msg::TwistPubSubType>(
+      dds::topics::kCmdVel, [this](const geometry_msgs::msg::Twist& t) {
+        if (!std::isfinite(t.linear().x()) || !std::isfinite(t.angular().z())) return;
+        std::lock_guard<std::mutex> lock(command_mutex_);
+        command_linear_ = t.linear().x();
+        command_angular_ = t.angular().z();
+      });
+  odom_every_ = std::max(1L, std::lround(1.0 / (scenario.odom_rate_hz * scenario.step_s)));
+  last_ticks_ = sim_.State().traction_ticks;
+  std::cout << "simulator: scenario '" << scenario.name << "' (seed " << scenario.seed << ", "
+            << scenario.duration_s << " s), time scale "
+            << (options.time_scale > 0 ? std::to_string(options.time_scale) : "as fast as possible")
+            << ", clock starts at " << std::fixed << clock_offset_s_ << std::endl;
 }
 
 std::chrono::milliseconds SimulatorComponent::Period() const {
-  return std::chrono::milliseconds(static_cast<long>(1000.0 / options_.rate_hz));
+  return std::chrono::milliseconds(options_.time_scale > 0 ? 2 : 0);
+}
+
+bool SimulatorComponent::Done() const {
+  return options_.exit_when_done && sim_.Finished();
 }
 
 void SimulatorComponent::Step() {
-  const double now = dds::WallClockSeconds();
-  auto odom = StandingStill(now, "odom");
-  odom_.Write(odom);
-  auto truth = StandingStill(now, "map");
-  ground_truth_.Write(truth);
-  structloc_msgs::msg::WheelEncoders enc;
-  enc.header().stamp(dds::ToRosTime(now));
-  enc.header().frame_id("base_link");
-  enc.traction_counter_bits(32);
-  encoders_.Write(enc);
-  if (steps_++ % static_cast<uint64_t>(options_.rate_hz) == 0) {
-    dds::HealthReport report{dds::HealthLevel::kWarn,
-                             "stationary robot: motion and laser simulation not implemented yet",
-                             {{"steps", std::to_string(steps_)}}};
-    auto diag = dds::ToDiagnosticArray("simulator", report, now);
-    diagnostics_.Write(diag);
+  const auto now = std::chrono::steady_clock::now();
+  const double wall = std::chrono::duration<double>(now - wall_start_).count();
+  const auto budget_end = now + std::chrono::milliseconds(5);
+  {
+    std::lock_guard<std::mutex> lock(command_mutex_);
+    sim_.CommandVelocity(command_linear_, command_angular_);
   }
+  while (!sim_.Finished()) {
+    if (options_.time_scale > 0) {
+      if (sim_.State().time >= wall * options_.time_scale) break;
+    } else if (std::chrono::steady_clock::now() > budget_end) {
+      break;
+    }
+    PublishStep(sim_.Step());
+  }
+  if (dds::WallClockSeconds() - last_diagnostics_wall_s_ >= 1.0) PublishDiagnostics();
+}
+
+void SimulatorComponent::PublishStep(const simulation::SimState& state) {
+  ++steps_;
+  distance_ += (state.odometry.Translation() - last_odometry_.Translation()).norm();
+  last_odometry_ = state.odometry;
+  if (steps_ % odom_every_ == 0) {
+    auto encoders =
+        ToWheelEncoders(state, sim_.GetScenario().nominal, last_ticks_, clock_offset_s_);
+    last_ticks_ = state.traction_ticks;
+    encoders_.Write(encoders);
+    auto odom = ToOdometry(state, distance_, clock_offset_s_);
+    odom_.Write(odom);
+    auto truth = ToGroundTruth(state, clock_offset_s_);
+    ground_truth_.Write(truth);
+  }
+  if (auto scan = sim_.TakeScan()) {
+    auto msg = ToLaserScan(*scan, clock_offset_s_);
+    scan_.Write(msg);
+    ++scans_published_;
+  }
+}
+
+void SimulatorComponent::PublishDiagnostics() {
+  last_diagnostics_wall_s_ = dds::WallClockSeconds();
+  dds::HealthReport report;
+  report.message = sim_.Finished() ? "scenario finished" : "simulating";
+  report.values = {{"sim_time_s", std::to_string(sim_.State().time)},
+                   {"scans_published", std::to_string(scans_published_)},
+                   {"scenario", sim_.GetScenario().name}};
+  auto diag = dds::ToDiagnosticArray("simulator", report, clock_offset_s_ + sim_.State().time);
+  diagnostics_.Write(diag);
 }
 
 }  // namespace structloc::simulator

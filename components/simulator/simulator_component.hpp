@@ -1,35 +1,58 @@
-// The simulator component: publishes the robot's sensor streams (encoders,
-// odometry, ground truth) on DDS. Until the simulation core lands (issue 4)
-// the robot stands still at the origin and the component says so.
+// The simulator component: runs a scenario of the simulation core and
+// publishes what a real robot would (scans, wheel encoders, odometry) plus the
+// ground truth, stamped with the simulation clock, in real time or faster
+// (time scale); takes rt/cmd_vel in cmd_vel scenarios.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <mutex>
 
 #include "component_runtime.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/TwistPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "simulation.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 
 namespace structloc::simulator {
 
 struct SimulatorComponentOptions {
-  double rate_hz = 10.0;  // sensor publication rate
+  double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
+  bool exit_when_done = false;  // exit (code 0) when the scenario ends
 };
 
 class SimulatorComponent : public dds::Component {
  public:
-  SimulatorComponent(dds::Node& node, const SimulatorComponentOptions& options);
+  SimulatorComponent(dds::Node& node, const simulation::Scenario& scenario,
+                     const SimulatorComponentOptions& options);
   void Step() override;
   std::chrono::milliseconds Period() const override;
+  bool Done() const override;
 
  private:
+  void PublishStep(const simulation::SimState& state);
+  void PublishDiagnostics();
+
   SimulatorComponentOptions options_;
+  simulation::Simulation sim_;
+  dds::TopicWriter<sensor_msgs::msg::LaserScanPubSubType> scan_;
   dds::TopicWriter<nav_msgs::msg::OdometryPubSubType> odom_;
   dds::TopicWriter<nav_msgs::msg::OdometryPubSubType> ground_truth_;
   dds::TopicWriter<structloc_msgs::msg::WheelEncodersPubSubType> encoders_;
   dds::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
-  uint64_t steps_ = 0;
+  std::mutex command_mutex_;
+  double command_linear_ = 0.0, command_angular_ = 0.0;
+  double clock_offset_s_;  // message stamp = offset + simulation time
+  std::chrono::steady_clock::time_point wall_start_;
+  long steps_ = 0;
+  long odom_every_ = 1;
+  uint64_t last_ticks_ = 0;
+  double distance_ = 0.0;
+  geometry::Pose2D last_odometry_;
+  uint64_t scans_published_ = 0;
+  double last_diagnostics_wall_s_ = 0.0;
 };
 
 }  // namespace structloc::simulator

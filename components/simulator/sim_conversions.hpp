@@ -1,0 +1,23 @@
+// Free conversions from the simulation core's outputs to ROS 2 / structloc
+// messages (tested without a participant).
+#pragma once
+
+#include "nav_msgs/msg/Odometry.h"
+#include "sensor_msgs/msg/LaserScan.h"
+#include "simulation.hpp"
+#include "structloc_msgs/msg/WheelEncoders.h"
+
+namespace structloc::simulator {
+
+// `clock_offset_s` maps simulation time to message stamps.
+sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double clock_offset_s);
+// Odometry in the odom frame with a covariance growing with the distance driven.
+nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& state, double distance_m,
+                                   double clock_offset_s);
+// Ground truth: the true pose in the map frame, zero covariance.
+nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& state, double clock_offset_s);
+structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation::SimState& state,
+                                                   const kinematics::RobotParameters& nominal,
+                                                   uint64_t previous_ticks, double clock_offset_s);
+
+}  // namespace structloc::simulator

@@ -1,0 +1,140 @@
+// The simulator component over real DDS: it runs a scenario faster than real
+// time and a plain subscriber receives scans, encoders, odometry and ground
+// truth at the scenario's rates with consistent stamps. Plus the message
+// conversions, tested without a participant.
+#include <gtest/gtest.h>
+
+#include <mutex>
+
+#include "child_process.hpp"
+#include "dds_test_support.hpp"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "ros_conversions.hpp"
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "sim_conversions.hpp"
+#include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
+
+namespace structloc {
+namespace {
+
+using namespace std::chrono_literals;
+constexpr int kDomain = 105;
+
+TEST(SimConversions, LaserScanCarriesGeometryTimingAndSpecialValues) {
+  simulation::SimScan scan;
+  scan.stamp = 2.5;
+  scan.angle_min = -1.0;
+  scan.angle_increment = 0.01;
+  scan.time_increment = 1e-4;
+  scan.scan_time = 0.1;
+  scan.range_min = 0.05;
+  scan.range_max = 30;
+  scan.ranges = {1.0f, std::numeric_limits<float>::infinity(), 2.0f};
+  const auto msg = simulator::ToLaserScan(scan, 100.0);
+  EXPECT_DOUBLE_EQ(dds::FromRosTime(msg.header().stamp()), 102.5);
+  EXPECT_EQ(msg.header().frame_id(), "laser");
+  EXPECT_FLOAT_EQ(msg.angle_max(), -0.98f);
+  EXPECT_FLOAT_EQ(msg.time_increment(), 1e-4f);
+  EXPECT_TRUE(std::isinf(msg.ranges()[1]));
+  simulation::SimState state;
+  state.time = 1.0;
+  state.odometry = {1, 2, 0.5};
+  state.traction_ticks = 5;
+  kinematics::RobotParameters p;
+  const auto odom = simulator::ToOdometry(state, 10.0, 100.0);
+  EXPECT_EQ(odom.header().frame_id(), "odom");
+  EXPECT_EQ(odom.child_frame_id(), "base_link");
+  EXPECT_NEAR(dds::YawFromQuaternion(odom.pose().pose().orientation()), 0.5, 1e-12);
+  EXPECT_GT(odom.pose().covariance()[0], 0.0);
+  const auto enc = simulator::ToWheelEncoders(state, p, 4294967295u, 100.0);
+  EXPECT_NEAR(enc.traction_angle_increment_rad(), 6 * 2 * geometry::kPi / p.traction_ticks_per_rev,
+              1e-12);
+}
+
+// Stamps (s) received on one topic.
+class StampLog {
+ public:
+  void Add(double t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stamps_.push_back(t);
+  }
+  std::vector<double> Get() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stamps_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<double> stamps_;
+};
+
+double Rate(const std::vector<double>& s) {
+  return s.size() < 2 ? 0.0 : (s.size() - 1) / (s.back() - s.front());
+}
+
+bool Increasing(const std::vector<double>& s) {
+  for (size_t i = 1; i < s.size(); ++i) {
+    if (!(s[i] > s[i - 1])) return false;
+  }
+  return true;
+}
+
+TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsistentStamps) {
+  dds::Node observer(testing::TestNodeOptions("observer", kDomain));
+  StampLog scans, odom, truth, encoders;
+  std::mutex scan_mutex;
+  double time_increment = 0.0;
+  size_t beams = 0;
+  observer.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
+      dds::topics::kScan, [&](const sensor_msgs::msg::LaserScan& m) {
+        scans.Add(dds::FromRosTime(m.header().stamp()));
+        std::lock_guard<std::mutex> lock(scan_mutex);
+        time_increment = m.time_increment();
+        beams = m.ranges().size();
+      });
+  observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+      dds::topics::kOdom,
+      [&](const nav_msgs::msg::Odometry& m) { odom.Add(dds::FromRosTime(m.header().stamp())); });
+  observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+      dds::topics::kGroundTruth,
+      [&](const nav_msgs::msg::Odometry& m) { truth.Add(dds::FromRosTime(m.header().stamp())); });
+  observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
+      dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
+        encoders.Add(dds::FromRosTime(m.header().stamp()));
+      });
+  const auto start = std::chrono::steady_clock::now();
+  process::ChildProcess sim(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
+       testing::SourcePath("maps/scenarios/dead_end_corridor.xml"), "--time-scale", "8",
+       "--exit-when-done"});
+  const auto code = sim.WaitExit(30s);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(code.has_value()) << sim.CapturedOutput();
+  EXPECT_EQ(*code, 0) << sim.CapturedOutput();
+  std::this_thread::sleep_for(200ms);
+  const auto s = scans.Get(), o = odom.Get(), t = truth.Get(), e = encoders.Get();
+  ASSERT_GT(s.size(), 100u);
+  ASSERT_GT(o.size(), 1000u);
+  // 40 s of scenario took well under 40 s of wall time.
+  EXPECT_LT(wall, 40.0 / 3);
+  // Rates in simulation time: the scenario's laser 5 Hz, odometry/encoders 50 Hz.
+  EXPECT_NEAR(Rate(s), 5.0, 0.1);
+  EXPECT_NEAR(Rate(o), 50.0, 1.0);
+  EXPECT_NEAR(Rate(t), 50.0, 1.0);
+  EXPECT_NEAR(Rate(e), 50.0, 1.0);
+  EXPECT_GE(s.size(), 195u);  // 200 scans sent; best effort may drop a few
+  EXPECT_TRUE(Increasing(s));
+  EXPECT_TRUE(Increasing(o));
+  EXPECT_TRUE(Increasing(e));
+  // Scans lie within the odometry's time span; beams carry their own time.
+  EXPECT_GE(s.front(), o.front() - 0.1);
+  EXPECT_LE(s.back(), o.back() + 0.1);
+  std::lock_guard<std::mutex> lock(scan_mutex);
+  EXPECT_EQ(beams, 300u);
+  EXPECT_NEAR(time_increment, 0.2 / 300, 1e-6);
+}
+
+}  // namespace
+}  // namespace structloc
