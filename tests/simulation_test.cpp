@@ -195,7 +195,7 @@ TEST(Simulation, RecordingHasTheDocumentedFormats) {
     }
   }
   EXPECT_EQ(laser, 20);
-  EXPECT_EQ(odom, 100);  // 50 Hz
+  EXPECT_EQ(odom, 101);  // t = 0, then 50 Hz
   std::ifstream enc(dir + "/encoders.csv");
   std::getline(enc, line);
   EXPECT_EQ(line, "t,traction_ticks,steering_ticks");

@@ -33,6 +33,9 @@ const Subcommand kSubcommands[] = {
     {"demo", structloc::cli::DemoCommand, "run the main demo"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
+    {"replay", structloc::cli::ReplayCommand,
+     "--map W.xml --log RUN.clf --initial-pose \"X Y THETA\" --out T.tum [--params P.xml] "
+     "[--truth T.tum] [--plot P.png] [--no-map]  localise a recorded log offline"},
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
 };

@@ -16,5 +16,6 @@ int LaunchCommand(const Invocation& invocation);
 int DemoCommand(const Invocation& invocation);
 int SimulateCommand(const Invocation& invocation);
 int RenderCommand(const Invocation& invocation);
+int ReplayCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

@@ -30,6 +30,11 @@ CarmenWriter::CarmenWriter(const std::string& path) : path_(path) {
           "hostname logger_timestamp\n";
 }
 
+void CarmenWriter::Param(const std::string& name, double value) {
+  out_ << "PARAM " << name << " " << std::scientific << std::setprecision(12) << value
+       << std::defaultfloat << "\n";
+}
+
 void CarmenWriter::Comment(const std::string& text) {
   out_ << "# " << text << "\n";
 }

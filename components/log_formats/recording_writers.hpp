@@ -33,6 +33,8 @@ class CarmenWriter {
                   const geometry::Pose2D& laser_pose, const geometry::Pose2D& robot_pose, double tv,
                   double rv);
   void Comment(const std::string& text);
+  // PARAM name value (CARMEN's parameter lines).
+  void Param(const std::string& name, double value);
   void Close();
 
  private:

@@ -17,9 +17,14 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
   logs::EncodersCsvWriter encoders(out_dir + "/encoders.csv");
   clf.Comment("scenario " + scenario.name + ", seed " + std::to_string(scenario.seed));
   Simulation sim(scenario);
+  // ROBOTLASER1 lines carry no beam timing: this PARAM lets our replay de-skew.
+  clf.Param("structloc_laser_time_increment", sim.LaserTimeIncrement());
   RecordingSummary summary;
   const int odom_every =
       std::max(1, static_cast<int>(std::lround(1.0 / (scenario.odom_rate_hz * scenario.step_s))));
+  // The state at t = 0, so that the first scan (stamped 0) has odometry at its time.
+  clf.Odometry(0.0, sim.State().odometry, 0.0, 0.0);
+  encoders.Sample(0.0, sim.State().traction_ticks, sim.State().steering_ticks);
   bool first_scan = true;
   for (long step = 1; !sim.Finished(); ++step) {
     const SimState& s = sim.Step();

@@ -41,6 +41,7 @@ Simulation::Simulation(const Scenario& scenario)
       motion_rng_(Engine(scenario.seed, 1)),
       laser_rng_(Engine(scenario.seed, 2)) {
   state_.truth = scenario.initial_pose;
+  segment_start_ = scenario.initial_pose.Translation();
   wheel_ticks_ = static_cast<double>(scenario.errors.traction_start_tick);
   const uint64_t mask = (uint64_t{1} << scenario.nominal.traction_counter_bits) - 1;
   state_.traction_ticks =
@@ -89,9 +90,11 @@ world::Scene Simulation::SceneAt(double t) const {
 }
 
 // Path following with the true pose (an ideal guidance, so that the robot
-// stays on its path whatever its odometry believes): pure pursuit for a
-// rear-axle reference point, steering = atan(curvature * axle distance). The
-// wheel rate is what the robot commands with its nominal wheel radius.
+// stays on its path whatever its odometry believes): pure pursuit of a
+// look-ahead point on the current path segment (from the previous waypoint,
+// or the start, to the next), steering = atan(curvature * axle distance). In
+// stop-look-move mode every waypoint is a stop with a dwell. The wheel rate is
+// what the robot commands with its nominal wheel radius.
 void Simulation::Control(double* wheel_rate, double* steering) {
   const auto& path = scenario_.path;
   const auto& nominal = scenario_.nominal;
@@ -109,28 +112,42 @@ void Simulation::Control(double* wheel_rate, double* steering) {
     return;
   }
   if (path_done_ || state_.time < dwell_until_) return;
+  const bool stops = path.mode == PathSpec::Mode::kStopLookMove;
   const Eigen::Vector2d here = state_.truth.Translation();
-  const Eigen::Vector2d target = path.waypoints[waypoint_];
-  const bool last = waypoint_ + 1 == path.waypoints.size();
-  const bool stop_here = path.mode == PathSpec::Mode::kStopLookMove || (last && !path.loop);
-  const double distance = (target - here).norm();
-  const double reach = stop_here ? 0.05 : path.lookahead_m;
-  if (distance < reach) {
-    if (path.mode == PathSpec::Mode::kStopLookMove) dwell_until_ = state_.time + path.dwell_s;
-    if (last && !path.loop) {
+  const Eigen::Vector2d a = waypoint_ == 0 ? segment_start_ : path.waypoints[waypoint_ - 1];
+  const Eigen::Vector2d b = path.waypoints[waypoint_];
+  const bool last = waypoint_ + 1 == path.waypoints.size() && !path.loop;
+  const bool stop_at_b = stops || last;
+  const Eigen::Vector2d d = b - a;
+  const double len = d.norm();
+  const double t = len > 1e-9 ? std::clamp((here - a).dot(d) / (len * len), 0.0, 1.0) : 1.0;
+  const double to_b = (b - here).norm();
+  if (stop_at_b ? to_b < 0.05 : (t >= 1.0 || to_b < path.lookahead_m)) {
+    if (stops) dwell_until_ = state_.time + path.dwell_s;
+    if (last) {
       path_done_ = true;  // finished once the last dwell is over
     } else {
+      segment_start_ = b;
       waypoint_ = (waypoint_ + 1) % path.waypoints.size();
     }
     return;
   }
+  // The look-ahead point: along this segment, then onto the next one.
+  Eigen::Vector2d target = b;
+  const double ahead = t * len + path.lookahead_m;
+  if (ahead < len) {
+    target = a + d * (ahead / len);
+  } else if (!stop_at_b) {
+    const Eigen::Vector2d c = path.waypoints[(waypoint_ + 1) % path.waypoints.size()];
+    target = b + (c - b).normalized() * std::min(ahead - len, (c - b).norm());
+  }
   const Eigen::Vector2d local = state_.truth.ApplyInverse(target);
-  const double ld = std::max(local.norm(), 1e-3);
-  const double curvature = 2.0 * local.y() / (ld * ld);
+  const double ld2 = std::max(local.squaredNorm(), 1e-6);
+  const double curvature = 2.0 * local.y() / ld2;
   *steering = std::clamp(std::atan(curvature * nominal.axle_distance), -kMaxSteering, kMaxSteering);
-  // Slow down near a stop and in sharp turns.
+  // Slow down in sharp turns and before a stop.
   double speed = path.speed_m_s * std::max(0.2, std::cos(*steering));
-  if (stop_here) speed = std::min(speed, std::max(0.05, 1.5 * distance));
+  if (stop_at_b) speed = std::min(speed, std::max(0.05, 1.5 * to_b));
   *wheel_rate = speed / (nominal.wheel_radius * std::cos(*steering));
 }
 

@@ -54,6 +54,7 @@ class Simulation {
   // Positions of the people now (for rendering and tests).
   std::vector<world::Circle> People() const;
   const Scenario& GetScenario() const { return scenario_; }
+  double LaserTimeIncrement() const { return scan_.time_increment; }
 
   // The scene the laser sees at time `t`: world, obstacles and people.
   world::Scene SceneAt(double t) const;
@@ -70,7 +71,8 @@ class Simulation {
   double wheel_ticks_ = 0.0;  // continuous traction counter
   std::mt19937 motion_rng_;
   std::mt19937 laser_rng_;
-  size_t waypoint_ = 0;
+  size_t waypoint_ = 0;                  // the waypoint the robot heads for
+  Eigen::Vector2d segment_start_{0, 0};  // where the current path segment starts
   double dwell_until_ = -1.0;
   bool path_done_ = false;
   double cmd_linear_ = 0.0, cmd_angular_ = 0.0;

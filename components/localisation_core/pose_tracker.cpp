@@ -1,0 +1,194 @@
+// Pose tracking around the Localiser (see header).
+#include "pose_tracker.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace structloc::localisation {
+
+const char* ToString(Rejection r) {
+  switch (r) {
+    case Rejection::kEmptyScan:
+      return "empty scan";
+    case Rejection::kBeamCountMismatch:
+      return "beam count does not match the scan angles";
+    case Rejection::kBadScanGeometry:
+      return "angle_increment zero or non-finite, or bad limits";
+    case Rejection::kScanOutOfOrder:
+      return "scan stamp not after the previous scan";
+    case Rejection::kScanInFuture:
+      return "scan stamp too far ahead of the odometry";
+    case Rejection::kNoOdometry:
+      return "no odometry at the scan's time";
+    case Rejection::kNoInitialPose:
+      return "no initial pose yet";
+    case Rejection::kOdometryNonFinite:
+      return "odometry pose or stamp not finite";
+    case Rejection::kOdometryOutOfOrder:
+      return "odometry stamp not after the previous one";
+    case Rejection::kOdometryJump:
+      return "odometry jump faster than max_odometry_speed_m_s";
+    case Rejection::kInitialPoseInvalid:
+      return "initial pose or covariance invalid";
+    case Rejection::kCount:
+      break;
+  }
+  return "unknown";
+}
+
+uint64_t TrackerStats::Rejected() const {
+  uint64_t n = 0;
+  for (auto c : rejected) n += c;
+  return n;
+}
+
+void TrackerOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("tracker: ") + what);
+  };
+  require(odometry_wait_s >= 0, "odometry_wait_s must be >= 0");
+  require(max_future_s > 0, "max_future_s must be > 0");
+  require(max_odometry_speed_m_s > 0, "max_odometry_speed_m_s must be > 0");
+  require(odometry_sigma_xy_per_m >= 0 && odometry_sigma_theta_per_m >= 0 &&
+              odometry_sigma_theta_per_rad >= 0,
+          "odometry sigmas must be >= 0");
+  require(initial_sigma_xy_m > 0 && initial_sigma_theta_rad > 0, "initial sigmas must be > 0");
+}
+
+PoseTracker::PoseTracker(const world::WorldModel& world, const LocaliserOptions& localiser_options,
+                         const TrackerOptions& options)
+    : localiser_(world, localiser_options), options_(options), history_(4096) {
+  options_.Validate();
+  motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
+}
+
+PoseTracker::ScanOutcome PoseTracker::Reject(Rejection r) {
+  ++stats_.rejected[static_cast<size_t>(r)];
+  ScanOutcome out;
+  out.verdict = ScanVerdict::kRejected;
+  out.rejection = r;
+  return out;
+}
+
+std::optional<Rejection> PoseTracker::AddOdometry(double stamp, const geometry::Pose2D& pose) {
+  auto reject = [this](Rejection r) {
+    ++stats_.rejected[static_cast<size_t>(r)];
+    return r;
+  };
+  if (!std::isfinite(stamp) || !geometry::IsFinite(pose))
+    return reject(Rejection::kOdometryNonFinite);
+  if (!history_.Empty()) {
+    if (!(stamp > history_.Newest())) return reject(Rejection::kOdometryOutOfOrder);
+    const auto last = history_.At(history_.Newest());
+    const double dt = stamp - history_.Newest();
+    if ((pose.Translation() - last->Translation()).norm() >
+        options_.max_odometry_speed_m_s * std::max(dt, 0.01)) {
+      return reject(Rejection::kOdometryJump);
+    }
+  }
+  history_.Add(stamp, pose);
+  return std::nullopt;
+}
+
+std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometry::Pose2D& pose,
+                                                     const Eigen::Matrix3d& covariance) {
+  if (!geometry::IsFinite(pose) || !covariance.allFinite() || covariance(0, 0) <= 0 ||
+      covariance(1, 1) <= 0 || covariance(2, 2) <= 0) {
+    ++stats_.rejected[static_cast<size_t>(Rejection::kInitialPoseInvalid)];
+    return Rejection::kInitialPoseInvalid;
+  }
+  if (history_.Empty()) {
+    ++stats_.rejected[static_cast<size_t>(Rejection::kNoOdometry)];
+    return Rejection::kNoOdometry;
+  }
+  const double t = std::min(std::max(stamp, history_.Oldest()), history_.Newest());
+  const geometry::Pose2D odom = *history_.At(t);
+  map_to_odom_ = geometry::Compose(pose, geometry::Inverse(odom));
+  odom_at_last_update_ = odom;
+  covariance_ = covariance;
+  initialised_ = true;
+  return std::nullopt;
+}
+
+std::optional<TrackedPose> PoseTracker::Latest() const {
+  if (!initialised_ || history_.Empty()) return std::nullopt;
+  const geometry::Pose2D odom = *history_.At(history_.Newest());
+  return TrackedPose{history_.Newest(), geometry::Compose(map_to_odom_, odom), covariance_};
+}
+
+PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double waited_s) {
+  if (scan.count == 0 || scan.ranges == nullptr) return Reject(Rejection::kEmptyScan);
+  if (!std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 ||
+      !std::isfinite(scan.angle_min) || !std::isfinite(scan.stamp) ||
+      !std::isfinite(scan.time_increment) || scan.time_increment < 0) {
+    return Reject(Rejection::kBadScanGeometry);
+  }
+  if (std::isfinite(scan.angle_max)) {
+    const double implied = (scan.angle_max - scan.angle_min) / scan.angle_increment + 1.0;
+    if (std::abs(implied - static_cast<double>(scan.count)) > 1.01) {
+      return Reject(Rejection::kBeamCountMismatch);
+    }
+  }
+  if (!(scan.stamp > last_scan_stamp_)) return Reject(Rejection::kScanOutOfOrder);
+  if (history_.Empty()) return Reject(Rejection::kNoOdometry);
+  if (scan.stamp > history_.Newest() + options_.max_future_s)
+    return Reject(Rejection::kScanInFuture);
+  if (!initialised_) return Reject(Rejection::kNoInitialPose);
+  const double last_beam = scan.stamp + scan.time_increment * static_cast<double>(scan.count - 1);
+  if (last_beam > history_.Newest() && waited_s < options_.odometry_wait_s) {
+    ScanOutcome wait;
+    wait.verdict = ScanVerdict::kWaitForOdometry;
+    return wait;
+  }
+  if (scan.stamp < history_.Oldest()) return Reject(Rejection::kNoOdometry);
+  // Odometry at the scan stamp: interpolated, or the newest when it is late.
+  const geometry::Pose2D odom = *history_.At(std::min(scan.stamp, history_.Newest()));
+  const bool covered = last_beam <= history_.Newest();
+  const bool deskew = options_.deskew && scan.time_increment > 0 && covered &&
+                      BeamMotionFromHistory(history_, localiser_.Options().sensor_mount, scan.stamp,
+                                            scan.time_increment, scan.count, motion_);
+  if (options_.deskew && scan.time_increment > 0 && !deskew) ++stats_.scans_not_deskewed;
+  last_scan_stamp_ = scan.stamp;
+
+  // The prior: the last correction carried forward, uncertainty grown with the motion.
+  const geometry::Pose2D moved = geometry::Between(odom_at_last_update_, odom);
+  const double d = moved.Translation().norm();
+  const double sxy = options_.odometry_sigma_xy_per_m * d;
+  const double st = options_.odometry_sigma_theta_per_m * d +
+                    options_.odometry_sigma_theta_per_rad * std::abs(moved.theta);
+  UpdateInput in;
+  in.scan.ranges = scan.ranges;
+  in.scan.count = scan.count;
+  in.scan.angle_min = scan.angle_min;
+  in.scan.angle_increment = scan.angle_increment;
+  in.scan.time_increment = scan.time_increment;
+  in.scan.range_min = scan.range_min;
+  in.scan.range_max = scan.range_max;
+  in.odometry_pose = geometry::Compose(map_to_odom_, odom);
+  in.odometry_covariance = covariance_;
+  in.odometry_covariance(0, 0) += sxy * sxy + 1e-8;
+  in.odometry_covariance(1, 1) += sxy * sxy + 1e-8;
+  in.odometry_covariance(2, 2) += st * st + 1e-10;
+  in.motion = deskew ? &motion_ : nullptr;
+  const LocalisationResult& r = localiser_.Update(in);
+  ++stats_.scans_processed;
+  if (r.lost) ++stats_.scans_lost;
+  // A lost update leaves the correction alone (dead reckoning continues) but
+  // keeps the grown uncertainty; underdetermined updates still correct the
+  // determined directions, since the solver held the others at the prior.
+  const bool use = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
+  if (use && r.rejection == nullptr) {
+    map_to_odom_ = geometry::Compose(r.pose, geometry::Inverse(odom));
+    covariance_ = r.covariance;
+  } else {
+    covariance_ = in.odometry_covariance;
+  }
+  odom_at_last_update_ = odom;
+  ScanOutcome out;
+  out.verdict = ScanVerdict::kProcessed;
+  out.result = &r;
+  out.pose = {scan.stamp, geometry::Compose(map_to_odom_, odom), covariance_};
+  return out;
+}
+
+}  // namespace structloc::localisation

@@ -1,0 +1,55 @@
+// Offline replay of a CARMEN log through the same PoseTracker / Localiser as
+// the localisation component: one TUM line per scan, a summary (scans used and
+// rejected by reason, features matched, lost periods, time per update), and,
+// given ground truth, the error of the estimate and of odometry alone.
+// --no-map passes odometry through while still parsing, prefiltering and
+// line-fitting every scan, for logs without a world model. DDS-free.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carmen_reader.hpp"
+#include "trajectory_error.hpp"
+
+namespace structloc::replay {
+
+struct ReplayOptions {
+  std::string map_path;                          // world model (unless no_map)
+  std::string log_path;                          // CARMEN log (.gz read through gzip)
+  std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot
+  std::string out_tum;                           // estimate, one line per scan
+  std::string params_path;  // localisation parameters (default: built-in defaults)
+  std::string truth_path;   // optional TUM ground truth
+  std::string plot_path;    // optional PNG
+  bool no_map = false;
+  // Called every few percent of the log with the scans done so far.
+  std::function<void(size_t scans, double fraction)> progress;
+};
+
+struct ReplayReport {
+  logs::CarmenStats log;
+  size_t scans_used = 0;
+  std::map<std::string, size_t> scans_rejected;  // reason -> count
+  size_t scans_lost = 0;
+  size_t lost_periods = 0;
+  double lost_duration_s = 0.0;
+  double mean_features = 0.0;
+  double median_update_us = 0.0;
+  double p99_update_us = 0.0;
+  geometry::Pose2D sensor_mount;  // derived from the log when it has laser and robot poses
+  std::optional<TrajectoryError> estimate_error;
+  std::optional<TrajectoryError> odometry_error;
+  std::vector<logs::StampedPose> estimate;
+};
+
+// Throws std::runtime_error (or config::ConfigError) with a message a user can act on.
+ReplayReport RunReplay(const ReplayOptions& options);
+
+// The summary as printed by "structloc replay".
+std::string FormatReport(const ReplayReport& report);
+
+}  // namespace structloc::replay
