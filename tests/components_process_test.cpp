@@ -61,7 +61,11 @@ TEST(Components, ExchangeSamplesAndStopCleanly) {
   ChildProcess calibration(BinPath("structloc_calibration"), Args(kDomain));
 
   EXPECT_TRUE(testing::WaitUntil(
-      [&] { return diagnostics.Value("structloc/localisation", "odom_received") > 0; }, 15s))
+      [&] {
+        return diagnostics.Value("structloc/localisation", "scans_rejected") > 0 ||
+               diagnostics.Value("structloc/localisation", "scans_processed") > 0;
+      },
+      15s))
       << localisation.CapturedOutput();
   EXPECT_TRUE(testing::WaitUntil(
       [&] { return diagnostics.Value("structloc/calibration", "encoder_samples") > 0; }, 15s))

@@ -20,7 +20,10 @@ CommandLine::CommandLine(int argc, const char* const* argv, int first,
     }
     if (spec == nullptr) throw ConfigError("unknown option '" + arg + "'\n" + Usage(specs));
     if (!spec->takes_value) {
-      values_[name] = "true";
+      // Flags may carry an explicit true/false (launch files always pass a value).
+      const std::string next = i + 1 < argc ? argv[i + 1] : "";
+      if (next == "true" || next == "false") ++i;
+      if (next != "false") values_[name] = "true";
       continue;
     }
     if (i + 1 >= argc) throw ConfigError("option '" + arg + "' needs a value");

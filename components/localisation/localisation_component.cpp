@@ -1,13 +1,20 @@
 // Localisation component (see header).
 #include "localisation_component.hpp"
 
+#include <iostream>
+
 #include "diagnostics.hpp"
+#include "localisation_conversions.hpp"
+#include "ros_conversions.hpp"
 
 namespace structloc::localisation {
 
 LocalisationComponent::LocalisationComponent(dds::Node& node,
+                                             std::unique_ptr<world::WorldModel> world,
+                                             const LocaliserOptions& localiser_options,
                                              const LocalisationComponentOptions& options)
     : options_(options),
+      world_(std::move(world)),
       pose_(node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
           dds::topics::kPose)),
       tf_(node.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds::topics::kTf)),
@@ -16,31 +23,170 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
       status_(node.CreateWriter<structloc_msgs::msg::LocalisationStatusPubSubType>(
           dds::topics::kStatus)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)) {
+          dds::topics::kDiagnostics)),
+      tracker_(*world_, localiser_options, TrackerOptions{}) {
+  const Eigen::Matrix3d initial_cov =
+      Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
+  if (options_.initial_pose) {
+    pending_initial_pose_ = {{*options_.initial_pose, initial_cov}};
+    std::cout << "localisation: initial pose from the command line" << std::endl;
+  } else if (!options_.state_file.empty()) {
+    if (auto saved = LoadSavedPose(options_.state_file)) {
+      pending_initial_pose_ = {{saved->pose, Eigen::Matrix3d(saved->variance.asDiagonal())}};
+      std::cout << "localisation: resuming from the pose saved in " << options_.state_file
+                << std::endl;
+    }
+  }
+  if (!pending_initial_pose_) {
+    std::cout << "localisation: waiting for an initial pose on " << dds::topics::kInitialPose.name
+              << std::endl;
+  }
   node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
-      dds::topics::kScan, [this](const sensor_msgs::msg::LaserScan&) {
-        ++scans_;
-        last_scan_wall_s_ = dds::WallClockSeconds();
-      });
+      dds::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) { OnScan(m); });
   node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kOdom, [this](const nav_msgs::msg::Odometry&) { ++odoms_; });
+      dds::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) { OnOdometry(m); });
   node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds::topics::kInitialPose,
-      [this](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++initial_poses_; });
+      [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) { OnInitialPose(m); });
+  worker_ = std::thread([this] { Worker(); });
+}
+
+LocalisationComponent::~LocalisationComponent() {
+  Stop();
+}
+
+void LocalisationComponent::Stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+void LocalisationComponent::OnScan(const sensor_msgs::msg::LaserScan& scan) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pending_scan_) ++dropped_;  // overload: the newest scan wins
+    pending_scan_ = scan;
+    pending_since_ = dds::WallClockSeconds();
+    last_scan_wall_s_ = pending_since_;
+  }
+  wake_.notify_one();
+}
+
+void LocalisationComponent::OnOdometry(const nav_msgs::msg::Odometry& msg) {
+  const auto odom = FromOdometry(msg);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto r = tracker_.AddOdometry(odom.stamp, odom.pose)) {
+      last_problem_ = std::string("odometry rejected: ") + ToString(*r);
+      return;
+    }
+    if (pending_initial_pose_ && !tracker_.HasInitialPose()) {
+      tracker_.SetInitialPose(odom.stamp, pending_initial_pose_->first,
+                              pending_initial_pose_->second);
+      pending_initial_pose_.reset();
+    }
+  }
+  wake_.notify_one();  // a waiting scan may now be covered
+}
+
+void LocalisationComponent::OnInitialPose(
+    const geometry_msgs::msg::PoseWithCovarianceStamped& msg) {
+  Eigen::Matrix3d cov;
+  const auto p = FromPoseWithCovariance(msg, &cov);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto r = tracker_.SetInitialPose(p.stamp, p.pose, cov)) {
+    if (*r == Rejection::kNoOdometry) {
+      pending_initial_pose_ = {{p.pose, cov}};
+    } else {
+      last_problem_ = std::string("initial pose rejected: ") + ToString(*r);
+    }
+    return;
+  }
+  std::cout << "localisation: initial pose set from " << dds::topics::kInitialPose.name
+            << std::endl;
+}
+
+void LocalisationComponent::Worker() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stopping_) {
+    wake_.wait_for(lock, std::chrono::milliseconds(20));
+    if (stopping_ || !pending_scan_) continue;
+    const double waited = dds::WallClockSeconds() - pending_since_;
+    const auto outcome = tracker_.ProcessScan(FromLaserScan(*pending_scan_), waited);
+    if (outcome.verdict == PoseTracker::ScanVerdict::kWaitForOdometry) continue;
+    const double stamp = dds::FromRosTime(pending_scan_->header().stamp());
+    pending_scan_.reset();
+    if (outcome.verdict == PoseTracker::ScanVerdict::kRejected) {
+      last_problem_ = std::string("scan rejected: ") + ToString(outcome.rejection);
+      continue;
+    }
+    const auto& r = *outcome.result;
+    last_lost_ = r.lost;
+    last_lost_reason_ = r.lost ? ToString(r.lost_reason) : "";
+    last_quality_ = r.quality;
+    auto pose = ToPoseWithCovarianceStamped(outcome.pose);
+    auto tf = ToMapToOdomTf(tracker_.MapToOdom(), stamp);
+    auto features = ToScanFeatures(r, stamp);
+    auto status = ToStatus(r, tracker_.Stats(), dropped_, stamp);
+    pose_.Write(pose);
+    tf_.Write(tf);
+    features_.Write(features);
+    status_.Write(status);
+  }
 }
 
 void LocalisationComponent::Step() {
   const double now = dds::WallClockSeconds();
-  dds::HealthReport report;
-  if (now - last_scan_wall_s_ > options_.scan_timeout_s) {
-    report.level = dds::HealthLevel::kWarn;
-    report.message = "no scans for " + std::to_string(options_.scan_timeout_s) + " s";
-  } else {
-    report.message = "receiving scans";
+  std::optional<TrackedPose> latest;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest = tracker_.Latest();
   }
-  report.values = {{"scans_received", std::to_string(scans_.load())},
-                   {"odom_received", std::to_string(odoms_.load())},
-                   {"initial_poses_received", std::to_string(initial_poses_.load())}};
+  if (latest && !options_.state_file.empty() &&
+      now - last_state_save_s_ >= options_.state_period_s) {
+    try {
+      SavePoseAtomically(options_.state_file, {latest->pose, latest->covariance.diagonal()});
+    } catch (const std::exception& e) {
+      std::cerr << "localisation: " << e.what() << std::endl;
+    }
+    last_state_save_s_ = now;
+  }
+  if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);
+}
+
+void LocalisationComponent::PublishDiagnostics(double now) {
+  last_diagnostics_s_ = now;
+  dds::HealthReport report;
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto& stats = tracker_.Stats();
+  if (!tracker_.HasInitialPose()) {
+    report.level = dds::HealthLevel::kWarn;
+    report.message = "no initial pose: publish one on rt/initialpose or pass --initial-pose";
+  } else if (now - last_scan_wall_s_ > options_.scan_timeout_s) {
+    report.level = dds::HealthLevel::kWarn;
+    report.message = "no scans for " + std::to_string(options_.scan_timeout_s).substr(0, 3) + " s";
+  } else if (last_lost_) {
+    report.level = dds::HealthLevel::kWarn;
+    report.message = "lost (dead reckoning): " + last_lost_reason_;
+  } else {
+    report.message = "localised";
+  }
+  report.values = {{"scans_processed", std::to_string(stats.scans_processed)},
+                   {"scans_lost", std::to_string(stats.scans_lost)},
+                   {"scans_dropped", std::to_string(dropped_)},
+                   {"scans_rejected", std::to_string(stats.Rejected())},
+                   {"scans_not_deskewed", std::to_string(stats.scans_not_deskewed)},
+                   {"quality", std::to_string(last_quality_)},
+                   {"last_problem", last_problem_}};
+  for (size_t i = 0; i < stats.rejected.size(); ++i) {
+    if (stats.rejected[i] > 0) {
+      report.values.emplace_back(std::string("rejected: ") + ToString(static_cast<Rejection>(i)),
+                                 std::to_string(stats.rejected[i]));
+    }
+  }
   auto diag = dds::ToDiagnosticArray("localisation", report, now);
   diagnostics_.Write(diag);
 }

@@ -1,15 +1,24 @@
 // The localisation component: subscribes scans, odometry and initial poses,
-// publishes pose, tf, features, status and diagnostics. The pipeline itself
-// lives in the DDS-free localisation core (issue 3); this adapter only moves data.
+// runs the DDS-free PoseTracker on a worker thread (one scan slot: the newest
+// scan wins, dropped ones are counted) and publishes the pose, the map -> odom
+// transform, the features, its status and diagnostics. It saves its pose
+// every few seconds and resumes from it after a restart.
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
 
 #include "component_runtime.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "pose_state_file.hpp"
+#include "pose_tracker.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "structloc_msgs/msg/ScanFeaturesPubSubTypes.h"
@@ -18,25 +27,53 @@
 namespace structloc::localisation {
 
 struct LocalisationComponentOptions {
-  double scan_timeout_s = 0.5;  // diagnostics go WARN when no scan arrived for this long
+  double scan_timeout_s = 0.5;                   // diagnostics go WARN without scans for this long
+  std::string state_file;                        // saved pose ("" = none)
+  double state_period_s = 2.0;                   // how often the pose is saved
+  std::optional<geometry::Pose2D> initial_pose;  // from the command line
 };
 
 class LocalisationComponent : public dds::Component {
  public:
-  LocalisationComponent(dds::Node& node, const LocalisationComponentOptions& options);
+  LocalisationComponent(dds::Node& node, std::unique_ptr<world::WorldModel> world,
+                        const LocaliserOptions& localiser_options,
+                        const LocalisationComponentOptions& options);
+  ~LocalisationComponent() override;
   void Step() override;
+  void Stop() override;
 
  private:
+  void OnScan(const sensor_msgs::msg::LaserScan& scan);
+  void OnOdometry(const nav_msgs::msg::Odometry& odom);
+  void OnInitialPose(const geometry_msgs::msg::PoseWithCovarianceStamped& pose);
+  void Worker();
+  void Process(const sensor_msgs::msg::LaserScan& scan, double waited_s);
+  void PublishDiagnostics(double now);
+
   LocalisationComponentOptions options_;
+  std::unique_ptr<world::WorldModel> world_;
   dds::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType> pose_;
   dds::TopicWriter<tf2_msgs::msg::TFMessagePubSubType> tf_;
   dds::TopicWriter<structloc_msgs::msg::ScanFeaturesPubSubType> features_;
   dds::TopicWriter<structloc_msgs::msg::LocalisationStatusPubSubType> status_;
   dds::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
-  std::atomic<uint64_t> scans_{0};
-  std::atomic<uint64_t> odoms_{0};
-  std::atomic<uint64_t> initial_poses_{0};
-  std::atomic<double> last_scan_wall_s_{0.0};
+
+  std::mutex mutex_;  // guards everything below
+  std::condition_variable wake_;
+  PoseTracker tracker_;
+  std::optional<sensor_msgs::msg::LaserScan> pending_scan_;
+  double pending_since_ = 0.0;
+  std::optional<std::pair<geometry::Pose2D, Eigen::Matrix3d>> pending_initial_pose_;
+  uint64_t dropped_ = 0;
+  bool stopping_ = false;
+  double last_scan_wall_s_ = 0.0;
+  double last_state_save_s_ = 0.0;
+  double last_diagnostics_s_ = 0.0;
+  bool last_lost_ = false;
+  std::string last_lost_reason_;
+  double last_quality_ = 0.0;
+  std::string last_problem_;  // newest rejected input, for diagnostics
+  std::thread worker_;
 };
 
 }  // namespace structloc::localisation

@@ -1,11 +1,40 @@
 // structloc_localisation: entry point of the localisation component.
+#include <sstream>
+
 #include "localisation_component.hpp"
+#include "world_model_xml.hpp"
+
+#ifndef STRUCTLOC_SHARE_DIR
+#error "STRUCTLOC_SHARE_DIR must be defined by the build"
+#endif
 
 int main(int argc, char** argv) {
+  using structloc::config::ConfigError;
+  namespace loc = structloc::localisation;
   return structloc::dds::RunComponent(
-      argc, argv, "localisation", {},
-      [](structloc::dds::Node& node, const structloc::config::CommandLine&) {
-        return std::make_unique<structloc::localisation::LocalisationComponent>(
-            node, structloc::localisation::LocalisationComponentOptions{});
+      argc, argv, "localisation",
+      {{"map", true, "world model XML (default " STRUCTLOC_SHARE_DIR "/maps/office_floor.xml)"},
+       {"params", true,
+        "localisation parameters (default " STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml)"},
+       {"initial-pose", true, "\"X Y THETA\": robot pose in the map frame to start from"},
+       {"state-file", true, "where the pose is saved and resumed from (default: none)"}},
+      [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
+        auto world =
+            std::make_unique<structloc::world::WorldModel>(structloc::world::LoadWorldModel(
+                cli.GetOr("map", STRUCTLOC_SHARE_DIR "/maps/office_floor.xml")));
+        const auto params = loc::LoadLocaliserOptions(
+            cli.GetOr("params", STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml"));
+        loc::LocalisationComponentOptions options;
+        options.state_file = cli.GetOr("state-file", "");
+        if (auto text = cli.Get("initial-pose")) {
+          std::istringstream in(*text);
+          structloc::geometry::Pose2D p;
+          if (!(in >> p.x >> p.y >> p.theta) || !structloc::geometry::IsFinite(p)) {
+            throw ConfigError("--initial-pose must be \"X Y THETA\", got '" + *text + "'");
+          }
+          options.initial_pose = p;
+        }
+        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params,
+                                                            options);
       });
 }

@@ -1,0 +1,129 @@
+// Message conversions of the localisation component (see header).
+#include "localisation_conversions.hpp"
+
+#include "ros_conversions.hpp"
+
+namespace structloc::localisation {
+
+ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg) {
+  ScanInput s;
+  s.stamp = dds::FromRosTime(msg.header().stamp());
+  s.angle_min = msg.angle_min();
+  s.angle_max = msg.angle_max();
+  s.angle_increment = msg.angle_increment();
+  s.time_increment = msg.time_increment();
+  s.range_min = msg.range_min();
+  s.range_max = msg.range_max();
+  s.ranges = msg.ranges().data();
+  s.count = msg.ranges().size();
+  return s;
+}
+
+StampedPose2D FromOdometry(const nav_msgs::msg::Odometry& msg) {
+  const auto& p = msg.pose().pose();
+  return {dds::FromRosTime(msg.header().stamp()),
+          {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
+}
+
+StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianceStamped& msg,
+                                     Eigen::Matrix3d* covariance) {
+  const auto& p = msg.pose().pose();
+  const auto& c = msg.pose().covariance();
+  // 6x6 row-major (x y z rotX rotY rotZ): take x, y, rotZ.
+  const int idx[3] = {0, 1, 5};
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) (*covariance)(r, k) = c[static_cast<size_t>(idx[r] * 6 + idx[k])];
+  }
+  return {dds::FromRosTime(msg.header().stamp()),
+          {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
+}
+
+geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(const TrackedPose& t) {
+  geometry_msgs::msg::PoseWithCovarianceStamped msg;
+  msg.header().stamp(dds::ToRosTime(t.stamp));
+  msg.header().frame_id("map");
+  msg.pose().pose().position().x(t.pose.x);
+  msg.pose().pose().position().y(t.pose.y);
+  msg.pose().pose().orientation(dds::ToQuaternion(t.pose.theta));
+  auto& c = msg.pose().covariance();
+  const int idx[3] = {0, 1, 5};
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) c[static_cast<size_t>(idx[r] * 6 + idx[k])] = t.covariance(r, k);
+  }
+  c[14] = c[21] = c[28] = 1e6;  // z, roll, pitch: not estimated
+  return msg;
+}
+
+tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp) {
+  geometry_msgs::msg::TransformStamped t;
+  t.header().stamp(dds::ToRosTime(stamp));
+  t.header().frame_id("map");
+  t.child_frame_id("odom");
+  t.transform().translation().x(m.x);
+  t.transform().translation().y(m.y);
+  t.transform().rotation(dds::ToQuaternion(m.theta));
+  tf2_msgs::msg::TFMessage msg;
+  msg.transforms().push_back(t);
+  return msg;
+}
+
+structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, double stamp) {
+  structloc_msgs::msg::ScanFeatures msg;
+  msg.header().stamp(dds::ToRosTime(stamp));
+  msg.header().frame_id("laser");
+  for (const auto& w : r.walls) {
+    structloc_msgs::msg::WallFeature f;
+    f.r_m(w.a);
+    f.alpha_rad(w.b);
+    f.member_count(static_cast<uint32_t>(w.members));
+    f.model_id(w.model_id);
+    f.residual_m(w.residual_m);
+    msg.walls().push_back(f);
+  }
+  auto points = [](const std::vector<FeatureMatch>& in,
+                   std::vector<structloc_msgs::msg::PointFeature>& out) {
+    for (const auto& m : in) {
+      structloc_msgs::msg::PointFeature f;
+      f.x_m(m.a);
+      f.y_m(m.b);
+      f.member_count(static_cast<uint32_t>(m.members));
+      f.model_id(m.model_id);
+      f.residual_m(m.residual_m);
+      out.push_back(f);
+    }
+  };
+  points(r.corners, msg.corners());
+  points(r.cylinders, msg.cylinders());
+  return msg;
+}
+
+structloc_msgs::msg::LocalisationStatus ToStatus(const LocalisationResult& r,
+                                                 const TrackerStats& stats, uint64_t dropped,
+                                                 double stamp) {
+  structloc_msgs::msg::LocalisationStatus s;
+  s.header().stamp(dds::ToRosTime(stamp));
+  s.header().frame_id("map");
+  s.quality(r.quality);
+  s.lost(r.lost);
+  s.lost_reason(r.lost ? ToString(r.lost_reason) : "");
+  s.matched_walls(static_cast<uint32_t>(r.matched_walls));
+  s.expected_walls(static_cast<uint32_t>(r.expected_walls));
+  s.matched_corners(static_cast<uint32_t>(r.matched_corners));
+  s.expected_corners(static_cast<uint32_t>(r.expected_corners));
+  s.matched_cylinders(static_cast<uint32_t>(r.matched_cylinders));
+  s.expected_cylinders(static_cast<uint32_t>(r.expected_cylinders));
+  s.scans_processed(stats.scans_processed);
+  s.scans_dropped(dropped);
+  s.scans_rejected(stats.Rejected());
+  auto& t = s.timings();
+  t.prefilter_us(r.times.prefilter_us);
+  t.line_fit_us(r.times.line_fit_us);
+  t.wall_clustering_us(r.times.wall_clustering_us);
+  t.corners_us(r.times.corners_us);
+  t.cylinders_us(r.times.cylinders_us);
+  t.solve_us(r.times.solve_us);
+  t.total_us(r.times.total_us);
+  return s;
+}
+
+}  // namespace structloc::localisation
