@@ -124,7 +124,10 @@ TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsisten
   EXPECT_NEAR(Rate(o), 50.0, 1.0);
   EXPECT_NEAR(Rate(t), 50.0, 1.0);
   EXPECT_NEAR(Rate(e), 50.0, 1.0);
-  EXPECT_GE(s.size(), 195u);  // 200 scans sent; best effort may drop a few
+  // Samples sent before discovery completed are gone (volatile QoS); from the
+  // first received on, (almost) nothing may be missing.
+  EXPECT_GE(static_cast<double>(s.size()), (s.back() - s.front()) * 5.0 + 1.0 - 2.0);
+  EXPECT_GE(s.size(), 150u);
   EXPECT_TRUE(Increasing(s));
   EXPECT_TRUE(Increasing(o));
   EXPECT_TRUE(Increasing(e));
