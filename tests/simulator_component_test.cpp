@@ -131,9 +131,20 @@ TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsisten
   EXPECT_TRUE(Increasing(s));
   EXPECT_TRUE(Increasing(o));
   EXPECT_TRUE(Increasing(e));
-  // Scans lie within the odometry's time span; beams carry their own time.
-  EXPECT_GE(s.front(), o.front() - 0.1);
-  EXPECT_LE(s.back(), o.back() + 0.1);
+  // One clock: scans start every 0.2 s and odometry comes every 0.02 s of the
+  // same simulation time, so every stamp lies on the odometry's time grid.
+  auto on_grid = [&](const std::vector<double>& stamps, double period) {
+    for (double t : stamps) {
+      const double k = (t - o.front()) / period;
+      if (std::abs(k - std::round(k)) > 1e-3) return false;
+    }
+    return true;
+  };
+  EXPECT_TRUE(on_grid(o, 0.02));
+  EXPECT_TRUE(on_grid(e, 0.02));
+  EXPECT_TRUE(on_grid(t, 0.02));
+  EXPECT_TRUE(on_grid(s, 0.02));
+  EXPECT_LE(s.back(), o.back() + 0.2);
   std::lock_guard<std::mutex> lock(scan_mutex);
   EXPECT_EQ(beams, 300u);
   EXPECT_NEAR(time_increment, 0.2 / 300, 1e-6);
