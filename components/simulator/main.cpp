@@ -14,7 +14,10 @@ int main(int argc, char** argv) {
        {"time-scale", true,
         "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
        {"seed", true, "override the scenario's seed"},
-       {"exit-when-done", false, "exit when the scenario ends"}},
+       {"exit-when-done", false, "exit when the scenario ends"},
+       {"wait-for-subscribers", true,
+        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
+        "0)"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         auto scenario = structloc::simulation::LoadScenario(
             cli.GetOr("scenario", STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml"));
@@ -29,6 +32,9 @@ int main(int argc, char** argv) {
           throw ConfigError("--time-scale must be in [0, 1000]");
         }
         options.exit_when_done = cli.Has("exit-when-done");
+        options.wait_for_subscribers = static_cast<int>(cli.Integer("wait-for-subscribers", 0));
+        if (options.wait_for_subscribers < 0)
+          throw ConfigError("--wait-for-subscribers must be >= 0");
         return std::make_unique<structloc::simulator::SimulatorComponent>(node, scenario, options);
       });
 }

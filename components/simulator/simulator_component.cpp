@@ -47,6 +47,14 @@ bool SimulatorComponent::Done() const {
 }
 
 void SimulatorComponent::Step() {
+  if (!started_) {
+    const size_t needed = static_cast<size_t>(options_.wait_for_subscribers);
+    if (scan_.MatchedReaders() < needed || odom_.MatchedReaders() < needed) return;
+    started_ = true;
+    wall_start_ = std::chrono::steady_clock::now();
+    clock_offset_s_ = std::floor(dds::WallClockSeconds());
+    if (needed > 0) std::cout << "simulator: subscribers ready, starting the clock" << std::endl;
+  }
   const auto now = std::chrono::steady_clock::now();
   const double wall = std::chrono::duration<double>(now - wall_start_).count();
   const auto budget_end = now + std::chrono::milliseconds(5);

@@ -21,6 +21,8 @@ namespace structloc::simulator {
 struct SimulatorComponentOptions {
   double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
   bool exit_when_done = false;  // exit (code 0) when the scenario ends
+  int wait_for_subscribers =
+      0;  // hold the clock until this many readers of rt/scan and rt/odom match
 };
 
 class SimulatorComponent : public dds::Component {
@@ -53,6 +55,7 @@ class SimulatorComponent : public dds::Component {
   geometry::Pose2D last_odometry_;
   uint64_t scans_published_ = 0;
   double last_diagnostics_wall_s_ = 0.0;
+  bool started_ = false;
 };
 
 }  // namespace structloc::simulator
