@@ -32,12 +32,15 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
     std::cout << "localisation: initial pose from the command line" << std::endl;
   } else if (!options_.state_file.empty()) {
     if (auto saved = LoadSavedPose(options_.state_file)) {
-      pending_initial_pose_ = {{saved->pose, Eigen::Matrix3d(saved->variance.asDiagonal())}};
+      // The robot may have driven on meanwhile: never trust the saved variances
+      // more than a freshly given initial pose.
+      const Eigen::Vector3d variance = saved->variance.cwiseMax(initial_cov.diagonal());
+      pending_correction_ = {{saved->map_to_odom, Eigen::Matrix3d(variance.asDiagonal())}};
       std::cout << "localisation: resuming from the pose saved in " << options_.state_file
                 << std::endl;
     }
   }
-  if (!pending_initial_pose_) {
+  if (!pending_initial_pose_ && !pending_correction_) {
     std::cout << "localisation: waiting for an initial pose on " << dds::topics::kInitialPose.name
               << std::endl;
   }
@@ -87,6 +90,11 @@ void LocalisationComponent::OnOdometry(const nav_msgs::msg::Odometry& msg) {
       tracker_.SetInitialPose(odom.stamp, pending_initial_pose_->first,
                               pending_initial_pose_->second);
       pending_initial_pose_.reset();
+    }
+    if (pending_correction_ && !tracker_.HasInitialPose()) {
+      tracker_.SetInitialPose(odom.stamp, geometry::Compose(pending_correction_->first, odom.pose),
+                              pending_correction_->second);
+      pending_correction_.reset();
     }
   }
   wake_.notify_one();  // a waiting scan may now be covered
@@ -141,14 +149,16 @@ void LocalisationComponent::Worker() {
 void LocalisationComponent::Step() {
   const double now = dds::WallClockSeconds();
   std::optional<TrackedPose> latest;
+  geometry::Pose2D map_to_odom;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     latest = tracker_.Latest();
+    map_to_odom = tracker_.MapToOdom();
   }
   if (latest && !options_.state_file.empty() &&
       now - last_state_save_s_ >= options_.state_period_s) {
     try {
-      SavePoseAtomically(options_.state_file, {latest->pose, latest->covariance.diagonal()});
+      SavePoseAtomically(options_.state_file, {map_to_odom, latest->covariance.diagonal()});
     } catch (const std::exception& e) {
       std::cerr << "localisation: " << e.what() << std::endl;
     }

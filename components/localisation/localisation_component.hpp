@@ -64,6 +64,8 @@ class LocalisationComponent : public dds::Component {
   std::optional<sensor_msgs::msg::LaserScan> pending_scan_;
   double pending_since_ = 0.0;
   std::optional<std::pair<geometry::Pose2D, Eigen::Matrix3d>> pending_initial_pose_;
+  // A saved map -> odom correction to resume from at the first odometry sample.
+  std::optional<std::pair<geometry::Pose2D, Eigen::Matrix3d>> pending_correction_;
   uint64_t dropped_ = 0;
   bool stopping_ = false;
   double last_scan_wall_s_ = 0.0;

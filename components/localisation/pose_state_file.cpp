@@ -12,8 +12,9 @@ void SavePoseAtomically(const std::string& path, const SavedPose& s) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
-    out << std::setprecision(12) << s.pose.x << " " << s.pose.y << " " << s.pose.theta << " "
-        << s.variance.x() << " " << s.variance.y() << " " << s.variance.z() << "\n";
+    out << std::setprecision(12) << "map_to_odom " << s.map_to_odom.x << " " << s.map_to_odom.y
+        << " " << s.map_to_odom.theta << " " << s.variance.x() << " " << s.variance.y() << " "
+        << s.variance.z() << "\n";
     out.flush();
     if (!out) throw std::runtime_error(tmp + ": cannot write the saved pose");
   }
@@ -26,10 +27,12 @@ std::optional<SavedPose> LoadSavedPose(const std::string& path) {
   std::ifstream in(path);
   if (!in) return std::nullopt;
   SavedPose s;
-  if (!(in >> s.pose.x >> s.pose.y >> s.pose.theta >> s.variance.x() >> s.variance.y() >>
-        s.variance.z()) ||
-      !geometry::IsFinite(s.pose) || !s.variance.allFinite() || (s.variance.array() <= 0).any()) {
-    throw std::runtime_error(path + ":1: saved pose is not \"x y theta var_x var_y var_theta\"");
+  std::string tag;
+  if (!(in >> tag >> s.map_to_odom.x >> s.map_to_odom.y >> s.map_to_odom.theta >> s.variance.x() >>
+        s.variance.y() >> s.variance.z()) ||
+      tag != "map_to_odom" || !geometry::IsFinite(s.map_to_odom) || !s.variance.allFinite() ||
+      (s.variance.array() <= 0).any()) {
+    throw std::runtime_error(path + ":1: not \"map_to_odom X Y THETA VAR_X VAR_Y VAR_THETA\"");
   }
   return s;
 }

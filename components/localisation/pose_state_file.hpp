@@ -1,7 +1,9 @@
-// The pose the localisation saves while it runs and resumes from after a
-// restart (as Nav2 AMCL does): "x y theta var_x var_y var_theta" in one line,
-// map frame, written atomically (temp file + rename) so that a crash never
-// leaves half a file.
+// What the localisation saves while it runs and resumes from after a restart
+// (as Nav2 AMCL saves its pose): the map -> odom correction and the pose
+// variances, "map_to_odom X Y THETA VAR_X VAR_Y VAR_THETA" in one line, written
+// atomically (temp file + rename) so that a crash never leaves half a file.
+// The correction, not the pose: the robot's odometry keeps running while the
+// localisation is down, so correction * current odometry is where it is now.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,7 +15,7 @@
 namespace structloc::localisation {
 
 struct SavedPose {
-  geometry::Pose2D pose;
+  geometry::Pose2D map_to_odom;
   Eigen::Vector3d variance{0.01, 0.01, 0.01};
 };
 
