@@ -40,6 +40,7 @@ class Replayer {
   }
 
   ReplayReport Run() {
+    report_.no_map = o_.no_map;
     logs::CarmenReader reader(o_.log_path);
     logs::CarmenRecord r;
     size_t records = 0;
@@ -301,7 +302,12 @@ std::string FormatReport(const ReplayReport& r) {
   for (const auto& [type, n] : r.log.skipped) out << "  skipped " << n << " " << type << " lines\n";
   out << "scans used: " << r.scans_used << "\n";
   for (const auto& [why, n] : r.scans_rejected) out << "  rejected " << n << ": " << why << "\n";
-  out << "features matched per scan: " << r.mean_features << "\n";
+  if (r.no_map) {
+    out << "features matched per scan: n/a (--no-map: odometry passed through; prefilter and "
+           "line fits timed)\n";
+  } else {
+    out << "features matched per scan: " << r.mean_features << "\n";
+  }
   out << "lost: " << r.scans_lost << " scans in " << r.lost_periods << " periods ("
       << r.lost_duration_s << " s)\n";
   out.precision(1);

@@ -31,6 +31,7 @@ struct ReplayOptions {
 };
 
 struct ReplayReport {
+  bool no_map = false;
   logs::CarmenStats log;
   size_t scans_used = 0;
   std::map<std::string, size_t> scans_rejected;  // reason -> count
