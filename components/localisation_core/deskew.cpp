@@ -39,15 +39,17 @@ void LinearBeamMotion(const geometry::Pose2D& first_to_last, size_t count, BeamM
 }
 
 bool BeamMotionFromHistory(const OdometryHistory& history, const geometry::Pose2D& mount,
-                           double stamp, double time_increment, size_t count, BeamMotion& motion) {
+                           double stamp, double time_increment, size_t count, BeamMotion& motion,
+                           double max_extrapolation_s) {
   const double last = stamp + time_increment * static_cast<double>(count ? count - 1 : 0);
   const auto base_ref = history.At(stamp);
-  if (!base_ref || !history.At(last)) return false;
+  if (!base_ref || !history.AtOrExtrapolated(last, max_extrapolation_s)) return false;
   const geometry::Pose2D ref = geometry::Compose(*base_ref, mount);
   const geometry::Pose2D ref_inv = geometry::Inverse(ref);
   motion.Resize(count);
   for (size_t i = 0; i < count; ++i) {
-    const auto base = history.At(stamp + time_increment * static_cast<double>(i));
+    const auto base = history.AtOrExtrapolated(stamp + time_increment * static_cast<double>(i),
+                                               max_extrapolation_s);
     const geometry::Pose2D rel = geometry::Compose(ref_inv, geometry::Compose(*base, mount));
     motion.x[i] = rel.x;
     motion.y[i] = rel.y;

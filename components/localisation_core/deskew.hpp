@@ -26,8 +26,11 @@ void LinearBeamMotion(const geometry::Pose2D& first_to_last, size_t count, BeamM
 // From an odometry history of the robot base: beam i at stamp + i * time_increment,
 // sensor = base * mount. Returns false (motion untouched) when the history does
 // not cover the scan's time span.
+// Beams up to `max_extrapolation_s` after the newest odometry are placed by
+// extrapolating it at constant velocity.
 bool BeamMotionFromHistory(const OdometryHistory& history, const geometry::Pose2D& mount,
-                           double stamp, double time_increment, size_t count, BeamMotion& motion);
+                           double stamp, double time_increment, size_t count, BeamMotion& motion,
+                           double max_extrapolation_s = 0.0);
 
 // Moves every point (by its beam index) into the reference frame.
 void Deskew(const BeamMotion& motion, ScanPoints& points);

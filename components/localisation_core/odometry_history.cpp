@@ -45,4 +45,16 @@ std::optional<geometry::Pose2D> OdometryHistory::At(double stamp) const {
   return geometry::Interpolate(a.pose, b.pose, (stamp - a.stamp) / (b.stamp - a.stamp));
 }
 
+std::optional<geometry::Pose2D> OdometryHistory::AtOrExtrapolated(
+    double stamp, double max_extrapolation_s) const {
+  if (size_ < 2 || !(stamp > Newest())) return At(stamp);
+  if (stamp - Newest() > max_extrapolation_s) return std::nullopt;
+  const auto& a = Get(size_ - 2);
+  const auto& b = Get(size_ - 1);
+  const double f = (stamp - a.stamp) / (b.stamp - a.stamp);  // > 1: beyond b
+  return geometry::Pose2D{
+      a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+      geometry::WrapAngle(a.pose.theta + f * geometry::WrapAngle(b.pose.theta - a.pose.theta))};
+}
+
 }  // namespace structloc::localisation

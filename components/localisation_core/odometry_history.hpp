@@ -22,6 +22,10 @@ class OdometryHistory {
   // outside [Oldest(), Newest()].
   std::optional<geometry::Pose2D> At(double stamp) const;
 
+  // Like At(), and beyond the newest sample by up to `max_extrapolation_s`
+  // at the velocity of the last two samples.
+  std::optional<geometry::Pose2D> AtOrExtrapolated(double stamp, double max_extrapolation_s) const;
+
   bool Empty() const { return size_ == 0; }
   size_t Size() const { return size_; }
   double Oldest() const;

@@ -47,6 +47,8 @@ void TrackerOptions::Validate() const {
     if (!ok) throw std::invalid_argument(std::string("tracker: ") + what);
   };
   require(odometry_wait_s >= 0, "odometry_wait_s must be >= 0");
+  require(max_extrapolation_s >= 0 && max_extrapolation_s <= 0.2,
+          "max_extrapolation_s must be in [0, 0.2]");
   require(max_future_s > 0, "max_future_s must be > 0");
   require(max_odometry_speed_m_s > 0, "max_odometry_speed_m_s must be > 0");
   require(odometry_sigma_xy_per_m >= 0 && odometry_sigma_theta_per_m >= 0 &&
@@ -135,7 +137,8 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     return Reject(Rejection::kScanInFuture);
   if (!initialised_) return Reject(Rejection::kNoInitialPose);
   const double last_beam = scan.stamp + scan.time_increment * static_cast<double>(scan.count - 1);
-  if (last_beam > history_.Newest() && waited_s < options_.odometry_wait_s) {
+  const double uncovered = last_beam - history_.Newest();
+  if (uncovered > options_.max_extrapolation_s && waited_s < options_.odometry_wait_s) {
     ScanOutcome wait;
     wait.verdict = ScanVerdict::kWaitForOdometry;
     return wait;
@@ -143,10 +146,11 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   if (scan.stamp < history_.Oldest()) return Reject(Rejection::kNoOdometry);
   // Odometry at the scan stamp: interpolated, or the newest when it is late.
   const geometry::Pose2D odom = *history_.At(std::min(scan.stamp, history_.Newest()));
-  const bool covered = last_beam <= history_.Newest();
-  const bool deskew = options_.deskew && scan.time_increment > 0 && covered &&
-                      BeamMotionFromHistory(history_, localiser_.Options().sensor_mount, scan.stamp,
-                                            scan.time_increment, scan.count, motion_);
+  const bool covered = uncovered <= options_.max_extrapolation_s;
+  const bool deskew =
+      options_.deskew && scan.time_increment > 0 && covered &&
+      BeamMotionFromHistory(history_, localiser_.Options().sensor_mount, scan.stamp,
+                            scan.time_increment, scan.count, motion_, options_.max_extrapolation_s);
   if (options_.deskew && scan.time_increment > 0 && !deskew) ++stats_.scans_not_deskewed;
   last_scan_stamp_ = scan.stamp;
 

@@ -18,7 +18,10 @@
 namespace structloc::localisation {
 
 struct TrackerOptions {
-  double odometry_wait_s = 0.1;              // how long a scan may wait for odometry to cover it
+  double odometry_wait_s = 0.1;  // how long a scan may wait for odometry to cover it
+  // Beams this far past the newest odometry are de-skewed by extrapolating it
+  // instead of waiting for the next sample (latency).
+  double max_extrapolation_s = 0.03;
   double max_future_s = 1.0;                 // scans stamped further ahead of odometry are refused
   double max_odometry_speed_m_s = 5;         // faster odometry steps are jumps and refused
   double odometry_sigma_xy_per_m = 0.02;     // prior growth per metre driven (1 sigma)

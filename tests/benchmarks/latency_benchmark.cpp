@@ -1,0 +1,122 @@
+// structloc_latency_benchmark [SECONDS] [RATE_HZ]: latency and load of the
+// localisation component over DDS on one host. It starts the real component,
+// publishes the office scenario's 1081-beam scans (default 40 Hz) and
+// odometry in real time from the simulation core, and prints scan-published
+// -> pose-received latency (median, p99, max) and the component's CPU use
+// (% of one core, from /proc). Figures only: it asserts nothing.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "child_process.hpp"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "node.hpp"
+#include "ros_conversions.hpp"
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "sim_conversions.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double CpuSeconds(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream fields(text.substr(text.rfind(')') + 2));
+  std::string f;
+  double utime = 0, stime = 0;
+  for (int i = 3; i <= 15 && fields >> f; ++i) {
+    if (i == 14) utime = std::stod(f);
+    if (i == 15) stime = std::stod(f);
+  }
+  return (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace dds = structloc::dds;
+  namespace simulation = structloc::simulation;
+  namespace simulator = structloc::simulator;
+  namespace process = structloc::process;
+  const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
+  const double rate = argc > 2 ? std::atof(argv[2]) : 40.0;
+  const std::string source = STRUCTLOC_SOURCE_DIR;
+  const int domain = 150;
+  auto scenario = simulation::LoadScenario(source + "/maps/scenarios/office_people.xml");
+  scenario.laser.rate_hz = rate;
+  scenario.duration_s = seconds;
+  dds::NodeOptions options{"latency_feeder", domain, source + "/qos/structloc_qos.xml",
+                           "structloc_localhost"};
+  dds::Node node(options);
+  auto scans = node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan);
+  auto odom = node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom);
+  std::mutex mutex;
+  std::map<double, Clock::time_point> sent;
+  std::vector<double> latency_ms;
+  node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      dds::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+        const auto now = Clock::now();
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = sent.find(dds::FromRosTime(m.header().stamp()));
+        if (it != sent.end()) {
+          latency_ms.push_back(std::chrono::duration<double, std::milli>(now - it->second).count());
+        }
+      });
+  const auto& p = scenario.initial_pose;
+  process::ChildProcess loc(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+      {"--domain", std::to_string(domain), "--qos", options.qos_file, "--initial-pose",
+       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
+  while (scans.MatchedReaders() == 0 || odom.MatchedReaders() == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  simulation::Simulation sim(scenario);
+  const double offset = 1.0e9;
+  const auto start = Clock::now();
+  const double cpu_start = CpuSeconds(loc.Pid());
+  long steps = 0;
+  while (!sim.Finished()) {
+    const auto& s = sim.Step();
+    if (++steps % 2 == 0) {
+      auto o = simulator::ToOdometry(s, 0.0, offset);
+      odom.Write(o);
+    }
+    if (auto scan = sim.TakeScan()) {
+      auto msg = simulator::ToLaserScan(*scan, offset);
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        sent[dds::FromRosTime(msg.header().stamp())] = Clock::now();
+      }
+      scans.Write(msg);
+    }
+    std::this_thread::sleep_until(start + std::chrono::duration<double>(s.time));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  const double cpu = CpuSeconds(loc.Pid()) - cpu_start;
+  loc.Stop(std::chrono::seconds(5));
+  std::lock_guard<std::mutex> lock(mutex);
+  std::sort(latency_ms.begin(), latency_ms.end());
+  if (latency_ms.empty()) {
+    std::printf("no pose received\n");
+    return 1;
+  }
+  auto at = [&](double q) {
+    return latency_ms[std::min(latency_ms.size() - 1, static_cast<size_t>(q * latency_ms.size()))];
+  };
+  std::printf("%.0f Hz, 1081-beam scans, %.0f s: %zu scans sent, %zu poses received\n", rate, wall,
+              sent.size(), latency_ms.size());
+  std::printf("scan published -> pose received: median %.3f ms, p99 %.3f ms, max %.3f ms\n",
+              at(0.5), at(0.99), latency_ms.back());
+  std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
+  return 0;
+}
