@@ -36,6 +36,9 @@ const Subcommand kSubcommands[] = {
     {"replay", structloc::cli::ReplayCommand,
      "--map W.xml --log RUN.clf --initial-pose \"X Y THETA\" --out T.tum [--params P.xml] "
      "[--truth T.tum] [--plot P.png] [--no-map]  localise a recorded log offline"},
+    {"calibrate", structloc::cli::CalibrateCommand,
+     "--encoders E.csv --fixes F.csv --robot NOMINAL.xml --out CALIBRATED.xml [--estimate LIST] "
+     "[--advice]  estimate wheel radius, axle distance, steering offset"},
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
 };

@@ -19,6 +19,7 @@ int ReplayCommand(const Invocation& inv) {
       {"params", true, "localisation parameter file (default: built-in Table 6 defaults)"},
       {"truth", true, "TUM ground truth: adds RMSE, max and heading errors"},
       {"plot", true, "PNG of map, scans, truth, odometry and estimate"},
+      {"fixes-out", true, "also write the estimate as fixes.csv (with variances) for calibrate"},
       {"no-map", false, "pass odometry through (parse, filter and time only)"},
   };
   try {
@@ -31,6 +32,7 @@ int ReplayCommand(const Invocation& inv) {
     o.params_path = cli.GetOr("params", "");
     o.truth_path = cli.GetOr("truth", "");
     o.plot_path = cli.GetOr("plot", "");
+    o.fixes_path = cli.GetOr("fixes-out", "");
     std::istringstream pose(cli.Required("initial-pose"));
     geometry::Pose2D p;
     if (!(pose >> p.x >> p.y >> p.theta) || !geometry::IsFinite(p)) {

@@ -17,5 +17,6 @@ int DemoCommand(const Invocation& invocation);
 int SimulateCommand(const Invocation& invocation);
 int RenderCommand(const Invocation& invocation);
 int ReplayCommand(const Invocation& invocation);
+int CalibrateCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

@@ -37,6 +37,7 @@ class Replayer {
     if (!o.no_map) world_ = std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path));
     if (!o.params_path.empty()) params_ = localisation::LoadLocaliserOptions(o.params_path);
     if (!o.initial_pose) throw std::runtime_error("replay needs --initial-pose \"X Y THETA\"");
+    if (!o.fixes_path.empty()) fixes_ = std::make_unique<logs::FixesCsvWriter>(o.fixes_path, true);
   }
 
   ReplayReport Run() {
@@ -59,6 +60,7 @@ class Replayer {
     Drain(true);
     report_.log = reader.Stats();
     out_.Close();
+    if (fixes_) fixes_->Close();
     Finish();
     return report_;
   }
@@ -155,6 +157,10 @@ class Replayer {
     lost_ = r.lost;
     last_stamp_ = rec.stamp;
     Emit(rec, outcome.pose.pose);
+    if (fixes_ && !r.lost) {
+      const auto& c = outcome.pose.covariance;
+      fixes_->Fix(rec.stamp, outcome.pose.pose, c(0, 0), c(1, 1), c(2, 2));
+    }
   }
 
   void PassThrough(const logs::CarmenRecord& rec, const geometry::Pose2D& pose) {
@@ -260,6 +266,7 @@ class Replayer {
 
   ReplayOptions o_;
   logs::TumWriter out_;
+  std::unique_ptr<logs::FixesCsvWriter> fixes_;
   std::unique_ptr<world::WorldModel> world_;
   localisation::LocaliserOptions params_;
   std::unique_ptr<PoseTracker> tracker_;

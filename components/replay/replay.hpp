@@ -25,6 +25,7 @@ struct ReplayOptions {
   std::string params_path;  // localisation parameters (default: built-in defaults)
   std::string truth_path;   // optional TUM ground truth
   std::string plot_path;    // optional PNG
+  std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
   bool no_map = false;
   // Called every few percent of the log with the scans done so far.
   std::function<void(size_t scans, double fraction)> progress;

@@ -1,0 +1,83 @@
+// Odometry calibration (SPEC 9, thesis 6.5.4, done properly): re-run the
+// tricycle dead reckoning (EQ 46-48) from recorded encoder values for
+// candidate parameters and find those that best explain the relative motion
+// between consecutive position fixes (so one bad fix cannot poison the rest):
+// Levenberg-Marquardt on weighted residuals (fix covariances, or default
+// sigmas), Huber-robust against outlier fixes. Parameters: wheel radius, axle
+// distance, steering offset, optionally the steering gain (rad per tick) and
+// the fix sensor's mounting pose. Reports standard deviations, correlations,
+// residual RMS before and after, and refuses to give a number for a parameter
+// the trajectory cannot determine. DDS-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "calibration_data.hpp"
+#include "robot_parameters.hpp"
+
+namespace structloc::calibration {
+
+enum Parameter {
+  kWheelRadius,
+  kAxleDistance,
+  kSteeringOffset,
+  kSteeringGain,
+  kSensorX,
+  kSensorY,
+  kSensorTheta,
+  kParameterCount
+};
+const char* ParameterName(Parameter p);
+const char* ParameterUnit(Parameter p);
+
+struct CalibrationOptions {
+  // Which parameters to estimate (the rest stay at their nominal values).
+  std::array<bool, kParameterCount> estimate{true, true, true, false, false, false, false};
+  double default_sigma_xy_m = 0.01;  // fix noise when fixes.csv has no variances
+  double default_sigma_theta_rad = 0.01;
+  double min_fix_travel_m = 0.2;  // consecutive used fixes at least this far apart...
+  double min_fix_turn_rad = 0.1;  // ... or this much turned
+  double huber_k = 3.0;           // robust loss threshold, in standard deviations
+  int max_iterations = 50;
+  double max_encoder_gap_s = 0.5;  // intervals across longer encoder gaps are skipped
+  // A parameter whose standard deviation exceeds this (in its unit) is "not
+  // observable" from the trajectory: reported as such and kept at nominal.
+  std::array<double, kParameterCount> max_std{0.002, 0.02, 0.0175, 0.00005, 0.1, 0.1, 0.05};
+  void Validate() const;
+};
+
+struct CalibrationReport {
+  kinematics::RobotParameters parameters;  // calibrated (nominal where not estimated)
+  std::array<double, kParameterCount> standard_deviation{};  // 0 where not estimated
+  std::array<bool, kParameterCount> estimated{};
+  Eigen::MatrixXd correlation;       // among the estimated parameters, in order
+  double residual_rms_before = 0.0;  // weighted (unitless), nominal parameters
+  double residual_rms_after = 0.0;
+  size_t intervals_used = 0;
+  size_t intervals_downweighted = 0;  // outliers (robust weight < 0.5)
+  size_t intervals_skipped = 0;       // across encoder gaps or outside the encoder span
+  size_t encoder_gaps = 0;
+  int iterations = 0;
+  std::vector<std::string> warnings;
+  bool success = false;
+};
+
+// Throws std::invalid_argument on unusable input (too few fixes inside the
+// encoder time span, invalid options or nominal parameters).
+CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
+                            const std::vector<Fix>& fixes,
+                            const kinematics::RobotParameters& nominal,
+                            const CalibrationOptions& options);
+
+// Open-loop dead reckoning of the fix sensor over all fixes, started at the
+// first fix: RMS position error against the fixes (how far odometry alone drifts).
+double DeadReckoningRms(const std::vector<EncoderSample>& encoders, const std::vector<Fix>& fixes,
+                        const kinematics::RobotParameters& parameters);
+
+// Which manoeuvres make which parameters observable, for users planning a recording.
+std::string TrajectoryAdvice();
+
+}  // namespace structloc::calibration
