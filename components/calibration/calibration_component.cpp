@@ -1,29 +1,151 @@
 // Calibration component (see header).
 #include "calibration_component.hpp"
 
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "calibration_conversions.hpp"
 #include "diagnostics.hpp"
+#include "recording_writers.hpp"
 
 namespace structloc::calibration {
 
-CalibrationComponent::CalibrationComponent(dds::Node& node)
-    : result_(node.CreateWriter<structloc_msgs::msg::CalibrationResultPubSubType>(
+CalibrationComponent::CalibrationComponent(dds::Node& node,
+                                           const CalibrationComponentOptions& options)
+    : options_(options),
+      result_(node.CreateWriter<structloc_msgs::msg::CalibrationResultPubSubType>(
           dds::topics::kCalibration)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
           dds::topics::kDiagnostics)) {
   node.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds::topics::kWheelEncoders,
-      [this](const structloc_msgs::msg::WheelEncoders&) { ++encoder_samples_; });
+      dds::topics::kWheelEncoders, [this](const structloc_msgs::msg::WheelEncoders& m) {
+        const auto s = FromWheelEncoders(m);
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (estimated_) return;
+        if (!encoders_.empty() && !(s.t > encoders_.back().t)) {
+          ++encoders_out_of_order_;
+          return;
+        }
+        if (!encoders_.empty()) {
+          const double dt = s.t - encoders_.back().t;
+          largest_gap_s_ = std::max(largest_gap_s_, dt);
+          if (dt > options_.calibration.max_encoder_gap_s) ++gaps_;
+        }
+        encoders_.push_back(s);
+      });
+  // Fixes RELIABLE (the reliable_state profile): none may be lost.
   node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose,
-      [this](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++fixes_; });
+      {options_.fix_topic, "reliable_state"},
+      [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+        const auto f = FromPoseFix(m);
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (estimated_) return;
+        if (!geometry::IsFinite(f.pose) || (!fixes_.empty() && !(f.t > fixes_.back().t))) {
+          ++fixes_rejected_;
+          return;
+        }
+        fixes_.push_back(f);
+      });
+  std::cout << "calibration: recording " << dds::topics::kWheelEncoders.name << " and "
+            << options_.fix_topic << " for "
+            << (options_.record_s > 0 ? std::to_string(options_.record_s) + " s" : "until stopped")
+            << std::endl;
 }
 
 void CalibrationComponent::Step() {
+  const double now = dds::WallClockSeconds();
+  bool due = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    due = !estimated_ && options_.record_s > 0 && encoders_.size() > 1 &&
+          encoders_.back().t - encoders_.front().t >= options_.record_s;
+  }
+  if (due) Estimate();
+  if (now - last_diagnostics_s_ >= 1.0) PublishDiagnostics(now);
+}
+
+void CalibrationComponent::Stop() {
+  bool pending = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending = !estimated_ && encoders_.size() > 1 && fixes_.size() > 2;
+  }
+  if (pending) Estimate();  // "until told": estimate with what was recorded
+}
+
+void CalibrationComponent::Estimate() {
+  std::vector<EncoderSample> encoders;
+  std::vector<Fix> fixes;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    estimated_ = true;  // recording ends here
+    encoders = encoders_;
+    fixes = fixes_;
+  }
+  CalibrationReport report;
+  try {
+    report = Calibrate(encoders, fixes, options_.nominal, options_.calibration);
+  } catch (const std::exception& e) {
+    report.warnings.push_back(e.what());
+    report.success = false;
+  }
+  std::ostringstream text;
+  text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from "
+       << encoders.size() << " encoder samples and " << fixes.size() << " fixes";
+  for (int k = 0; k < kParameterCount; ++k) {
+    if (!report.estimated[static_cast<size_t>(k)]) continue;
+    const auto& p = report.parameters;
+    const double v[] = {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
+                        p.sensor.x,     p.sensor.y,      p.sensor.theta};
+    text << "\n  " << ParameterName(static_cast<Parameter>(k)) << " " << v[k] << " +- "
+         << report.standard_deviation[static_cast<size_t>(k)];
+  }
+  for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
+  std::cout << text.str() << std::endl;
+  if (!options_.out_dir.empty()) {
+    try {
+      std::filesystem::create_directories(options_.out_dir);
+      logs::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
+      for (const auto& s : encoders)
+        enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
+      enc.Close();
+      logs::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
+      for (const auto& f : fixes)
+        fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
+      fix.Close();
+      if (report.success) {
+        kinematics::SaveRobotParameters(report.parameters, options_.out_dir + "/calibrated.xml",
+                                        "calibrated live by structloc_calibration");
+      }
+      std::cout << "calibration: wrote " << options_.out_dir << std::endl;
+    } catch (const std::exception& e) {
+      std::cerr << "calibration: " << e.what() << std::endl;
+    }
+  }
+  auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.back().t);
+  result_.Write(msg);
+  std::lock_guard<std::mutex> lock(mutex_);
+  outcome_ = report.success
+                 ? "calibrated"
+                 : "calibration failed: " +
+                       (report.warnings.empty() ? std::string("?") : report.warnings.back());
+}
+
+void CalibrationComponent::PublishDiagnostics(double now) {
+  last_diagnostics_s_ = now;
   dds::HealthReport report;
-  report.message = "recording";
-  report.values = {{"encoder_samples", std::to_string(encoder_samples_.load())},
-                   {"fixes", std::to_string(fixes_.load())}};
-  auto diag = dds::ToDiagnosticArray("calibration", report, dds::WallClockSeconds());
+  std::lock_guard<std::mutex> lock(mutex_);
+  report.message = estimated_ ? outcome_ : "recording";
+  if (gaps_ > 0 || encoders_out_of_order_ > 0) report.level = dds::HealthLevel::kWarn;
+  if (gaps_ > 0) report.message += "; " + std::to_string(gaps_) + " gaps in the encoder stream";
+  report.values = {{"encoder_samples", std::to_string(encoders_.size())},
+                   {"fixes", std::to_string(fixes_.size())},
+                   {"encoder_gaps", std::to_string(gaps_)},
+                   {"largest_encoder_gap_s", std::to_string(largest_gap_s_)},
+                   {"encoders_out_of_order", std::to_string(encoders_out_of_order_)},
+                   {"fixes_rejected", std::to_string(fixes_rejected_)}};
+  auto diag = dds::ToDiagnosticArray("calibration", report, now);
   diagnostics_.Write(diag);
 }
 

@@ -1,29 +1,57 @@
-// The odometry-calibration component: records wheel encoders and position
-// fixes from DDS and publishes calibration results (latched). The estimation
-// core comes with issue 6; this adapter already receives and reports.
+// The odometry-calibration component: records the wheel-encoder stream and
+// position fixes (rt/pose from the localisation, or any PoseWithCovarianceStamped
+// topic) for a given time, or until it is stopped, then estimates the
+// parameters with the DDS-free calibration core, publishes the result latched
+// (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
+// recording and the calibrated robot file. Gaps in the encoder stream are
+// detected and reported, never silently bridged.
 #pragma once
 
-#include <atomic>
-#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
 
+#include "calibration_data.hpp"
 #include "component_runtime.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "odometry_calibration.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 
 namespace structloc::calibration {
 
+struct CalibrationComponentOptions {
+  kinematics::RobotParameters nominal;
+  CalibrationOptions calibration;
+  double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
+  std::string fix_topic = "rt/pose";
+  std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
+  bool exit_when_done = false;
+};
+
 class CalibrationComponent : public dds::Component {
  public:
-  explicit CalibrationComponent(dds::Node& node);
+  CalibrationComponent(dds::Node& node, const CalibrationComponentOptions& options);
   void Step() override;
+  void Stop() override;
+  bool Done() const override { return options_.exit_when_done && estimated_; }
 
  private:
+  void Estimate();
+  void PublishDiagnostics(double now);
+
+  CalibrationComponentOptions options_;
   dds::TopicWriter<structloc_msgs::msg::CalibrationResultPubSubType> result_;
   dds::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
-  std::atomic<uint64_t> encoder_samples_{0};
-  std::atomic<uint64_t> fixes_{0};
+  std::mutex mutex_;
+  std::vector<EncoderSample> encoders_;
+  std::vector<Fix> fixes_;
+  size_t encoders_out_of_order_ = 0, fixes_rejected_ = 0, gaps_ = 0;
+  double largest_gap_s_ = 0.0;
+  bool estimated_ = false;
+  std::string outcome_;
+  double last_diagnostics_s_ = 0.0;
 };
 
 }  // namespace structloc::calibration
