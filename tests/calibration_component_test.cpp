@@ -74,7 +74,7 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
         std::lock_guard<std::mutex> lock(mutex);
         return result.has_value();
       },
-      10s))
+      30s))
       << calibration.CapturedOutput();
   std::lock_guard<std::mutex> lock(mutex);
   ASSERT_TRUE(result->success()) << calibration.CapturedOutput();

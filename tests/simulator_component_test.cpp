@@ -107,7 +107,7 @@ TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsisten
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
        testing::SourcePath("maps/scenarios/dead_end_corridor.xml"), "--time-scale", "8",
-       "--exit-when-done"});
+       "--wait-for-subscribers", "1", "--exit-when-done"});
   const auto code = sim.WaitExit(30s);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

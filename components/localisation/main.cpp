@@ -16,7 +16,9 @@ int main(int argc, char** argv) {
       {{"map", true, "world model XML (default " STRUCTLOC_SHARE_DIR "/maps/office_floor.xml)"},
        {"params", true,
         "localisation parameters (default " STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml)"},
-       {"initial-pose", true, "\"X Y THETA\": robot pose in the map frame to start from"},
+       {"initial-pose", true,
+        "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
+        "it stands, or publish rt/initialpose with a stamp)"},
        {"state-file", true, "where the pose is saved and resumed from (default: none)"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         auto world =

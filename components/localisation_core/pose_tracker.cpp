@@ -143,9 +143,15 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     wait.verdict = ScanVerdict::kWaitForOdometry;
     return wait;
   }
-  if (scan.stamp < history_.Oldest()) return Reject(Rejection::kNoOdometry);
+  // Odometry must reach the scan's own time (or nearly): a prior from stale
+  // odometry would corrupt the map -> odom correction.
+  if (scan.stamp < history_.Oldest() ||
+      scan.stamp > history_.Newest() + options_.max_extrapolation_s) {
+    return Reject(Rejection::kNoOdometry);
+  }
   // Odometry at the scan stamp: interpolated, or the newest when it is late.
-  const geometry::Pose2D odom = *history_.At(std::min(scan.stamp, history_.Newest()));
+  const geometry::Pose2D odom =
+      *history_.AtOrExtrapolated(scan.stamp, options_.max_extrapolation_s);
   const bool covered = uncovered <= options_.max_extrapolation_s;
   const bool deskew =
       options_.deskew && scan.time_increment > 0 && covered &&
