@@ -7,6 +7,17 @@
 
 namespace structloc::localisation {
 
+PointCluster PointSums::ToCluster(int index, int window_points, double sigma_floor_m) const {
+  PointCluster c;
+  c.expected_index = index;
+  c.members = static_cast<int>(n);
+  c.mean = Mean();
+  c.refined = c.mean;
+  c.covariance = Scatter() / std::max(1.0, n / window_points) +
+                 sigma_floor_m * sigma_floor_m * Eigen::Matrix2d::Identity();
+  return c;
+}
+
 Eigen::Matrix2d PointSums::Scatter() const {
   const Eigen::Vector2d m = Mean();
   Eigen::Matrix2d c;
@@ -61,20 +72,9 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
       if (e >= 0) work[static_cast<size_t>(e)].Add(x, y);
     }
   }
-  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
   for (size_t e = 0; e < ne; ++e) {
-    const auto& s = work[e];
-    if (s.n < o.min_cluster_size) continue;
-    PointCluster c;
-    c.expected_index = static_cast<int>(e);
-    c.members = static_cast<int>(s.n);
-    c.mean = s.Mean();
-    c.refined = c.mean;
-    // Overlapping windows make members strongly correlated: count roughly one
-    // independent estimate per window length.
-    const double independent = std::max(1.0, s.n / window_points);
-    c.covariance = s.Scatter() / independent + floor2 * Eigen::Matrix2d::Identity();
-    out.push_back(c);
+    if (work[e].n < o.min_cluster_size) continue;
+    out.push_back(work[e].ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m));
   }
 }
 

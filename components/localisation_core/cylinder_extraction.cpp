@@ -136,20 +136,16 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
   for (size_t e = 0; e < ne; ++e) {
     const auto& s = work.sums[e];
     if (s.n < o.min_cluster_size) continue;
-    PointCluster c;
-    c.expected_index = static_cast<int>(e);
-    c.members = static_cast<int>(s.n);
-    c.mean = s.Mean();
-    c.refined = c.mean;
+    // The thesis' mean with its scatter; refined by a geometric fit with the
+    // model radius over all member points when that converges nearby.
+    PointCluster c = s.ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m);
+    Eigen::Vector2d refined = c.mean;
     Eigen::Matrix2d cov;
     if (RefineCentre(points, work.point_label, static_cast<int>(e), expected.cylinders[e].radius,
-                     floor2, c.refined, cov) &&
-        (c.refined - c.mean).norm() < o.gate_m) {
+                     floor2, refined, cov) &&
+        (refined - c.mean).norm() < o.gate_m) {
+      c.refined = refined;
       c.covariance = cov;
-    } else {
-      c.refined = c.mean;
-      c.covariance =
-          s.Scatter() / std::max(1.0, s.n / window_points) + floor2 * Eigen::Matrix2d::Identity();
     }
     out.push_back(c);
   }

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "line_fit.hpp"
+
 namespace structloc::localisation {
 
 struct PointCluster {
@@ -15,20 +17,15 @@ struct PointCluster {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // of `refined`
 };
 
-// Running sums of 2-D points per expected feature.
-struct PointSums {
-  double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-  void Add(double x, double y) {
-    n += 1;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    syy += y * y;
-    sxy += x * y;
-  }
+// Running sums of 2-D points per expected feature (the same sums a line fit uses).
+struct PointSums : LineSums {
   Eigen::Vector2d Mean() const { return {sx / n, sy / n}; }
   // Sample covariance of the points (not of their mean).
   Eigen::Matrix2d Scatter() const;
+  // Cluster around expected point `index`: mean, and the covariance of the mean
+  // counting one independent member per window length (overlapping windows make
+  // members strongly correlated), plus a noise floor.
+  PointCluster ToCluster(int index, int window_points, double sigma_floor_m) const;
 };
 
 // Index of the nearest expected point within `gate` of (x, y), or -1.

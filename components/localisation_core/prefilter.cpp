@@ -22,6 +22,15 @@ void BeamDirections::Update(const ScanView& scan) {
   }
 }
 
+namespace {
+// Moves point i to slot w (compaction in place).
+inline void MovePoint(ScanPoints& points, size_t i, size_t w) {
+  points.x[w] = points.x[i];
+  points.y[w] = points.y[i];
+  points.beam[w] = points.beam[i];
+}
+}  // namespace
+
 void PrefilterOptions::Validate() const {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("prefilter: ") + what);
@@ -82,10 +91,7 @@ void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points,
       ++stats.unsupported;
       continue;
     }
-    points.x[w] = points.x[i];
-    points.y[w] = points.y[i];
-    points.beam[w] = points.beam[i];
-    ++w;
+    MovePoint(points, i, w++);
   }
   points.Truncate(w);
 }
@@ -102,10 +108,7 @@ void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& s
         continue;
       }
     }
-    points.x[w] = points.x[i];
-    points.y[w] = points.y[i];
-    points.beam[w] = points.beam[i];
-    ++w;
+    MovePoint(points, i, w++);
   }
   points.Truncate(w);
   stats.kept = w;
