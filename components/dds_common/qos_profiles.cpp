@@ -124,32 +124,36 @@ eprosima::fastdds::dds::DomainParticipantQos QosProfiles::Participant(
   return qos;
 }
 
-eprosima::fastdds::dds::DataWriterQos QosProfiles::Writer(
-    eprosima::fastdds::dds::Publisher& publisher, const std::string& profile) const {
-  eprosima::fastdds::dds::DataWriterQos qos;
-  if (writer_profiles_.count(profile) == 0 ||
-      publisher.get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw QosError("QoS profiles: " + path_ + ": no data_writer profile '" + profile + "'");
+namespace {
+// A writer or reader QoS from a validated profile, with the depth re-checked
+// on what Fast DDS actually parsed.
+template <class Qos, class Entity, class Lookup>
+Qos EndpointQos(const std::string& path, const std::set<std::string>& known, Entity& entity,
+                const std::string& profile, const char* kind, Lookup lookup) {
+  Qos qos;
+  if (known.count(profile) == 0 || (entity.*lookup)(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path + ": no " + kind + " profile '" + profile + "'");
   }
   if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS &&
       qos.history().depth < 1) {
-    throw QosError("QoS profiles: " + path_ + ": data_writer '" + profile + "' has depth < 1");
+    throw QosError("QoS profiles: " + path + ": " + kind + " '" + profile + "' has depth < 1");
   }
   return qos;
+}
+}  // namespace
+
+eprosima::fastdds::dds::DataWriterQos QosProfiles::Writer(
+    eprosima::fastdds::dds::Publisher& publisher, const std::string& profile) const {
+  return EndpointQos<eprosima::fastdds::dds::DataWriterQos>(
+      path_, writer_profiles_, publisher, profile, "data_writer",
+      &eprosima::fastdds::dds::Publisher::get_datawriter_qos_from_profile);
 }
 
 eprosima::fastdds::dds::DataReaderQos QosProfiles::Reader(
     eprosima::fastdds::dds::Subscriber& subscriber, const std::string& profile) const {
-  eprosima::fastdds::dds::DataReaderQos qos;
-  if (reader_profiles_.count(profile) == 0 ||
-      subscriber.get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw QosError("QoS profiles: " + path_ + ": no data_reader profile '" + profile + "'");
-  }
-  if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS &&
-      qos.history().depth < 1) {
-    throw QosError("QoS profiles: " + path_ + ": data_reader '" + profile + "' has depth < 1");
-  }
-  return qos;
+  return EndpointQos<eprosima::fastdds::dds::DataReaderQos>(
+      path_, reader_profiles_, subscriber, profile, "data_reader",
+      &eprosima::fastdds::dds::Subscriber::get_datareader_qos_from_profile);
 }
 
 }  // namespace structloc::dds

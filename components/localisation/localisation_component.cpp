@@ -132,6 +132,7 @@ void LocalisationComponent::Worker() {
       continue;
     }
     const auto& r = *outcome.result;
+    if (r.lost && !last_lost_) lost_since_s_ = dds::WallClockSeconds();
     last_lost_ = r.lost;
     last_lost_reason_ = r.lost ? ToString(r.lost_reason) : "";
     last_quality_ = r.quality;
@@ -179,8 +180,11 @@ void LocalisationComponent::PublishDiagnostics(double now) {
     report.level = dds::HealthLevel::kWarn;
     report.message = "no scans for " + std::to_string(options_.scan_timeout_s).substr(0, 3) + " s";
   } else if (last_lost_) {
-    report.level = dds::HealthLevel::kWarn;
-    report.message = "lost (dead reckoning): " + last_lost_reason_;
+    // Dead reckoning for a while is normal (a corridor, a crowd); for long it is not.
+    report.level = now - lost_since_s_ > options_.lost_error_after_s ? dds::HealthLevel::kError
+                                                                     : dds::HealthLevel::kWarn;
+    report.message = "lost (dead reckoning) for " +
+                     std::to_string(now - lost_since_s_).substr(0, 4) + " s: " + last_lost_reason_;
   } else {
     report.message = "localised";
   }

@@ -27,9 +27,10 @@
 namespace structloc::localisation {
 
 struct LocalisationComponentOptions {
-  double scan_timeout_s = 0.5;                   // diagnostics go WARN without scans for this long
-  std::string state_file;                        // saved pose ("" = none)
-  double state_period_s = 2.0;                   // how often the pose is saved
+  double scan_timeout_s = 0.5;      // diagnostics go WARN without scans for this long
+  std::string state_file;           // saved pose ("" = none)
+  double state_period_s = 2.0;      // how often the pose is saved
+  double lost_error_after_s = 5.0;  // diagnostics go from WARN to ERROR when lost this long
   std::optional<geometry::Pose2D> initial_pose;  // from the command line
 };
 
@@ -72,6 +73,7 @@ class LocalisationComponent : public dds::Component {
   double last_state_save_s_ = 0.0;
   double last_diagnostics_s_ = 0.0;
   bool last_lost_ = false;
+  double lost_since_s_ = 0.0;
   std::string last_lost_reason_;
   double last_quality_ = 0.0;
   std::string last_problem_;  // newest rejected input, for diagnostics
