@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "child_process.hpp"
+#include "config_test_support.hpp"
 #include "launch_file.hpp"
 #include "strict_xml.hpp"
 
@@ -48,12 +49,6 @@ TEST(LaunchFiles, OverridesReplaceDefaultsAndUnknownOverridesAreErrors) {
                config::ConfigError);
 }
 
-std::string WriteTemp(const std::string& text) {
-  const std::string path = "/tmp/structloc_launch_test_" + std::to_string(getpid()) + ".xml";
-  std::ofstream(path) << text;
-  return path;
-}
-
 struct BrokenLaunch {
   const char* tag;
   const char* text;
@@ -63,16 +58,9 @@ struct BrokenLaunch {
 class BrokenLaunchFile : public ::testing::TestWithParam<BrokenLaunch> {};
 
 TEST_P(BrokenLaunchFile, IsRejectedWithFileLineAndProblem) {
-  const std::string path = WriteTemp(GetParam().text);
-  try {
+  testing::ExpectRejected(GetParam().text, GetParam().problem, [](const std::string& path) {
     process::ReadLaunchFile(path, Context());
-    ADD_FAILURE() << "accepted: " << GetParam().text;
-  } catch (const config::ConfigError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path + ":"), std::string::npos) << what;
-    EXPECT_NE(what.find(GetParam().problem), std::string::npos) << what;
-  }
-  std::remove(path.c_str());
+  });
 }
 
 INSTANTIATE_TEST_SUITE_P(
