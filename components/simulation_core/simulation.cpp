@@ -42,6 +42,11 @@ Simulation::Simulation(const Scenario& scenario)
       laser_rng_(Engine(scenario.seed, 2)) {
   state_.truth = scenario.initial_pose;
   segment_start_ = scenario.initial_pose.Translation();
+  // What the laser sees: built once; only the people's circles move each step.
+  scene_ = world::Scene::FromWorld(*scenario.world);
+  scene_.Add(scenario.obstacles);
+  static_circles_ = scene_.circles.size();
+  MovePeople(0.0);
   wheel_ticks_ = static_cast<double>(scenario.errors.traction_start_tick);
   const uint64_t mask = (uint64_t{1} << scenario.nominal.traction_counter_bits) - 1;
   state_.traction_ticks =
@@ -73,20 +78,15 @@ void Simulation::CommandVelocity(double linear, double angular) {
 }
 
 std::vector<world::Circle> Simulation::People() const {
-  std::vector<world::Circle> people;
-  for (const auto& p : scenario_.people) {
-    people.push_back({AlongLoop(p.waypoints, p.speed_m_s * state_.time), p.radius_m});
-  }
-  return people;
+  return {scene_.circles.begin() + static_cast<std::ptrdiff_t>(static_circles_),
+          scene_.circles.end()};
 }
 
-world::Scene Simulation::SceneAt(double t) const {
-  world::Scene scene = world::Scene::FromWorld(*scenario_.world);
-  scene.Add(scenario_.obstacles);
+void Simulation::MovePeople(double t) {
+  scene_.circles.resize(static_circles_);
   for (const auto& p : scenario_.people) {
-    scene.circles.push_back({AlongLoop(p.waypoints, p.speed_m_s * t), p.radius_m});
+    scene_.circles.push_back({AlongLoop(p.waypoints, p.speed_m_s * t), p.radius_m});
   }
-  return scene;
 }
 
 // Path following with the true pose (an ideal guidance, so that the robot
@@ -191,7 +191,7 @@ const SimState& Simulation::Step() {
 void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0,
                            double t1) {
   const auto& l = scenario_.laser;
-  const world::Scene scene = SceneAt(t1);
+  MovePeople(t1);
   for (;;) {
     const double scan_start = scan_index_ * scan_.scan_time;
     const double t = scan_start + next_beam_ * scan_.time_increment;
@@ -204,7 +204,7 @@ void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D&
       scan_.odometry = geometry::Interpolate(last_odometry_, state_.odometry, f);
       scan_.ranges.clear();
     }
-    scan_.ranges.push_back(Measure(scene, geometry::Compose(base, l.mount), next_beam_));
+    scan_.ranges.push_back(Measure(scene_, geometry::Compose(base, l.mount), next_beam_));
     if (++next_beam_ == l.beams) {
       completed_ = scan_;
       next_beam_ = 0;

@@ -56,11 +56,9 @@ class Simulation {
   const Scenario& GetScenario() const { return scenario_; }
   double LaserTimeIncrement() const { return scan_.time_increment; }
 
-  // The scene the laser sees at time `t`: world, obstacles and people.
-  world::Scene SceneAt(double t) const;
-
  private:
   void Control(double* wheel_rate, double* steering);
+  void MovePeople(double t);
   void CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0, double t1);
   float Measure(const world::Scene& scene, const geometry::Pose2D& laser_pose, int beam);
 
@@ -68,7 +66,9 @@ class Simulation {
   kinematics::RobotParameters true_params_;
   SimState state_;
   kinematics::DeadReckoning dead_reckoning_;
-  double wheel_ticks_ = 0.0;  // continuous traction counter
+  double wheel_ticks_ = 0.0;   // continuous traction counter
+  world::Scene scene_;         // world + obstacles, then the people at the last step
+  size_t static_circles_ = 0;  // circles in scene_ that never move
   std::mt19937 motion_rng_;
   std::mt19937 laser_rng_;
   size_t waypoint_ = 0;                  // the waypoint the robot heads for
