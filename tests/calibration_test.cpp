@@ -7,6 +7,8 @@
 // dataset calibration cuts the dead-reckoning error against the tracker.
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,10 +23,6 @@ namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-std::string Source(const std::string& rel) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + rel;
-}
-
 // Simulate, localise offline (fixes with covariances), return the folder.
 std::string Record(simulation::Scenario scenario, const std::string& tag) {
   const std::string dir = "/tmp/structloc_cal_" + tag + "_" + std::to_string(getpid());
@@ -33,9 +31,9 @@ std::string Record(simulation::Scenario scenario, const std::string& tag) {
   geometry::Pose2D p;
   initial >> p.x >> p.y >> p.theta;
   replay::ReplayOptions o;
-  o.map_path = Source("maps/office_floor.xml");
+  o.map_path = testing::SourcePath("maps/office_floor.xml");
   o.log_path = dir + "/run.clf";
-  o.params_path = Source("maps/params/office_sick.xml");
+  o.params_path = testing::SourcePath("maps/params/office_sick.xml");
   o.out_tum = dir + "/estimate.tum";
   o.fixes_path = dir + "/fixes.csv";
   o.initial_pose = p;
@@ -44,7 +42,8 @@ std::string Record(simulation::Scenario scenario, const std::string& tag) {
 }
 
 TEST(Calibration, RecoversKnownErrorsWithHonestDeviationsOverSeeds) {
-  auto scenario = simulation::LoadScenario(Source("maps/scenarios/calibration_loop.xml"));
+  auto scenario =
+      simulation::LoadScenario(testing::SourcePath("maps/scenarios/calibration_loop.xml"));
   const auto truth = scenario.TrueParameters();
   for (uint32_t seed : {21u, 22u, 23u}) {
     scenario.seed = seed;
@@ -82,7 +81,8 @@ TEST(Calibration, RecoversKnownErrorsWithHonestDeviationsOverSeeds) {
 }
 
 TEST(Calibration, AStraightLineOnlySaysTheAxleDistanceIsNotObservable) {
-  auto scenario = simulation::LoadScenario(Source("maps/scenarios/calibration_loop.xml"));
+  auto scenario =
+      simulation::LoadScenario(testing::SourcePath("maps/scenarios/calibration_loop.xml"));
   scenario.initial_pose = {17.0, 6.5, geometry::kPi};
   scenario.path.waypoints = {{4.0, 6.5}};
   scenario.duration_s = 25.0;
@@ -143,7 +143,8 @@ TEST(Calibration, RealTricycleDatasetImprovesDeadReckoningAgainstTheTracker) {
   if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is not here";
   const std::string dir = "/tmp/structloc_tricycle_" + std::to_string(getpid());
   process::ChildProcess convert(
-      "/bin/bash", {Source("components/calibration_core/convert_tricycle_dataset.sh"), data, dir});
+      "/bin/bash",
+      {testing::SourcePath("components/calibration_core/convert_tricycle_dataset.sh"), data, dir});
   ASSERT_EQ(convert.WaitExit(30s), 0) << convert.CapturedOutput();
   const auto nominal = kinematics::LoadRobotParameters(dir + "/nominal.xml");
   const auto encoders = calibration::ReadEncodersCsv(dir + "/encoders.csv");

@@ -11,12 +11,9 @@
 #include <thread>
 
 #include "node.hpp"
+#include "test_paths.hpp"
 
 namespace structloc::testing {
-
-inline std::string SourcePath(const std::string& relative) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + relative;
-}
 
 inline std::string ShippedQos() {
   return SourcePath("qos/structloc_qos.xml");

@@ -2,6 +2,8 @@
 // de-skewing of a scan taken while moving, and the Kohonen strategy.
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 #include <filesystem>
 #include <fstream>
 
@@ -15,19 +17,15 @@ namespace {
 using geometry::kPi;
 using geometry::Pose2D;
 
-std::string Source(const std::string& rel) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + rel;
-}
-
 TEST(LocaliserOptions, EveryShippedParameterFileLoads) {
   int count = 0;
-  for (const auto& e : std::filesystem::directory_iterator(Source("maps/params"))) {
+  for (const auto& e : std::filesystem::directory_iterator(testing::SourcePath("maps/params"))) {
     if (e.path().extension() != ".xml") continue;
     EXPECT_NO_THROW(LoadLocaliserOptions(e.path().string())) << e.path();
     ++count;
   }
   EXPECT_GE(count, 2);
-  const auto thesis = LoadLocaliserOptions(Source("maps/params/thesis_table6.xml"));
+  const auto thesis = LoadLocaliserOptions(testing::SourcePath("maps/params/thesis_table6.xml"));
   EXPECT_EQ(thesis.line_fit.window_points, 7);
   EXPECT_DOUBLE_EQ(thesis.prefilter.max_range_m, 4.0);
   EXPECT_EQ(thesis.solver.mode, SolverMode::kThesisLinear);
@@ -47,7 +45,7 @@ TEST(LocaliserOptions, DefaultsAreTheThesisTable6Values) {
 }
 
 std::string EditedCopy(const std::string& from, const std::string& to) {
-  std::ifstream in(Source("maps/params/thesis_table6.xml"));
+  std::ifstream in(testing::SourcePath("maps/params/thesis_table6.xml"));
   std::stringstream ss;
   ss << in.rdbuf();
   std::string text = ss.str();
@@ -84,7 +82,7 @@ TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
 class LocaliserFixture : public ::testing::Test {
  protected:
   LocaliserFixture()
-      : world_(world::LoadWorldModel(Source("maps/dead_end_corridor.xml"))),
+      : world_(world::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"))),
         scene_(world::Scene::FromWorld(world_)) {}
   world::WorldModel world_;
   world::Scene scene_;

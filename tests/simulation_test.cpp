@@ -3,6 +3,8 @@
 // scan taken while moving, determinism, scenario files and recordings.
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,10 +19,6 @@ namespace {
 
 using geometry::kPi;
 using geometry::Pose2D;
-
-std::string Source(const std::string& rel) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + rel;
-}
 
 TEST(Tricycle, StraightLineCircleAndTurnOnTheSpot) {
   const double r = 0.185, l = 0.62;
@@ -56,7 +54,7 @@ TEST(Encoders, TickDeltaAcrossTheCounterWrap) {
 }
 
 simulation::Scenario Office() {
-  return simulation::LoadScenario(Source("maps/scenarios/office_people.xml"));
+  return simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
 }
 
 TEST(Simulation, DeadReckoningWithTheTrueParametersReproducesTheGroundTruth) {
@@ -111,7 +109,8 @@ TEST(Simulation, EncodersAreQuantisedAndWrap) {
 }
 
 TEST(Simulation, TheSkewOfAScanTakenAt1MetrePerSecondMatchesTheAnalyticDisplacement) {
-  auto scenario = simulation::LoadScenario(Source("maps/scenarios/dead_end_corridor.xml"));
+  auto scenario =
+      simulation::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"));
   scenario.errors = {};
   scenario.laser.noise_std_m = 0;
   scenario.laser.spurious_probability = 0;
@@ -212,27 +211,27 @@ TEST(Simulation, RecordingHasTheDocumentedFormats) {
 
 TEST(Scenarios, EveryShippedScenarioAndRobotFileLoads) {
   int count = 0;
-  for (const auto& e : std::filesystem::directory_iterator(Source("maps/scenarios"))) {
+  for (const auto& e : std::filesystem::directory_iterator(testing::SourcePath("maps/scenarios"))) {
     if (e.path().extension() != ".xml") continue;
     const auto s = simulation::LoadScenario(e.path().string());
     EXPECT_FALSE(s.name.empty());
     ++count;
   }
   EXPECT_GE(count, 3);
-  for (const auto& e : std::filesystem::directory_iterator(Source("maps/robots"))) {
+  for (const auto& e : std::filesystem::directory_iterator(testing::SourcePath("maps/robots"))) {
     EXPECT_NO_THROW(kinematics::LoadRobotParameters(e.path().string())) << e.path();
   }
 }
 
 TEST(Scenarios, BrokenScenarioNamesFileLineAndProblem) {
   const std::string path = "/tmp/structloc_test_broken_" + std::to_string(getpid()) + ".xml";
-  std::ifstream in(Source("maps/scenarios/office_people.xml"));
+  std::ifstream in(testing::SourcePath("maps/scenarios/office_people.xml"));
   std::stringstream ss;
   ss << in.rdbuf();
   std::string text = ss.str();
   text.replace(text.find("beams=\"1081\""), 12, "beams=\"-5\"");
   for (size_t pos; (pos = text.find("file=\"../")) != std::string::npos;) {
-    text.replace(pos, 9, "file=\"" + Source("maps/"));
+    text.replace(pos, 9, "file=\"" + testing::SourcePath("maps/"));
   }
   std::ofstream(path) << text;
   try {

@@ -3,6 +3,8 @@
 // hiding 0..100 % of a wall (4.4, Tables 8-9).
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 #include <cstdio>
 
 #include "localiser.hpp"
@@ -14,10 +16,6 @@ namespace {
 
 using geometry::kPi;
 using geometry::Pose2D;
-
-std::string Source(const std::string& rel) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + rel;
-}
 
 struct Stats {
   double mean[3] = {0, 0, 0}, std[3] = {0, 0, 0};
@@ -43,9 +41,9 @@ Stats Compute(const std::vector<Pose2D>& poses) {
 // of 300 beams over 2 pi with 5 mm range noise; the estimate overwrites the
 // odometry as in the thesis.
 Stats Repeatability(const std::string& params) {
-  const auto world = world::LoadWorldModel(Source("maps/dead_end_corridor.xml"));
+  const auto world = world::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"));
   const auto scene = world::Scene::FromWorld(world);
-  Localiser localiser(world, LoadLocaliserOptions(Source(params)));
+  Localiser localiser(world, LoadLocaliserOptions(testing::SourcePath(params)));
   const Pose2D truth{1.0, 0.9, 0.0};
   std::mt19937 rng(2024);
   Pose2D estimate{1.02, 0.89, 0.001};
@@ -87,7 +85,7 @@ TEST(ThesisRepeatability, DeadEndCorridorBeatsTheThesisTable7) {
 // Two perpendicular walls; an unmodelled box 0.6 m in front of wall 2 hides
 // `fraction` of it as seen from the robot.
 TEST(ThesisRobustness, AnUnmodelledBoxHidingWall2NeverMakesItDiverge) {
-  const auto world = world::LoadWorldModel(Source("maps/robustness_room.xml"));
+  const auto world = world::LoadWorldModel(testing::SourcePath("maps/robustness_room.xml"));
   const Pose2D truth{1.5, 1.5, 0.3};
   for (double fraction : {0.0, 0.3, 0.6, 0.8, 1.0}) {
     world::Scene scene = world::Scene::FromWorld(world);
@@ -98,7 +96,8 @@ TEST(ThesisRobustness, AnUnmodelledBoxHidingWall2NeverMakesItDiverge) {
       const double xb = truth.x + k * (3.0 * fraction - truth.x) + (fraction >= 1.0 ? 0.05 : 0.0);
       scene.Add(testing::Box({0.5 * (xa + xb), y - 0.1}, xb - xa, 0.2, 0.0));
     }
-    Localiser localiser(world, LoadLocaliserOptions(Source("maps/params/table6_weighted.xml")));
+    Localiser localiser(
+        world, LoadLocaliserOptions(testing::SourcePath("maps/params/table6_weighted.xml")));
     std::mt19937 rng(99);
     Pose2D estimate{truth.x + 0.03, truth.y - 0.02, truth.theta + 0.02};
     std::vector<Pose2D> poses;
