@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace structloc::localisation {
 namespace {
@@ -230,16 +231,21 @@ void Localiser::Finish(const UpdateInput& input, const geometry::Pose2D& sensor_
     m.world = e.world;
     // A corner where two matched, non-parallel walls meet adds nothing they
     // do not already say; counting it twice would make the covariance lie.
-    int through = 0;
-    double first_alpha = 0.0;
+    std::optional<double> first_alpha;  // of the first matched wall through the corner
+    bool redundant = false;
     for (const auto& w : wall_measurements_) {
-      if (std::abs(e.world.x() * std::cos(w.world_alpha) + e.world.y() * std::sin(w.world_alpha) -
-                   w.world_r) < 0.05) {
-        if (through == 0 || std::abs(std::sin(w.world_alpha - first_alpha)) > 0.5) ++through;
-        if (through == 1) first_alpha = w.world_alpha;
+      const bool through_corner =
+          std::abs(e.world.x() * std::cos(w.world_alpha) + e.world.y() * std::sin(w.world_alpha) -
+                   w.world_r) < 0.05;
+      if (!through_corner) continue;
+      if (!first_alpha) {
+        first_alpha = w.world_alpha;
+      } else if (std::abs(std::sin(w.world_alpha - *first_alpha)) > 0.5) {
+        redundant = true;
+        break;
       }
     }
-    m.use_in_weighted = through < 2;
+    m.use_in_weighted = !redundant;
     point_measurements_.push_back(m);
   }
   for (const auto& c : cylinder_clusters_) {
