@@ -1,0 +1,93 @@
+// OutputFile (see header).
+#include "output_file.hpp"
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "strict_xml.hpp"
+
+namespace structloc::config {
+
+void RefuseOverwritingInput(const std::string& output, const std::vector<std::string>& inputs) {
+  for (const auto& input : inputs) {
+    std::error_code error;
+    if (input.empty()) continue;
+    if (output == input || std::filesystem::equivalent(output, input, error)) {
+      throw ConfigError(output + ": refusing to write the output over the input " + input);
+    }
+  }
+}
+
+OutputFile::OutputFile(std::string path, const std::vector<std::string>& inputs)
+    : path_(std::move(path)) {
+  if (path_.empty()) throw ConfigError("an output file name is empty");
+  RefuseOverwritingInput(path_, inputs);
+  std::error_code error;
+  if (std::filesystem::is_directory(path_, error)) {
+    throw ConfigError(path_ + ": is a folder, not a file");
+  }
+  const auto status = std::filesystem::status(path_, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    // A device or pipe (/dev/stdout, a FIFO): written in place, errors still checked.
+    stream_.open(path_, std::ios::binary);
+    if (!stream_) throw ConfigError(path_ + ": cannot open it for writing");
+    return;
+  }
+  temp_path_ = path_ + ".tmp.XXXXXX";
+  const int fd = mkstemp(temp_path_.data());
+  if (fd < 0) {
+    throw ConfigError(path_ + ": cannot create an output file there (" +
+                      std::string(std::strerror(errno)) + ")");
+  }
+  ::close(fd);
+  stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
+  if (!stream_) {
+    std::remove(temp_path_.c_str());
+    throw ConfigError(path_ + ": cannot write an output file there");
+  }
+}
+
+OutputFile::~OutputFile() {
+  if (committed_) return;
+  stream_.close();
+  if (!temp_path_.empty()) std::remove(temp_path_.c_str());
+}
+
+void OutputFile::Commit() {
+  stream_.flush();
+  const bool written = static_cast<bool>(stream_);
+  stream_.close();
+  if (temp_path_.empty()) {
+    committed_ = true;
+    if (!written || stream_.fail()) throw std::runtime_error(path_ + ": writing failed");
+    return;
+  }
+  bool synced = false;
+  if (written && !stream_.fail()) {
+    const int fd = ::open(temp_path_.c_str(), O_RDONLY);
+    synced = fd >= 0 && ::fsync(fd) == 0;
+    if (fd >= 0) ::close(fd);
+  }
+  if (!synced) {
+    std::remove(temp_path_.c_str());
+    committed_ = true;
+    throw std::runtime_error(path_ + ": writing failed (" + std::string(std::strerror(errno)) +
+                             "); the previous file, if any, is unchanged");
+  }
+  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temp_path_.c_str());
+    committed_ = true;
+    throw std::runtime_error(path_ + ": cannot replace the file (" + reason + ")");
+  }
+  committed_ = true;
+}
+
+}  // namespace structloc::config
