@@ -14,12 +14,13 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "scenario.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = 110;
+constexpr int kDomain = testing::domains::kCalibrationComponent;
 
 TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   const auto scenario =

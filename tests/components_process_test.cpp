@@ -11,6 +11,7 @@
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
@@ -22,7 +23,7 @@ std::string BinPath(const std::string& name) {
   return std::string(STRUCTLOC_BIN_DIR) + "/" + name;
 }
 
-constexpr int kDomain = 103;
+constexpr int kDomain = testing::domains::kComponentsProcess;
 
 std::vector<std::string> Args(int domain, const std::string& qos = testing::ShippedQos()) {
   return {"--domain", std::to_string(domain), "--qos", qos};
@@ -98,7 +99,7 @@ TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
   for (const auto* exe :
        {"structloc_simulator", "structloc_localisation", "structloc_calibration"}) {
     const auto start = std::chrono::steady_clock::now();
-    ChildProcess child(BinPath(exe), Args(kDomain + 1, path));
+    ChildProcess child(BinPath(exe), Args(testing::domains::kComponentsBrokenProfile, path));
     const auto code = child.WaitExit(5s);
     const auto elapsed = std::chrono::steady_clock::now() - start;
     ASSERT_TRUE(code.has_value()) << exe << " did not exit";
@@ -112,7 +113,7 @@ TEST(Components, BrokenProfileExitsNonZeroWithinASecondNamingFileAndProblem) {
 }
 
 TEST(Components, MissingQosFileAndUnknownOptionAreConfigurationErrors) {
-  ChildProcess missing(BinPath("structloc_localisation"), Args(kDomain + 1, "/nonexistent.xml"));
+  ChildProcess missing(BinPath("structloc_localisation"), Args(testing::domains::kComponentsBrokenProfile, "/nonexistent.xml"));
   EXPECT_EQ(missing.WaitExit(5s), 2);
   EXPECT_NE(missing.CapturedOutput().find("/nonexistent.xml: cannot open file"), std::string::npos)
       << missing.CapturedOutput();

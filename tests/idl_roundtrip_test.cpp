@@ -32,6 +32,7 @@
 #include "structloc_msgs/msg/WallFeaturePubSubTypes.h"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
@@ -39,7 +40,7 @@ namespace {
 using testing::RoundTrip;
 using testing::TestNodeOptions;
 
-constexpr int kDomain = 101;
+constexpr int kDomain = testing::domains::kIdlRoundtrip;
 
 // Distinct, non-default values for every field, so a swapped or dropped field shows.
 class Filler {

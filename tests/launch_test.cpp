@@ -10,6 +10,7 @@
 #include "config_test_support.hpp"
 #include "launch_file.hpp"
 #include "strict_xml.hpp"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
@@ -89,7 +90,7 @@ TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
   process::ChildProcess launch(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc",
       {"launch", std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/structloc.launch.xml",
-       "domain:=104", "--duration", "2"});
+       "domain:=" + std::to_string(testing::domains::kLaunch), "--duration", "2"});
   const auto code = launch.WaitExit(20s);
   const auto out = launch.CapturedOutput();
   ASSERT_TRUE(code.has_value()) << out;
@@ -98,7 +99,7 @@ TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
     EXPECT_NE(out.find(std::string("[launch] ") + name + " exited with code 0"), std::string::npos)
         << out;
   }
-  EXPECT_NE(out.find("on domain 104"), std::string::npos) << out;
+  EXPECT_NE(out.find("on domain " + std::to_string(testing::domains::kLaunch)), std::string::npos) << out;
 }
 
 }  // namespace

@@ -17,12 +17,13 @@
 #include "ros_conversions.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "sim_conversions.hpp"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = 108;
+constexpr int kDomain = testing::domains::kLocalisationBadInput;
 
 TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
   auto scenario = simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
@@ -149,8 +150,9 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
         "rejected: angle_increment zero or non-finite, or bad limits",
         "rejected: scan stamp not after the previous scan",
         "rejected: scan stamp too far ahead of the odometry",
-        "rejected: odometry jump faster than max_odometry_speed_m_s",
-        "rejected: odometry pose or stamp not finite"}) {
+        "rejected: odometry jump faster than max_odometry_speed_m_s or "
+        "max_odometry_turn_rate_rad_s",
+        "rejected: odometry pose or stamp not finite, or its orientation not a unit quaternion"}) {
     EXPECT_TRUE(diagnostics.count(reason) && std::stol(diagnostics[reason]) > 0) << reason;
   }
   // And it kept localising on the good scans.

@@ -15,12 +15,13 @@
 #include "recorder.hpp"
 #include "replay.hpp"
 #include "scenario.hpp"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = 107;
+constexpr int kDomain = testing::domains::kLocalisationIntegration;
 constexpr double kDeg = 180.0 / geometry::kPi;
 
 TEST(LocalisationIntegration, OfficeOverDdsMeetsTheAccuracyBarAndIsNeverLost) {

@@ -10,12 +10,13 @@
 #include "dds_test_support.hpp"
 #include "live_evaluator.hpp"
 #include "scenario.hpp"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = 109;
+constexpr int kDomain = testing::domains::kLocalisationRestart;
 
 TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto scenario =

@@ -8,6 +8,7 @@
 
 #include "dds_test_support.hpp"
 #include "qos_profiles.hpp"
+#include "test_domains.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
@@ -20,7 +21,7 @@ using eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS;
 using eprosima::fastdds::dds::TRANSIENT_LOCAL_DURABILITY_QOS;
 using eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
 
-constexpr int kDomain = 102;
+constexpr int kDomain = testing::domains::kQosProfiles;
 
 TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
   dds::Node node(testing::TestNodeOptions("qos_test", kDomain));  // loads the file

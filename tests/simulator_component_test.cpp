@@ -13,12 +13,13 @@
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "sim_conversions.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
+#include "test_domains.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = 105;
+constexpr int kDomain = testing::domains::kSimulatorComponent;
 
 TEST(SimConversions, LaserScanCarriesGeometryTimingAndSpecialValues) {
   simulation::SimScan scan;

@@ -5,6 +5,20 @@
 
 namespace structloc::dds {
 
+const char* ToString(HealthLevel level) {
+  switch (level) {
+    case HealthLevel::kOk:
+      return "OK";
+    case HealthLevel::kWarn:
+      return "WARN";
+    case HealthLevel::kError:
+      return "ERROR";
+    case HealthLevel::kStale:
+      return "STALE";
+  }
+  return "?";
+}
+
 diagnostic_msgs::msg::DiagnosticArray ToDiagnosticArray(const std::string& component,
                                                         const HealthReport& report,
                                                         double stamp_seconds) {

@@ -19,6 +19,9 @@ struct HealthReport {
   std::vector<std::pair<std::string, std::string>> values;
 };
 
+// "OK", "WARN", "ERROR", "STALE" for log lines.
+const char* ToString(HealthLevel level);
+
 diagnostic_msgs::msg::DiagnosticArray ToDiagnosticArray(const std::string& component,
                                                         const HealthReport& report,
                                                         double stamp_seconds);

@@ -3,21 +3,32 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include <iostream>
 #include <sstream>
+
+#include "domain_ports.hpp"
+#include "strict_xml.hpp"
 
 namespace structloc::dds {
 
 Node::Node(const NodeOptions& options)
-    : options_(options), qos_(QosProfiles::Load(options.qos_file)) {
-  if (options.domain_id < 0 || options.domain_id > 232) {
-    throw std::runtime_error("domain id " + std::to_string(options.domain_id) +
-                             " is outside 0..232");
+    : options_(options),
+      qos_(QosProfiles::Load(options.qos_file)),
+      monitor_(std::make_unique<PeerMonitor>(options.name, options.domain_id)) {
+  if (options.domain_id < 0 || options.domain_id > kMaxDomainId) {
+    throw config::ConfigError("domain id " + std::to_string(options.domain_id) + " is outside 0.." +
+                              std::to_string(kMaxDomainId) + " (use 0.." +
+                              std::to_string(kMaxSafeDomainId) + " on Linux)");
+  }
+  if (auto warning = DomainPortWarning(options.domain_id)) {
+    std::cerr << options.name << ": WARNING: " << *warning << std::endl;
   }
   auto participant_qos = qos_.Participant(options.participant_profile);
   participant_qos.name(options.name);
   participant_ =
       eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->create_participant(
-          options.domain_id, participant_qos);
+          options.domain_id, participant_qos, monitor_.get(),
+          eprosima::fastdds::dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(options.domain_id) + " with profile '" +

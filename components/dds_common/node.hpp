@@ -5,6 +5,7 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "peer_monitor.hpp"
 #include "qos_profiles.hpp"
 #include "topics.hpp"
 
@@ -28,7 +30,7 @@ namespace structloc::dds {
 
 struct NodeOptions {
   std::string name;      // shown in reports and diagnostics
-  int domain_id = 0;     // DDS domain, 0..232
+  int domain_id = 0;     // DDS domain, 0..232 (0..101 on Linux, see domain_ports.hpp)
   std::string qos_file;  // Fast DDS profiles XML
   std::string participant_profile = "structloc_localhost";
 };
@@ -63,9 +65,11 @@ class Node {
   template <class PubSubType>
   TopicWriter<PubSubType> CreateWriter(const TopicSpec& topic) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
-    auto* writer =
-        publisher_->create_datawriter(dds_topic, qos_.Writer(*publisher_, topic.qos_profile));
+    auto listener = std::make_unique<WriterListener>(*monitor_, topic.name);
+    auto* writer = publisher_->create_datawriter(
+        dds_topic, qos_.Writer(*publisher_, topic.qos_profile), listener.get());
     if (writer == nullptr) throw std::runtime_error("cannot create writer for " + topic.name);
+    writer_listeners_.push_back(std::move(listener));
     endpoints_.push_back("publishes  " + Describe(topic, dds_topic->get_type_name()));
     return TopicWriter<PubSubType>(writer);
   }
@@ -77,7 +81,7 @@ class Node {
                  std::function<void(const typename PubSubType::type&)> callback) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
     auto listener = std::make_unique<CallbackListener<PubSubType>>(options_.name, topic.name,
-                                                                   std::move(callback));
+                                                                   *monitor_, std::move(callback));
     auto* reader = subscriber_->create_datareader(
         dds_topic, qos_.Reader(*subscriber_, topic.qos_profile), listener.get());
     if (reader == nullptr) throw std::runtime_error("cannot create reader for " + topic.name);
@@ -88,14 +92,25 @@ class Node {
   // One line per endpoint: direction, topic, DDS type name, QoS profile.
   std::string EndpointReport() const;
   const NodeOptions& Options() const { return options_; }
+  // Problems with peers that hold now (incompatible QoS, a duplicate of this
+  // node on the domain), one sentence each; empty when all is well.
+  std::vector<std::string> PeerProblems() const { return monitor_->Problems(); }
 
  private:
   template <class PubSubType>
   class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
    public:
-    CallbackListener(std::string node, std::string topic,
+    CallbackListener(std::string node, std::string topic, PeerMonitor& monitor,
                      std::function<void(const typename PubSubType::type&)> callback)
-        : node_(std::move(node)), topic_(std::move(topic)), callback_(std::move(callback)) {}
+        : node_(std::move(node)),
+          topic_(std::move(topic)),
+          monitor_(monitor),
+          callback_(std::move(callback)) {}
+    void on_requested_incompatible_qos(
+        eprosima::fastdds::dds::DataReader*,
+        const eprosima::fastdds::dds::RequestedIncompatibleQosStatus& status) override {
+      monitor_.IncompatibleQos(topic_, "subscription", status.last_policy_id);
+    }
     void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
       typename PubSubType::type sample;
       eprosima::fastdds::dds::SampleInfo info;
@@ -114,7 +129,23 @@ class Node {
    private:
     std::string node_;
     std::string topic_;
+    PeerMonitor& monitor_;
     std::function<void(const typename PubSubType::type&)> callback_;
+  };
+
+  class WriterListener : public eprosima::fastdds::dds::DataWriterListener {
+   public:
+    WriterListener(PeerMonitor& monitor, std::string topic)
+        : monitor_(monitor), topic_(std::move(topic)) {}
+    void on_offered_incompatible_qos(
+        eprosima::fastdds::dds::DataWriter*,
+        const eprosima::fastdds::dds::OfferedIncompatibleQosStatus& status) override {
+      monitor_.IncompatibleQos(topic_, "publication", status.last_policy_id);
+    }
+
+   private:
+    PeerMonitor& monitor_;
+    std::string topic_;
   };
 
   template <class PubSubType>
@@ -134,11 +165,13 @@ class Node {
 
   NodeOptions options_;
   QosProfiles qos_;
+  std::unique_ptr<PeerMonitor> monitor_;  // outlives the participant that calls it
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
+  std::vector<std::unique_ptr<WriterListener>> writer_listeners_;
   std::vector<std::string> endpoints_;
 };
 

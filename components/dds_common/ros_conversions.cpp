@@ -33,6 +33,10 @@ geometry_msgs::msg::Quaternion ToQuaternion(double yaw_rad) {
 }
 
 double YawFromQuaternion(const geometry_msgs::msg::Quaternion& q) {
+  // An uninitialised (all-zero) or scaled quaternion is no rotation: reading a
+  // yaw from it would silently turn the robot.
+  const double norm2 = q.x() * q.x() + q.y() * q.y() + q.z() * q.z() + q.w() * q.w();
+  if (!(std::abs(norm2 - 1.0) <= kQuaternionNormTolerance)) return std::nan("");
   return std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()),
                     1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
 }

@@ -24,6 +24,8 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
           dds::topics::kStatus)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
           dds::topics::kDiagnostics)),
+      node_(node),
+      started_s_(dds::WallClockSeconds()),
       tracker_(*world_, localiser_options, TrackerOptions{}) {
   const Eigen::Matrix3d initial_cov =
       Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
@@ -31,7 +33,16 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
     pending_initial_pose_ = {{*options_.initial_pose, initial_cov}};
     std::cout << "localisation: initial pose from the command line" << std::endl;
   } else if (!options_.state_file.empty()) {
-    if (auto saved = LoadSavedPose(options_.state_file)) {
+    std::optional<SavedPose> saved;
+    try {
+      saved = LoadSavedPose(options_.state_file);
+    } catch (const std::exception& e) {
+      // A crash can leave exactly such a file; it must not stop the start-up.
+      std::cerr << "localisation: WARNING: ignoring the saved pose: " << e.what() << std::endl;
+      last_problem_ = std::string("saved pose ignored: ") + e.what();
+      last_problem_s_ = started_s_;
+    }
+    if (saved) {
       // The robot may have driven on meanwhile: never trust the saved variances
       // more than a freshly given initial pose.
       const Eigen::Vector3d variance = saved->variance.cwiseMax(initial_cov.diagonal());
@@ -82,20 +93,24 @@ void LocalisationComponent::OnOdometry(const nav_msgs::msg::Odometry& msg) {
   const auto odom = FromOdometry(msg);
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    last_odometry_wall_s_ = dds::WallClockSeconds();
     if (auto r = tracker_.AddOdometry(odom.stamp, odom.pose)) {
-      last_problem_ = std::string("odometry rejected: ") + ToString(*r);
+      NoteProblem(std::string("odometry rejected: ") + ToString(*r));
       return;
     }
+    std::optional<Rejection> rejected;
     if (pending_initial_pose_ && !tracker_.HasInitialPose()) {
-      tracker_.SetInitialPose(odom.stamp, pending_initial_pose_->first,
-                              pending_initial_pose_->second);
+      rejected = tracker_.SetInitialPose(odom.stamp, pending_initial_pose_->first,
+                                         pending_initial_pose_->second);
       pending_initial_pose_.reset();
     }
     if (pending_correction_ && !tracker_.HasInitialPose()) {
-      tracker_.SetInitialPose(odom.stamp, geometry::Compose(pending_correction_->first, odom.pose),
-                              pending_correction_->second);
+      rejected = tracker_.SetInitialPose(odom.stamp,
+                                         geometry::Compose(pending_correction_->first, odom.pose),
+                                         pending_correction_->second);
       pending_correction_.reset();
     }
+    if (rejected) NoteProblem(std::string("initial pose rejected: ") + ToString(*rejected));
   }
   wake_.notify_one();  // a waiting scan may now be covered
 }
@@ -107,9 +122,10 @@ void LocalisationComponent::OnInitialPose(
   std::lock_guard<std::mutex> lock(mutex_);
   if (auto r = tracker_.SetInitialPose(p.stamp, p.pose, cov)) {
     if (*r == Rejection::kNoOdometry) {
-      pending_initial_pose_ = {{p.pose, cov}};
+      pending_initial_pose_ = {{p.pose, cov}};  // valid: SetInitialPose checks that first
     } else {
-      last_problem_ = std::string("initial pose rejected: ") + ToString(*r);
+      NoteProblem(std::string("initial pose on ") + dds::topics::kInitialPose.name +
+                  " rejected: " + ToString(*r));
     }
     return;
   }
@@ -128,7 +144,8 @@ void LocalisationComponent::Worker() {
     const double stamp = dds::FromRosTime(pending_scan_->header().stamp());
     pending_scan_.reset();
     if (outcome.verdict == PoseTracker::ScanVerdict::kRejected) {
-      last_problem_ = std::string("scan rejected: ") + ToString(outcome.rejection);
+      NoteProblem(std::string("scan rejected: ") + ToString(outcome.rejection) +
+                  (outcome.detail != nullptr ? std::string(": ") + outcome.detail : ""));
       continue;
     }
     const auto& r = *outcome.result;
@@ -168,17 +185,36 @@ void LocalisationComponent::Step() {
   if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);
 }
 
-void LocalisationComponent::PublishDiagnostics(double now) {
-  last_diagnostics_s_ = now;
+void LocalisationComponent::NoteProblem(const std::string& problem) {
+  last_problem_ = problem;
+  last_problem_s_ = dds::WallClockSeconds();
+}
+
+dds::HealthReport LocalisationComponent::Health(double now) {
   dds::HealthReport report;
-  std::lock_guard<std::mutex> lock(mutex_);
-  const auto& stats = tracker_.Stats();
-  if (!tracker_.HasInitialPose()) {
+  // A source silent for a while is a warning; for long, an error.
+  auto silence = [&](double since, const std::string& what) {
+    const double silent = now - since;
+    report.level =
+        silent > options_.silent_error_after_s ? dds::HealthLevel::kError : dds::HealthLevel::kWarn;
+    report.message = what + " for " + std::to_string(silent).substr(0, 4) + " s";
+  };
+  const auto peer_problems = node_.PeerProblems();
+  if (!peer_problems.empty()) {
+    report.level = dds::HealthLevel::kError;
+    report.message = peer_problems.front();
+  } else if (last_odometry_wall_s_ == 0.0) {
+    silence(started_s_, "no odometry on " + dds::topics::kOdom.name + " yet");
+  } else if (!tracker_.HasInitialPose()) {
     report.level = dds::HealthLevel::kWarn;
-    report.message = "no initial pose: publish one on rt/initialpose or pass --initial-pose";
-  } else if (now - last_scan_wall_s_ > options_.scan_timeout_s) {
-    report.level = dds::HealthLevel::kWarn;
-    report.message = "no scans for " + std::to_string(options_.scan_timeout_s).substr(0, 3) + " s";
+    report.message = "no initial pose: publish one on " + dds::topics::kInitialPose.name +
+                     " or pass --initial-pose";
+  } else if (now - std::max(last_scan_wall_s_, started_s_) > options_.scan_timeout_s) {
+    silence(std::max(last_scan_wall_s_, started_s_),
+            last_scan_wall_s_ == 0.0 ? "no scans on " + dds::topics::kScan.name + " yet"
+                                     : "no scans on " + dds::topics::kScan.name);
+  } else if (now - last_odometry_wall_s_ > options_.scan_timeout_s) {
+    silence(last_odometry_wall_s_, "no odometry on " + dds::topics::kOdom.name);
   } else if (last_lost_) {
     // Dead reckoning for a while is normal (a corridor, a crowd); for long it is not.
     report.level = now - lost_since_s_ > options_.lost_error_after_s ? dds::HealthLevel::kError
@@ -188,18 +224,39 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   } else {
     report.message = "localised";
   }
+  return report;
+}
+
+void LocalisationComponent::PublishDiagnostics(double now) {
+  last_diagnostics_s_ = now;
+  std::lock_guard<std::mutex> lock(mutex_);
+  dds::HealthReport report = Health(now);
+  const auto& stats = tracker_.Stats();
+  const bool recent_problem =
+      !last_problem_.empty() && now - last_problem_s_ <= options_.problem_hold_s;
   report.values = {{"scans_processed", std::to_string(stats.scans_processed)},
                    {"scans_lost", std::to_string(stats.scans_lost)},
                    {"scans_dropped", std::to_string(dropped_)},
                    {"scans_rejected", std::to_string(stats.Rejected())},
                    {"scans_not_deskewed", std::to_string(stats.scans_not_deskewed)},
                    {"quality", std::to_string(last_quality_)},
-                   {"last_problem", last_problem_}};
+                   {"last_problem", recent_problem ? last_problem_ : ""},
+                   {"last_problem_age_s",
+                    recent_problem ? std::to_string(now - last_problem_s_).substr(0, 4) : ""}};
   for (size_t i = 0; i < stats.rejected.size(); ++i) {
     if (stats.rejected[i] > 0) {
       report.values.emplace_back(std::string("rejected: ") + ToString(static_cast<Rejection>(i)),
                                  std::to_string(stats.rejected[i]));
     }
+  }
+  for (const auto& problem : node_.PeerProblems()) report.values.emplace_back("peer", problem);
+  // A log line whenever the headline changes kind (not its running seconds).
+  const std::string state = std::to_string(static_cast<int>(report.level)) + " " +
+                            report.message.substr(0, report.message.find(" for "));
+  if (state != last_logged_state_) {
+    last_logged_state_ = state;
+    std::cout << "localisation: " << dds::ToString(report.level) << " " << report.message
+              << std::endl;
   }
   auto diag = dds::ToDiagnosticArray("localisation", report, now);
   diagnostics_.Write(diag);

@@ -15,6 +15,7 @@
 
 #include "component_runtime.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "diagnostics.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "pose_state_file.hpp"
@@ -27,10 +28,12 @@
 namespace structloc::localisation {
 
 struct LocalisationComponentOptions {
-  double scan_timeout_s = 0.5;      // diagnostics go WARN without scans for this long
-  std::string state_file;           // saved pose ("" = none)
-  double state_period_s = 2.0;      // how often the pose is saved
-  double lost_error_after_s = 5.0;  // diagnostics go from WARN to ERROR when lost this long
+  double scan_timeout_s = 0.5;  // diagnostics go WARN without scans (or odometry) for this long
+  double silent_error_after_s = 5.0;  // ... and ERROR when a source stays silent this long
+  double problem_hold_s = 10.0;       // a rejected input is reported in diagnostics this long
+  std::string state_file;             // saved pose ("" = none)
+  double state_period_s = 2.0;        // how often the pose is saved
+  double lost_error_after_s = 5.0;    // diagnostics go from WARN to ERROR when lost this long
   std::optional<geometry::Pose2D> initial_pose;  // from the command line
 };
 
@@ -50,6 +53,8 @@ class LocalisationComponent : public dds::Component {
   void Worker();
   void Process(const sensor_msgs::msg::LaserScan& scan, double waited_s);
   void PublishDiagnostics(double now);
+  void NoteProblem(const std::string& problem);  // caller holds mutex_
+  dds::HealthReport Health(double now);          // caller holds mutex_
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world::WorldModel> world_;
@@ -58,6 +63,8 @@ class LocalisationComponent : public dds::Component {
   dds::TopicWriter<structloc_msgs::msg::ScanFeaturesPubSubType> features_;
   dds::TopicWriter<structloc_msgs::msg::LocalisationStatusPubSubType> status_;
   dds::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
+  const dds::Node& node_;
+  const double started_s_;
 
   std::mutex mutex_;  // guards everything below
   std::condition_variable wake_;
@@ -69,7 +76,8 @@ class LocalisationComponent : public dds::Component {
   std::optional<std::pair<geometry::Pose2D, Eigen::Matrix3d>> pending_correction_;
   uint64_t dropped_ = 0;
   bool stopping_ = false;
-  double last_scan_wall_s_ = 0.0;
+  double last_scan_wall_s_ = 0.0;      // 0: none yet
+  double last_odometry_wall_s_ = 0.0;  // 0: none yet
   double last_state_save_s_ = 0.0;
   double last_diagnostics_s_ = 0.0;
   bool last_lost_ = false;
@@ -77,6 +85,8 @@ class LocalisationComponent : public dds::Component {
   std::string last_lost_reason_;
   double last_quality_ = 0.0;
   std::string last_problem_;  // newest rejected input, for diagnostics
+  double last_problem_s_ = 0.0;
+  std::string last_logged_state_;  // the diagnostics headline last printed
   std::thread worker_;
 };
 

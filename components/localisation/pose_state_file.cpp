@@ -1,31 +1,31 @@
 // Saved pose file (see header).
 #include "pose_state_file.hpp"
 
-#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
 
+#include "output_file.hpp"
+
 namespace structloc::localisation {
 
 void SavePoseAtomically(const std::string& path, const SavedPose& s) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << std::setprecision(12) << "map_to_odom " << s.map_to_odom.x << " " << s.map_to_odom.y
-        << " " << s.map_to_odom.theta << " " << s.variance.x() << " " << s.variance.y() << " "
-        << s.variance.z() << "\n";
-    out.flush();
-    if (!out) throw std::runtime_error(tmp + ": cannot write the saved pose");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    throw std::runtime_error(path + ": cannot replace the saved pose");
-  }
+  config::OutputFile out(path);
+  out.Stream() << std::setprecision(12) << "map_to_odom " << s.map_to_odom.x << " "
+               << s.map_to_odom.y << " " << s.map_to_odom.theta << " " << s.variance.x() << " "
+               << s.variance.y() << " " << s.variance.z() << "\n";
+  out.Commit();
 }
 
 std::optional<SavedPose> LoadSavedPose(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return std::nullopt;
+  if (std::filesystem::is_directory(path, error)) {
+    throw std::runtime_error(path + ": is a folder, not a saved pose file");
+  }
   std::ifstream in(path);
-  if (!in) return std::nullopt;
+  if (!in) throw std::runtime_error(path + ": cannot be read");
   SavedPose s;
   std::string tag;
   if (!(in >> tag >> s.map_to_odom.x >> s.map_to_odom.y >> s.map_to_odom.theta >> s.variance.x() >>

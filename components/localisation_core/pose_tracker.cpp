@@ -1,6 +1,7 @@
 // Pose tracking around the Localiser (see header).
 #include "pose_tracker.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 
@@ -23,13 +24,19 @@ const char* ToString(Rejection r) {
     case Rejection::kNoInitialPose:
       return "no initial pose yet";
     case Rejection::kOdometryNonFinite:
-      return "odometry pose or stamp not finite";
+      return "odometry pose or stamp not finite, or its orientation not a unit quaternion";
     case Rejection::kOdometryOutOfOrder:
       return "odometry stamp not after the previous one";
     case Rejection::kOdometryJump:
-      return "odometry jump faster than max_odometry_speed_m_s";
+      return "odometry jump faster than max_odometry_speed_m_s or max_odometry_turn_rate_rad_s";
     case Rejection::kInitialPoseInvalid:
-      return "initial pose or covariance invalid";
+      return "initial pose not finite or its covariance not symmetric positive definite";
+    case Rejection::kScanTooLong:
+      return "time_increment x beams longer than max_scan_duration_s";
+    case Rejection::kTooManyBeams:
+      return "more beams than max_beams";
+    case Rejection::kLocaliserRejected:
+      return "rejected by the localiser";
     case Rejection::kCount:
       break;
   }
@@ -54,6 +61,8 @@ void TrackerOptions::Validate() const {
   require(odometry_sigma_xy_per_m >= 0 && odometry_sigma_theta_per_m >= 0 &&
               odometry_sigma_theta_per_rad >= 0,
           "odometry sigmas must be >= 0");
+  require(max_odometry_turn_rate_rad_s > 0, "max_odometry_turn_rate_rad_s must be > 0");
+  require(max_scan_duration_s > 0, "max_scan_duration_s must be > 0");
   require(initial_sigma_xy_m > 0 && initial_sigma_theta_rad > 0, "initial sigmas must be > 0");
 }
 
@@ -64,13 +73,26 @@ PoseTracker::PoseTracker(const world::WorldModel& world, const LocaliserOptions&
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
 }
 
-PoseTracker::ScanOutcome PoseTracker::Reject(Rejection r) {
+PoseTracker::ScanOutcome PoseTracker::Reject(Rejection r, const char* detail) {
   ++stats_.rejected[static_cast<size_t>(r)];
   ScanOutcome out;
   out.verdict = ScanVerdict::kRejected;
   out.rejection = r;
+  out.detail = detail;
   return out;
 }
+
+namespace {
+// A covariance a Gaussian can have: finite, symmetric, positive definite.
+bool IsSymmetricPositiveDefinite(const Eigen::Matrix3d& c) {
+  if (!c.allFinite()) return false;
+  const double scale = c.cwiseAbs().maxCoeff();
+  if (!((c - c.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * scale)) return false;
+  const Eigen::LLT<Eigen::Matrix3d> llt(0.5 * (c + c.transpose()));
+  return llt.info() == Eigen::Success &&
+         (llt.matrixL().toDenseMatrix().diagonal().array() > 0).all();
+}
+}  // namespace
 
 std::optional<Rejection> PoseTracker::AddOdometry(double stamp, const geometry::Pose2D& pose) {
   auto reject = [this](Rejection r) {
@@ -83,8 +105,11 @@ std::optional<Rejection> PoseTracker::AddOdometry(double stamp, const geometry::
     if (!(stamp > history_.Newest())) return reject(Rejection::kOdometryOutOfOrder);
     const auto last = history_.At(history_.Newest());
     const double dt = stamp - history_.Newest();
+    const double step_dt = std::max(dt, 0.01);
     if ((pose.Translation() - last->Translation()).norm() >
-        options_.max_odometry_speed_m_s * std::max(dt, 0.01)) {
+            options_.max_odometry_speed_m_s * step_dt ||
+        std::abs(geometry::WrapAngle(pose.theta - last->theta)) >
+            options_.max_odometry_turn_rate_rad_s * step_dt) {
       return reject(Rejection::kOdometryJump);
     }
   }
@@ -94,8 +119,7 @@ std::optional<Rejection> PoseTracker::AddOdometry(double stamp, const geometry::
 
 std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometry::Pose2D& pose,
                                                      const Eigen::Matrix3d& covariance) {
-  if (!geometry::IsFinite(pose) || !covariance.allFinite() || covariance(0, 0) <= 0 ||
-      covariance(1, 1) <= 0 || covariance(2, 2) <= 0) {
+  if (!geometry::IsFinite(pose) || !IsSymmetricPositiveDefinite(covariance)) {
     ++stats_.rejected[static_cast<size_t>(Rejection::kInitialPoseInvalid)];
     return Rejection::kInitialPoseInvalid;
   }
@@ -124,6 +148,12 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
       !std::isfinite(scan.angle_min) || !std::isfinite(scan.stamp) ||
       !std::isfinite(scan.time_increment) || scan.time_increment < 0) {
     return Reject(Rejection::kBadScanGeometry);
+  }
+  if (scan.time_increment * static_cast<double>(scan.count) > options_.max_scan_duration_s) {
+    return Reject(Rejection::kScanTooLong);
+  }
+  if (scan.count > static_cast<size_t>(localiser_.Options().max_beams)) {
+    return Reject(Rejection::kTooManyBeams);
   }
   if (std::isfinite(scan.angle_max)) {
     const double implied = (scan.angle_max - scan.angle_min) / scan.angle_increment + 1.0;
@@ -181,13 +211,19 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   in.odometry_covariance(2, 2) += st * st + 1e-10;
   in.motion = deskew ? &motion_ : nullptr;
   const LocalisationResult& r = localiser_.Update(in);
+  if (r.rejection != nullptr) {
+    // The localiser refused its input: nothing was measured, the prior stays.
+    covariance_ = in.odometry_covariance;
+    odom_at_last_update_ = odom;
+    return Reject(Rejection::kLocaliserRejected, r.rejection);
+  }
   ++stats_.scans_processed;
   if (r.lost) ++stats_.scans_lost;
   // A lost update leaves the correction alone (dead reckoning continues) but
   // keeps the grown uncertainty; underdetermined updates still correct the
   // determined directions, since the solver held the others at the prior.
   const bool use = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
-  if (use && r.rejection == nullptr) {
+  if (use) {
     map_to_odom_ = geometry::Compose(r.pose, geometry::Inverse(odom));
     covariance_ = r.covariance;
   } else {

@@ -22,8 +22,12 @@ struct TrackerOptions {
   // Beams this far past the newest odometry are de-skewed by extrapolating it
   // instead of waiting for the next sample (latency).
   double max_extrapolation_s = 0.03;
-  double max_future_s = 1.0;                 // scans stamped further ahead of odometry are refused
-  double max_odometry_speed_m_s = 5;         // faster odometry steps are jumps and refused
+  double max_future_s = 1.0;                // scans stamped further ahead of odometry are refused
+  double max_odometry_speed_m_s = 5;        // faster odometry steps are jumps and refused
+  double max_odometry_turn_rate_rad_s = 6;  // faster heading changes are jumps and refused
+  // A scan whose beams span longer than this (time_increment x beams) is refused:
+  // no scanner sweeps that slowly, and waiting for its odometry would stall the rest.
+  double max_scan_duration_s = 1.0;
   double odometry_sigma_xy_per_m = 0.02;     // prior growth per metre driven (1 sigma)
   double odometry_sigma_theta_per_m = 0.01;  // rad per metre driven
   double odometry_sigma_theta_per_rad = 0.02;
@@ -46,6 +50,9 @@ enum class Rejection {
   kOdometryOutOfOrder,
   kOdometryJump,
   kInitialPoseInvalid,
+  kScanTooLong,
+  kTooManyBeams,
+  kLocaliserRejected,
   kCount
 };
 const char* ToString(Rejection r);
@@ -90,6 +97,7 @@ class PoseTracker {
   struct ScanOutcome {
     ScanVerdict verdict = ScanVerdict::kRejected;
     Rejection rejection = Rejection::kEmptyScan;  // when kRejected
+    const char* detail = nullptr;                 // the localiser's own reason, if any
     const LocalisationResult* result = nullptr;   // when kProcessed
     TrackedPose pose;                             // when kProcessed
   };
@@ -104,7 +112,7 @@ class PoseTracker {
   const LocaliserOptions& Options() const { return localiser_.Options(); }
 
  private:
-  ScanOutcome Reject(Rejection r);
+  ScanOutcome Reject(Rejection r, const char* detail = nullptr);
 
   Localiser localiser_;
   TrackerOptions options_;

@@ -21,6 +21,7 @@
 #include "ros_conversions.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "sim_conversions.hpp"
+#include "test_domains.hpp"
 
 namespace {
 
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
   const double rate = argc > 2 ? std::atof(argv[2]) : 40.0;
   const std::string source = STRUCTLOC_SOURCE_DIR;
-  const int domain = 150;
+  const int domain = structloc::testing::domains::kLatencyBenchmark;
   auto scenario = simulation::LoadScenario(source + "/maps/scenarios/office_people.xml");
   scenario.laser.rate_hz = rate;
   scenario.duration_s = seconds;

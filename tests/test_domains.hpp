@@ -1,0 +1,59 @@
+// The DDS domain of every test that starts participants, in one table. Each is
+// distinct, so ctest -j never lets two test files hear each other (tests of
+// one file share their domain and a ctest RESOURCE_LOCK, so they never overlap),
+// and each is at most 101: Fast DDS derives its UDP ports from the domain
+// (7400 + 250 x domain + offsets) and domains above 101 reach Linux's
+// ephemeral port range (32768-60999), where any process's outgoing socket can
+// hold a discovery port and cut a participant off (see domain_ports.hpp).
+#pragma once
+
+#include <array>
+
+namespace structloc::testing::domains {
+
+inline constexpr int kIdlRoundtrip = 60;
+inline constexpr int kQosProfiles = 61;
+inline constexpr int kComponentsProcess = 62;
+inline constexpr int kComponentsBrokenProfile = 63;
+inline constexpr int kLaunch = 64;
+inline constexpr int kSimulatorComponent = 65;
+inline constexpr int kLocalisationIntegration = 66;
+inline constexpr int kLocalisationBadInput = 67;
+inline constexpr int kLocalisationRestart = 68;
+inline constexpr int kCalibrationComponent = 69;
+inline constexpr int kBadInputLocalisation = 70;
+inline constexpr int kBadInputLocalisationSecond = 71;
+inline constexpr int kBadInputConfig = 72;
+inline constexpr int kBadInputCalibration = 73;
+inline constexpr int kDomainPorts = 74;
+inline constexpr int kLatencyBenchmark = 90;
+
+inline constexpr std::array kAll = {kIdlRoundtrip,
+                                    kQosProfiles,
+                                    kComponentsProcess,
+                                    kComponentsBrokenProfile,
+                                    kLaunch,
+                                    kSimulatorComponent,
+                                    kLocalisationIntegration,
+                                    kLocalisationBadInput,
+                                    kLocalisationRestart,
+                                    kCalibrationComponent,
+                                    kBadInputLocalisation,
+                                    kBadInputLocalisationSecond,
+                                    kBadInputConfig,
+                                    kBadInputCalibration,
+                                    kDomainPorts,
+                                    kLatencyBenchmark};
+
+constexpr bool AllDistinctAndSafe() {
+  for (size_t i = 0; i < kAll.size(); ++i) {
+    if (kAll[i] < 0 || kAll[i] > 101) return false;
+    for (size_t j = i + 1; j < kAll.size(); ++j) {
+      if (kAll[i] == kAll[j]) return false;
+    }
+  }
+  return true;
+}
+static_assert(AllDistinctAndSafe(), "test domains must be distinct and in 0..101");
+
+}  // namespace structloc::testing::domains
