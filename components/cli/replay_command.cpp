@@ -44,6 +44,11 @@ int ReplayCommand(const Invocation& inv) {
        "most lines read from the log before giving up (default " +
            std::to_string(logs::CarmenLimits{}.max_lines) + ")"},
   };
+  bool progress_shown = false;  // a "\r" progress line that a message must not continue
+  const auto end_progress_line = [&progress_shown] {
+    if (progress_shown) std::cerr << "\n";
+    progress_shown = false;
+  };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     replay::ReplayOptions o;
@@ -63,18 +68,21 @@ int ReplayCommand(const Invocation& inv) {
       throw config::ConfigError("--initial-pose must be three numbers \"X Y THETA\"");
     }
     o.initial_pose = p;
-    o.progress = [](size_t scans, double) {
+    o.progress = [&progress_shown](size_t scans, double) {
       std::cerr << "\rstructloc replay: " << scans << " scans localised" << std::flush;
+      progress_shown = true;
     };
     const auto report = replay::RunReplay(o);
-    std::cerr << "\n";
+    end_progress_line();
     std::cout << replay::FormatReport(report) << "wrote " << o.out_tum
               << (o.plot_path.empty() ? "" : " and " + o.plot_path) << "\n";
     return 0;
   } catch (const config::ConfigError& e) {
+    end_progress_line();
     std::cerr << "structloc replay: " << e.what() << "\n" << config::CommandLine::Usage(specs);
     return 2;
   } catch (const std::exception& e) {
+    end_progress_line();
     std::cerr << "structloc replay: " << e.what() << std::endl;
     return 1;
   }
