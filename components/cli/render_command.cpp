@@ -1,10 +1,12 @@
 // "structloc render --scenario S.xml --out PICTURE.png [--time T]": draws the
 // scenario (walls, pillars, obstacles, people, planned path) and the scan the
-// robot takes at time T, as a PNG.
+// robot takes at time T, as a PNG. The picture name is checked before any
+// work, and an existing picture is replaced only when the new one is complete.
 #include <iostream>
 
 #include "command_line.hpp"
 #include "map_canvas.hpp"
+#include "output_file.hpp"
 #include "simulation.hpp"
 #include "subcommands.hpp"
 
@@ -18,8 +20,12 @@ int RenderCommand(const Invocation& inv) {
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
-    const auto scenario = simulation::LoadScenario(cli.Required("scenario"));
+    const std::string out_path = cli.Required("out");
+    rendering::MapCanvas::CheckPictureName(out_path);
+    const std::string scenario_path = cli.Required("scenario");
     const double at = cli.Number("time", 0.0);
+    const auto scenario = simulation::LoadScenario(scenario_path);
+    config::OutputFile out(out_path, {scenario_path});
     simulation::Simulation sim(scenario);
     std::optional<simulation::SimScan> scan;
     std::vector<Eigen::Vector2d> driven{scenario.initial_pose.Translation()};
@@ -62,9 +68,15 @@ int RenderCommand(const Invocation& inv) {
                        {rendering::colours::kScan, "laser scan"}});
     canvas.DrawTitle(scenario.name + ": scan at t = " + std::to_string(scan->stamp).substr(0, 5) +
                      " s, " + std::to_string(points.size()) + " returns");
-    const std::string out = cli.Required("out");
-    canvas.Save(out);
-    std::cout << "structloc render: wrote " << out << "\n";
+    canvas.WriteTo(out);
+    out.Commit();
+    std::cout << "structloc render: wrote " << out_path;
+    if (canvas.ScaledDown()) {
+      std::cout << " (scaled down to " << canvas.PixelsPerMetre()
+                << " pixels per metre to stay within " << rendering::MapCanvas::kDefaultMaxSidePx
+                << " pixels)";
+    }
+    std::cout << "\n";
     return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc render: " << e.what() << "\n" << config::CommandLine::Usage(specs);

@@ -1,14 +1,30 @@
 // "structloc replay --map WORLD.xml --log RUN.clf --initial-pose "X Y THETA"
-//  --out TRAJ.tum [--params P.xml] [--truth TRUTH.tum] [--plot OUT.png] [--no-map]":
+//  --out TRAJ.tum [--params P.xml] [--truth TRUTH.tum] [--plot OUT.png] [--no-map]
+//  [--fixes-out FIXES.csv] [--max-beams N] [--max-lines N]":
 // runs a recorded CARMEN log through the localisation core, offline.
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include "command_line.hpp"
 #include "replay.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
+namespace {
+
+// A limit option: a whole number in [1, most], or `fallback` when not given.
+size_t Limit(const config::CommandLine& cli, const std::string& name, size_t fallback,
+             long long most) {
+  const long long value = cli.Integer(name, static_cast<long long>(fallback));
+  if (value < 1 || value > most) {
+    throw config::ConfigError("option --" + name + " must be between 1 and " +
+                              std::to_string(most));
+  }
+  return static_cast<size_t>(value);
+}
+
+}  // namespace
 
 int ReplayCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
@@ -21,6 +37,17 @@ int ReplayCommand(const Invocation& inv) {
       {"plot", true, "PNG of map, scans, truth, odometry and estimate"},
       {"fixes-out", true, "also write the estimate as fixes.csv (with variances) for calibrate"},
       {"no-map", false, "pass odometry through (parse, filter and time only)"},
+      {"max-beams", true,
+       "most beams per laser line; lines with more are malformed (default " +
+           std::to_string(logs::CarmenLimits{}.max_beams) + ")"},
+      {"max-lines", true,
+       "most lines read from the log before giving up (default " +
+           std::to_string(logs::CarmenLimits{}.max_lines) + ")"},
+  };
+  bool progress_shown = false;  // a "\r" progress line that a message must not continue
+  const auto end_progress_line = [&progress_shown] {
+    if (progress_shown) std::cerr << "\n";
+    progress_shown = false;
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
@@ -33,24 +60,29 @@ int ReplayCommand(const Invocation& inv) {
     o.truth_path = cli.GetOr("truth", "");
     o.plot_path = cli.GetOr("plot", "");
     o.fixes_path = cli.GetOr("fixes-out", "");
+    o.limits.max_beams = Limit(cli, "max-beams", o.limits.max_beams, 10000000);
+    o.limits.max_lines = Limit(cli, "max-lines", o.limits.max_lines, 1000000000000);
     std::istringstream pose(cli.Required("initial-pose"));
     geometry::Pose2D p;
     if (!(pose >> p.x >> p.y >> p.theta) || !geometry::IsFinite(p)) {
       throw config::ConfigError("--initial-pose must be three numbers \"X Y THETA\"");
     }
     o.initial_pose = p;
-    o.progress = [](size_t scans, double) {
+    o.progress = [&progress_shown](size_t scans, double) {
       std::cerr << "\rstructloc replay: " << scans << " scans localised" << std::flush;
+      progress_shown = true;
     };
     const auto report = replay::RunReplay(o);
-    std::cerr << "\n";
+    end_progress_line();
     std::cout << replay::FormatReport(report) << "wrote " << o.out_tum
               << (o.plot_path.empty() ? "" : " and " + o.plot_path) << "\n";
     return 0;
   } catch (const config::ConfigError& e) {
+    end_progress_line();
     std::cerr << "structloc replay: " << e.what() << "\n" << config::CommandLine::Usage(specs);
     return 2;
   } catch (const std::exception& e) {
+    end_progress_line();
     std::cerr << "structloc replay: " << e.what() << std::endl;
     return 1;
   }

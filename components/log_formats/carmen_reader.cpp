@@ -1,9 +1,13 @@
 // CARMEN log reader (see header).
 #include "carmen_reader.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <sstream>
+#include <limits>
 #include <stdexcept>
+
+#include "log_fields.hpp"
 
 namespace structloc::logs {
 
@@ -21,72 +25,199 @@ void FlaserGeometry(size_t n, double* start, double* res) {
   }
 }
 
-CarmenReader::CarmenReader(const std::string& path) : path_(path) {
-  const bool gz = path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
-  if (gz) {
-    if (FILE* probe = std::fopen(path.c_str(), "rb")) {
-      std::fclose(probe);
-    } else {
-      throw std::runtime_error(path + ": cannot open the log");
-    }
-    const std::string cmd = "gzip -dc '" + path + "'";
-    file_ = popen(cmd.c_str(), "r");
-    pipe_ = true;
-  } else {
-    file_ = std::fopen(path.c_str(), "r");
-  }
-  if (file_ == nullptr) throw std::runtime_error(path + ": cannot open the log");
-}
-
-CarmenReader::~CarmenReader() {
-  if (file_ == nullptr) return;
-  if (pipe_) {
-    pclose(file_);
-  } else {
-    std::fclose(file_);
-  }
-}
-
 namespace {
-bool ReadPose(std::istringstream& in, geometry::Pose2D* p) {
-  return static_cast<bool>(in >> p->x >> p->y >> p->theta) && geometry::IsFinite(*p);
-}
-bool ReadRanges(std::istringstream& in, size_t n, std::vector<float>* ranges) {
-  if (n > 100000) return false;
-  ranges->resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    double r;
-    if (!(in >> r)) return false;
-    (*ranges)[i] = static_cast<float>(r);
+
+using Fields = std::vector<std::string_view>;
+
+// Fields after the ranges and remissions: ipc_timestamp hostname logger_timestamp,
+// preceded on ROBOTLASER lines by the laser and robot poses, tv, rv,
+// forward_safety_dist, side_safety_dist and turn_axis.
+constexpr size_t kStampFields = 3;
+constexpr size_t kRobotLaserTail = 11 + kStampFields;
+constexpr size_t kFlaserTail = 6 + kStampFields;
+constexpr size_t kOdomFields = 9;
+// ROBOTLASER/RAWLASER: tag, laser_type, start_angle, fov, angular_res, max_range,
+// accuracy, remission_mode, num_readings.
+constexpr size_t kLaserHeader = 9;
+constexpr double kMaxTimeIncrementS = 1.0;
+
+bool IsMessageName(std::string_view tag) {
+  if (tag.empty() || tag.size() > 64 || !std::isalpha(static_cast<unsigned char>(tag[0]))) {
+    return false;
   }
-  return true;
+  return std::all_of(tag.begin(), tag.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+  });
 }
+
+// A token as it may be shown to a user: short, and never raw binary.
+std::string Quote(std::string_view token) {
+  const bool printable = std::all_of(token.begin(), token.end(), [](char c) {
+    return std::isprint(static_cast<unsigned char>(c)) != 0;
+  });
+  if (!printable) return "(non-text bytes)";
+  if (token.size() > 24) return "'" + std::string(token.substr(0, 24)) + "...'";
+  return "'" + std::string(token) + "'";
+}
+
+// Typed access to the fields of one line; the first problem is kept in `reason`.
+class FieldReader {
+ public:
+  explicit FieldReader(const Fields& fields) : f_(fields) {}
+
+  bool Finite(size_t i, const char* name, double* out) {
+    const auto v = ParseFinite(f_[i]);
+    if (!v) return Fail(std::string(name) + " " + Quote(f_[i]) + " is not a finite number");
+    *out = *v;
+    return true;
+  }
+  bool Pose(size_t i, const char* name, geometry::Pose2D* out) {
+    const std::string n(name);
+    return Finite(i, (n + " x").c_str(), &out->x) && Finite(i + 1, (n + " y").c_str(), &out->y) &&
+           Finite(i + 2, (n + " theta").c_str(), &out->theta);
+  }
+  bool Integer(size_t i, const char* name, int64_t* out) {
+    const auto v = ParseInteger(f_[i]);
+    if (!v) return Fail(std::string(name) + " " + Quote(f_[i]) + " is not an integer");
+    *out = *v;
+    return true;
+  }
+  bool Count(size_t i, const char* name, uint64_t* out) {
+    const auto v = ParseCount(f_[i]);
+    if (!v) return Fail(std::string(name) + " " + Quote(f_[i]) + " is not a non-negative integer");
+    *out = *v;
+    return true;
+  }
+  // Ranges: a value that is NaN, infinite or beyond the float range is a beam
+  // without a return (+inf), which the localisation's range gate drops.
+  bool Ranges(size_t i, size_t n, std::vector<float>* out) {
+    out->resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      const auto v = ParseReal(f_[i + k]);
+      if (!v) {
+        return Fail("range " + std::to_string(k + 1) + " of " + std::to_string(n) + " " +
+                    Quote(f_[i + k]) + " is not a number");
+      }
+      const bool representable =
+          std::isfinite(*v) && std::abs(*v) <= std::numeric_limits<float>::max();
+      (*out)[k] = representable ? static_cast<float>(*v) : std::numeric_limits<float>::infinity();
+    }
+    return true;
+  }
+  // Remissions are not used, but must still be numbers.
+  bool Numbers(size_t i, size_t n, const char* name) {
+    for (size_t k = 0; k < n; ++k) {
+      if (!ParseReal(f_[i + k])) {
+        return Fail(std::string(name) + " " + std::to_string(k + 1) + " of " + std::to_string(n) +
+                    " " + Quote(f_[i + k]) + " is not a number");
+      }
+    }
+    return true;
+  }
+  bool Fail(std::string why) {
+    reason = std::move(why);
+    return false;
+  }
+  std::string reason;
+
+ private:
+  const Fields& f_;
+};
+
+std::string BeamsVersusValues(uint64_t declared, size_t present) {
+  return std::to_string(declared) + " beams declared, " + std::to_string(present) + " values";
+}
+
+std::string OverLimit(uint64_t n, const char* what, size_t limit) {
+  return std::to_string(n) + " " + what + ", more than the limit of " + std::to_string(limit) +
+         " (raise it with --max-beams)";
+}
+
+// Why a RAWLASER/ROBOTLASER line's counts do not match its field count: the
+// values actually present when the remission count that follows them is 0 or
+// equal to the beam count (CARMEN's two usual layouts), else what is wrong with
+// the declared remission count.
+std::string LaserCountMismatch(const Fields& f, uint64_t declared, size_t tail) {
+  const size_t total = f.size();
+  const size_t region = total - kLaserHeader - tail;  // ranges, remission count, remissions
+  for (const size_t values : {region - 1, (region - 1) / 2}) {
+    const auto m = ParseCount(f[kLaserHeader + values]);
+    if (m && values + 1 + *m == region) return BeamsVersusValues(declared, values);
+  }
+  const size_t remissions_at = kLaserHeader + declared;
+  if (remissions_at >= total) {
+    return std::to_string(declared) + " beams declared, but the line has only " +
+           std::to_string(total) + " fields";
+  }
+  const auto m = ParseCount(f[remissions_at]);
+  if (!m) {
+    return "num_remissions " + Quote(f[remissions_at]) + " after the " + std::to_string(declared) +
+           " declared beams is not a non-negative integer";
+  }
+  return std::to_string(declared) + " beams and " + std::to_string(*m) +
+         " remissions declared, but the line has " + std::to_string(total) + " fields, not " +
+         std::to_string(kLaserHeader + declared + 1 + *m + tail);
+}
+
 }  // namespace
+
+CarmenReader::CarmenReader(const std::string& path, const CarmenLimits& limits)
+    : path_(path), limits_(limits), lines_(path, limits.MaxLineBytes()) {}
+
+CarmenReader::ParseResult CarmenReader::Malformed(std::string reason) {
+  reason_ = std::move(reason);
+  return ParseResult::kMalformed;
+}
 
 CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRecord& r) {
   constexpr auto kRecord = ParseResult::kRecord;
   constexpr auto kSkipped = ParseResult::kSkipped;
-  constexpr auto kMalformed = ParseResult::kMalformed;
-  std::istringstream in(text);
-  std::string tag;
-  in >> tag;
+  const Fields f = SplitFields(text);
+  const std::string_view tag = f.front();
   r = CarmenRecord{};
-  r.tag = tag;
   r.line = stats_.lines;
+  if (!IsMessageName(tag)) {
+    return Malformed("not a CARMEN message (the line does not start with a message name)");
+  }
+  r.tag = std::string(tag);
+  FieldReader in(f);
+  const auto bad = [this, &in] { return Malformed(in.reason); };
   if (tag == "ODOM") {
+    if (f.size() != 1 + kOdomFields) {
+      return Malformed(
+          "ODOM needs 9 fields (x y theta tv rv accel ipc_timestamp hostname "
+          "logger_timestamp), found " +
+          std::to_string(f.size() - 1));
+    }
     geometry::Pose2D p;
     double accel;
-    if (!ReadPose(in, &p) || !(in >> r.linear >> r.angular >> accel >> r.stamp)) return kMalformed;
+    if (!in.Pose(1, "pose", &p) || !in.Finite(4, "tv", &r.linear) ||
+        !in.Finite(5, "rv", &r.angular) || !in.Finite(6, "accel", &accel) ||
+        !in.Finite(7, "ipc_timestamp", &r.stamp)) {
+      return bad();
+    }
     r.kind = CarmenRecord::Kind::kOdometry;
     r.robot_pose = p;
     return kRecord;
   }
   if (tag == "FLASER" || tag == "RLASER") {
-    size_t n;
+    uint64_t n = 0;
+    if (f.size() < 2 || !in.Count(1, "beam count", &n)) {
+      return f.size() < 2 ? Malformed("no beam count") : bad();
+    }
+    if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
+    const size_t fixed = 2 + kFlaserTail;
+    if (f.size() != fixed + n) {
+      if (f.size() < fixed) {
+        return Malformed(std::to_string(n) + " beams declared, so " + std::to_string(fixed + n) +
+                         " fields expected; found " + std::to_string(f.size()));
+      }
+      return Malformed(BeamsVersusValues(n, f.size() - fixed));
+    }
     geometry::Pose2D laser, robot;
-    if (!(in >> n) || !ReadRanges(in, n, &r.ranges) || !ReadPose(in, &laser) ||
-        !ReadPose(in, &robot) || !(in >> r.stamp)) {
-      return kMalformed;
+    if (!in.Ranges(2, n, &r.ranges) || !in.Pose(2 + n, "laser", &laser) ||
+        !in.Pose(5 + n, "odometry", &robot) || !in.Finite(8 + n, "ipc_timestamp", &r.stamp)) {
+      return bad();
     }
     FlaserGeometry(n, &r.start_angle, &r.angular_resolution);
     r.kind = CarmenRecord::Kind::kScan;
@@ -94,62 +225,97 @@ CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRec
     r.robot_pose = robot;
     return kRecord;
   }
-  if (tag.rfind("RAWLASER", 0) == 0 || tag.rfind("ROBOTLASER", 0) == 0) {
-    int type;
-    double fov, accuracy, remission_mode;
-    size_t n, m;
-    if (!(in >> type >> r.start_angle >> fov >> r.angular_resolution >> r.max_range >> accuracy >>
-          remission_mode >> n) ||
-        !ReadRanges(in, n, &r.ranges) || !(in >> m) || m > 100000) {
-      return kMalformed;
+  const bool robot_laser = tag.rfind("ROBOTLASER", 0) == 0;
+  if (robot_laser || tag.rfind("RAWLASER", 0) == 0) {
+    const size_t tail = robot_laser ? kRobotLaserTail : kStampFields;
+    if (f.size() < kLaserHeader + 1 + tail) {
+      return Malformed("too few fields for " + r.tag + ": " + std::to_string(f.size()) +
+                       " (at least " + std::to_string(kLaserHeader + 1 + tail) + ")");
     }
-    std::vector<float> remissions;
-    if (!ReadRanges(in, m, &remissions)) return kMalformed;
-    r.kind = CarmenRecord::Kind::kScan;
-    if (tag.rfind("ROBOTLASER", 0) == 0) {
+    int64_t type, remission_mode;
+    double fov, accuracy;
+    uint64_t n = 0, m = 0;
+    if (!in.Integer(1, "laser_type", &type) || !in.Finite(2, "start_angle", &r.start_angle) ||
+        !in.Finite(3, "fov", &fov) || !in.Finite(4, "angular_resolution", &r.angular_resolution) ||
+        !in.Finite(5, "maximum_range", &r.max_range) || !in.Finite(6, "accuracy", &accuracy) ||
+        !in.Integer(7, "remission_mode", &remission_mode) || !in.Count(8, "num_readings", &n)) {
+      return bad();
+    }
+    if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
+    const size_t remissions_at = kLaserHeader + n;  // the num_remissions field
+    const auto declared_m =
+        remissions_at < f.size() ? ParseCount(f[remissions_at]) : std::optional<uint64_t>();
+    if (!declared_m || *declared_m > f.size() ||
+        remissions_at + 1 + *declared_m + tail != f.size()) {
+      return Malformed(LaserCountMismatch(f, n, tail));
+    }
+    m = *declared_m;
+    if (m > limits_.max_beams) return Malformed(OverLimit(m, "remissions", limits_.max_beams));
+    if (!in.Ranges(kLaserHeader, n, &r.ranges) || !in.Numbers(remissions_at + 1, m, "remission")) {
+      return bad();
+    }
+    size_t next = remissions_at + 1 + m;
+    if (robot_laser) {
       geometry::Pose2D laser, robot;
       double fsd, ssd, turn;
-      if (!ReadPose(in, &laser) || !ReadPose(in, &robot) ||
-          !(in >> r.linear >> r.angular >> fsd >> ssd >> turn)) {
-        return kMalformed;
+      if (!in.Pose(next, "laser", &laser) || !in.Pose(next + 3, "robot", &robot) ||
+          !in.Finite(next + 6, "tv", &r.linear) || !in.Finite(next + 7, "rv", &r.angular) ||
+          !in.Finite(next + 8, "forward_safety_dist", &fsd) ||
+          !in.Finite(next + 9, "side_safety_dist", &ssd) ||
+          !in.Finite(next + 10, "turn_axis", &turn)) {
+        return bad();
       }
       r.laser_pose = laser;
       r.robot_pose = robot;
+      next += 11;
     }
-    return (in >> r.stamp) ? kRecord : kMalformed;
+    if (!in.Finite(next, "ipc_timestamp", &r.stamp)) return bad();
+    r.kind = CarmenRecord::Kind::kScan;
+    return kRecord;
   }
   if (tag == "PARAM") {
-    std::string name;
-    double value;
-    if (in >> name >> value && name == "structloc_laser_time_increment") time_increment_ = value;
+    if (f.size() >= 3 && f[1] == "structloc_laser_time_increment") {
+      const auto value = ParseFinite(f[2]);
+      if (!value || *value < 0.0 || *value > kMaxTimeIncrementS) {
+        return Malformed("structloc_laser_time_increment " + Quote(f[2]) +
+                         " is not a time between 0 and 1 s");
+      }
+      time_increment_ = *value;
+    }
     ++stats_.skipped["PARAM"];
     return kSkipped;
   }
-  ++stats_.skipped[tag];
+  ++stats_.skipped[r.tag];
   return kSkipped;
 }
 
 bool CarmenReader::Next(CarmenRecord& record) {
-  char buffer[1 << 16];
   std::string line;
-  while (std::fgets(buffer, sizeof(buffer), file_) != nullptr) {
-    line.assign(buffer);
-    while (!line.empty() && line.back() != '\n' && std::fgets(buffer, sizeof(buffer), file_)) {
-      line.append(buffer);
-    }
+  bool too_long = false;
+  while (lines_.Next(line, too_long)) {
     ++stats_.lines;
-    if (line.empty() || line[0] == '#' || line[0] == '\n') {
+    if (stats_.lines > limits_.max_lines) {
+      throw std::runtime_error(path_ + ": more than " + std::to_string(limits_.max_lines) +
+                               " lines; raise --max-lines if the log really is that long");
+    }
+    const size_t first = line.find_first_not_of(" \t\r\v\f");
+    if (first == std::string::npos || line[first] == '#') {
       ++stats_.comments;
       continue;
     }
-    const ParseResult result = Parse(line, record);
-    if (result == ParseResult::kRecord && std::isfinite(record.stamp)) {
+    const ParseResult result =
+        too_long ? Malformed("longer than " + std::to_string(limits_.MaxLineBytes()) +
+                             " bytes, more than a line of " + std::to_string(limits_.max_beams) +
+                             " beams can need (raise it with --max-beams)")
+                 : Parse(line, record);
+    if (result == ParseResult::kRecord) {
       (record.kind == CarmenRecord::Kind::kOdometry ? stats_.odometry : stats_.scans)++;
       return true;
     }
-    if (result != ParseResult::kSkipped) {
+    if (result == ParseResult::kMalformed) {
       ++stats_.malformed;
-      if (stats_.malformed_lines.size() < 5) stats_.malformed_lines.push_back(stats_.lines);
+      if (stats_.malformed_lines.size() < 5)
+        stats_.malformed_lines.push_back({stats_.lines, reason_});
     }
   }
   return false;

@@ -1,8 +1,13 @@
-// Streams a CARMEN log (.clf/.log, optionally .gz through `gzip -dc`): ODOM,
-// FLASER/RLASER (old format), RAWLASER1-4 and ROBOTLASER1-2 lines, plus our
-// PARAM structloc_laser_time_increment. Other message types are counted and
-// skipped; malformed lines are counted with their first line numbers, never
-// fatal, so that real logs with quirks read through.
+// Streams a CARMEN log (.clf/.log, plain or gzip-compressed, read through
+// zlib): ODOM, FLASER/RLASER (old format), RAWLASER1-4 and ROBOTLASER1-2
+// lines, plus our PARAM structloc_laser_time_increment. Other message types
+// are counted and skipped. A line is used only when its field count is exactly
+// what its declared beam and remission counts imply and every field parses;
+// otherwise it is counted as malformed with its line number and the reason,
+// never fatal, so that real logs with quirks read through. A range that is
+// NaN, infinite or beyond the float range (1e400) is one invalid beam (no
+// return), not a malformed line. A file that cannot be read to its end (corrupt
+// or truncated .gz, a folder) is an error.
 //
 // FLASER beam rule (CARMEN readlog.c): beams start at -90 deg; 181 or 180
 // beams -> 1 deg steps, 361 or 360 -> 0.5 deg, 401 or 400 -> 0.25 deg; any
@@ -11,12 +16,12 @@
 // dropped by the localisation's range gate.
 #pragma once
 
-#include <cstdio>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "log_lines.hpp"
 #include "pose2d.hpp"
 
 namespace structloc::logs {
@@ -36,25 +41,39 @@ struct CarmenRecord {
   std::vector<float> ranges;
 };
 
+// Limits that keep a hostile or mistaken log from exhausting memory or time.
+struct CarmenLimits {
+  size_t max_beams = 100000;    // ranges (and remissions) per laser line
+  size_t max_lines = 50000000;  // lines per log (about 2 days of a 50 Hz ODOM + 10 Hz laser log)
+  // The longest line read: 32 characters for each of 2 * max_beams values and
+  // the fixed fields. Longer lines are malformed and never held in memory.
+  size_t MaxLineBytes() const { return 32 * (2 * max_beams + 64); }
+};
+
+struct MalformedLine {
+  size_t line = 0;
+  std::string reason;  // e.g. "360 beams declared, 359 values"
+};
+
 struct CarmenStats {
   size_t lines = 0;
   size_t odometry = 0;
   size_t scans = 0;
   size_t comments = 0;
   size_t malformed = 0;
-  std::vector<size_t> malformed_lines;    // the first few
-  std::map<std::string, size_t> skipped;  // other message types by name
+  std::vector<MalformedLine> malformed_lines;  // the first few, with their reasons
+  std::map<std::string, size_t> skipped;       // other message types by name
 };
 
 class CarmenReader {
  public:
-  // Throws std::runtime_error when the file cannot be opened.
-  explicit CarmenReader(const std::string& path);
-  ~CarmenReader();
-  CarmenReader(const CarmenReader&) = delete;
-  CarmenReader& operator=(const CarmenReader&) = delete;
+  // Throws std::runtime_error naming the file when it cannot be opened, is a
+  // folder, or is named .gz without being gzip data.
+  explicit CarmenReader(const std::string& path, const CarmenLimits& limits = {});
 
-  // The next ODOM or scan record; false at the end of the file.
+  // The next ODOM or scan record; false at the end of the file. Throws
+  // std::runtime_error naming the file when it cannot be read to its end or
+  // has more than limits.max_lines lines.
   bool Next(CarmenRecord& record);
   const CarmenStats& Stats() const { return stats_; }
   // From PARAM structloc_laser_time_increment, when the log has it (else 0).
@@ -63,9 +82,11 @@ class CarmenReader {
  private:
   enum class ParseResult { kRecord, kSkipped, kMalformed };
   ParseResult Parse(const std::string& line, CarmenRecord& record);
-  FILE* file_ = nullptr;
-  bool pipe_ = false;
+  ParseResult Malformed(std::string reason);
   std::string path_;
+  CarmenLimits limits_;
+  LogLines lines_;
+  std::string reason_;  // why the last line was malformed
   CarmenStats stats_;
   double time_increment_ = 0.0;
 };

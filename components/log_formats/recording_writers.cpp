@@ -8,20 +8,15 @@
 namespace structloc::logs {
 namespace {
 
-void Open(std::ofstream& out, const std::string& path) {
-  out.open(path);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << std::setprecision(9);
-}
-
-void Check(std::ofstream& out, const std::string& path) {
+void Check(std::ostream& out, const std::string& path) {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
 }  // namespace
 
-CarmenWriter::CarmenWriter(const std::string& path) : path_(path) {
-  Open(out_, path);
+CarmenWriter::CarmenWriter(const std::string& path, const std::vector<std::string>& inputs)
+    : file_(path, inputs), out_(file_.Stream()) {
+  out_ << std::setprecision(9);
   out_ << "# CARMEN log written by structloc\n"
        << "# ODOM x y theta tv rv accel ipc_timestamp hostname logger_timestamp\n"
        << "# ROBOTLASER1 laser_type start_angle fov angular_res max_range accuracy remission_mode "
@@ -42,7 +37,7 @@ void CarmenWriter::Comment(const std::string& text) {
 void CarmenWriter::Odometry(double t, const geometry::Pose2D& p, double tv, double rv) {
   out_ << std::fixed << std::setprecision(6) << "ODOM " << p.x << " " << p.y << " " << p.theta
        << " " << tv << " " << rv << " 0 " << t << " structloc " << t << "\n";
-  Check(out_, path_);
+  Check(out_, file_.Path());
 }
 
 void CarmenWriter::RobotLaser(double t, const CarmenLaser& l, const std::vector<float>& ranges,
@@ -57,16 +52,16 @@ void CarmenWriter::RobotLaser(double t, const CarmenLaser& l, const std::vector<
   out_ << std::setprecision(6) << " 0 " << lp.x << " " << lp.y << " " << lp.theta << " " << rp.x
        << " " << rp.y << " " << rp.theta << " " << tv << " " << rv << " 0 0 0 " << t
        << " structloc " << t << "\n";
-  Check(out_, path_);
+  Check(out_, file_.Path());
 }
 
 void CarmenWriter::Close() {
-  out_.close();
-  if (out_.fail()) throw std::runtime_error(path_ + ": close failed");
+  file_.Commit();
 }
 
-TumWriter::TumWriter(const std::string& path) : path_(path) {
-  Open(out_, path);
+TumWriter::TumWriter(const std::string& path, const std::vector<std::string>& inputs)
+    : file_(path, inputs), out_(file_.Stream()) {
+  out_ << std::setprecision(9);
   out_ << "# timestamp x y z qx qy qz qw\n";
 }
 
@@ -74,30 +69,33 @@ void TumWriter::Pose(double t, const geometry::Pose2D& p) {
   out_ << std::fixed << std::setprecision(6) << t << " " << std::setprecision(6) << p.x << " "
        << p.y << " 0 0 0 " << std::setprecision(9) << std::sin(0.5 * p.theta) << " "
        << std::cos(0.5 * p.theta) << "\n";
-  Check(out_, path_);
+  Check(out_, file_.Path());
 }
 
 void TumWriter::Close() {
-  out_.close();
+  file_.Commit();
 }
 
-EncodersCsvWriter::EncodersCsvWriter(const std::string& path) : path_(path) {
-  Open(out_, path);
+EncodersCsvWriter::EncodersCsvWriter(const std::string& path,
+                                     const std::vector<std::string>& inputs)
+    : file_(path, inputs), out_(file_.Stream()) {
+  out_ << std::setprecision(9);
   out_ << "t,traction_ticks,steering_ticks\n";
 }
 
 void EncodersCsvWriter::Sample(double t, uint64_t traction, int64_t steering) {
   out_ << std::fixed << std::setprecision(6) << t << "," << traction << "," << steering << "\n";
-  Check(out_, path_);
+  Check(out_, file_.Path());
 }
 
 void EncodersCsvWriter::Close() {
-  out_.close();
+  file_.Commit();
 }
 
-FixesCsvWriter::FixesCsvWriter(const std::string& path, bool with_variances)
-    : path_(path), with_variances_(with_variances) {
-  Open(out_, path);
+FixesCsvWriter::FixesCsvWriter(const std::string& path, bool with_variances,
+                               const std::vector<std::string>& inputs)
+    : file_(path, inputs), out_(file_.Stream()), with_variances_(with_variances) {
+  out_ << std::setprecision(9);
   out_ << "t,x,y,theta" << (with_variances ? ",var_x,var_y,var_theta" : "") << "\n";
 }
 
@@ -106,11 +104,11 @@ void FixesCsvWriter::Fix(double t, const geometry::Pose2D& p, double vx, double 
        << std::setprecision(9) << p.theta;
   if (with_variances_) out_ << std::scientific << "," << vx << "," << vy << "," << vt;
   out_ << "\n";
-  Check(out_, path_);
+  Check(out_, file_.Path());
 }
 
 void FixesCsvWriter::Close() {
-  out_.close();
+  file_.Commit();
 }
 
 }  // namespace structloc::logs

@@ -1,14 +1,19 @@
 // Writers for the plain recording formats structloc produces, so other tools
 // read them too: CARMEN logs (ODOM and ROBOTLASER1 lines), TUM trajectories
 // ("t x y z qx qy qz qw", read by evo), the calibration's encoders.csv and
-// fixes.csv. DDS-free. Each writer throws std::runtime_error on I/O failure.
+// fixes.csv. DDS-free. Each writer writes to a temporary file beside its
+// target (config::OutputFile) that only Close() renames onto the target, so a
+// run that fails, or never reaches Close(), leaves an existing file untouched.
+// `inputs` names the run's input files, which a writer refuses to replace.
+// Each writer throws std::runtime_error (config::ConfigError for an unusable
+// target) naming the file on I/O failure, including a failed final flush.
 #pragma once
 
 #include <cstdint>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "output_file.hpp"
 #include "pose2d.hpp"
 
 namespace structloc::logs {
@@ -24,7 +29,7 @@ struct CarmenLaser {
 
 class CarmenWriter {
  public:
-  explicit CarmenWriter(const std::string& path);
+  explicit CarmenWriter(const std::string& path, const std::vector<std::string>& inputs = {});
   // ODOM x y theta tv rv accel ipc_timestamp hostname logger_timestamp
   void Odometry(double t, const geometry::Pose2D& pose, double tv, double rv);
   // ROBOTLASER1 with laser and robot poses in the odometry frame; non-finite
@@ -35,47 +40,52 @@ class CarmenWriter {
   void Comment(const std::string& text);
   // PARAM name value (CARMEN's parameter lines).
   void Param(const std::string& name, double value);
+  // Flushes and renames onto the target; throws when anything failed.
   void Close();
 
  private:
-  std::ofstream out_;
-  std::string path_;
+  config::OutputFile file_;
+  std::ostream& out_;
 };
 
 class TumWriter {
  public:
-  explicit TumWriter(const std::string& path);
+  explicit TumWriter(const std::string& path, const std::vector<std::string>& inputs = {});
   void Pose(double t, const geometry::Pose2D& pose);
+  // Flushes and renames onto the target; throws when anything failed.
   void Close();
 
  private:
-  std::ofstream out_;
-  std::string path_;
+  config::OutputFile file_;
+  std::ostream& out_;
 };
 
 // encoders.csv: t,traction_ticks,steering_ticks
 class EncodersCsvWriter {
  public:
-  explicit EncodersCsvWriter(const std::string& path);
+  explicit EncodersCsvWriter(const std::string& path, const std::vector<std::string>& inputs = {});
   void Sample(double t, uint64_t traction_ticks, int64_t steering_ticks);
+  // Flushes and renames onto the target; throws when anything failed.
   void Close();
 
  private:
-  std::ofstream out_;
-  std::string path_;
+  config::OutputFile file_;
+  std::ostream& out_;
 };
 
 // fixes.csv: t,x,y,theta[,var_x,var_y,var_theta]
 class FixesCsvWriter {
  public:
-  FixesCsvWriter(const std::string& path, bool with_variances);
+  FixesCsvWriter(const std::string& path, bool with_variances,
+                 const std::vector<std::string>& inputs = {});
   void Fix(double t, const geometry::Pose2D& pose, double var_x = 0, double var_y = 0,
            double var_theta = 0);
+  // Flushes and renames onto the target; throws when anything failed.
   void Close();
 
  private:
-  std::ofstream out_;
-  std::string path_;
+  config::OutputFile file_;
+  std::ostream& out_;
   bool with_variances_;
 };
 

@@ -1,33 +1,61 @@
 // MapCanvas drawing (see header).
 #include "map_canvas.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "strict_xml.hpp"
+
 namespace structloc::rendering {
 namespace {
 constexpr int kLegendBand = 70;
+constexpr int kTitleBand = 30;
+// Pixel coordinates are clamped to this far outside the picture: drawing then
+// still clips correctly for everything near it, and no cast to int overflows.
+constexpr double kFarPx = 1 << 24;
+
+int ToPixelInt(double v) {
+  if (!(v > -kFarPx)) return static_cast<int>(-kFarPx);  // also NaN
+  if (v > kFarPx) return static_cast<int>(kFarPx);
+  return static_cast<int>(v);
+}
 }  // namespace
 
-MapCanvas::MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre, int margin_px)
+MapCanvas::MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre, int margin_px,
+                     int max_side_px)
     : bounds_(bounds), scale_(pixels_per_metre), margin_(margin_px) {
-  const int w = static_cast<int>((bounds[2] - bounds[0]) * scale_) + 2 * margin_;
-  // A band of kLegendBand pixels above the map holds the legend; 30 below, the title.
-  const int h = static_cast<int>((bounds[3] - bounds[1]) * scale_) + 2 * margin_ + 30 + kLegendBand;
+  const double span_x = bounds[2] - bounds[0], span_y = bounds[3] - bounds[1];
+  if (!std::isfinite(span_x) || !std::isfinite(span_y) || span_x < 0.0 || span_y < 0.0) {
+    throw std::runtime_error("cannot draw the picture: its extent is not finite");
+  }
+  if (!(scale_ > 0.0) || !std::isfinite(scale_)) {
+    throw std::runtime_error("cannot draw the picture: pixels per metre must be positive");
+  }
+  const double room = std::max(1, max_side_px - 2 * margin_ - kTitleBand - kLegendBand);
+  const double span = std::max(span_x, span_y);
+  if (span * scale_ > room) {
+    scale_ = room / span;
+    scaled_down_ = true;
+  }
+  const int w = ToPixelInt(span_x * scale_) + 2 * margin_;
+  // A band of kLegendBand pixels above the map holds the legend; kTitleBand below, the title.
+  const int h = ToPixelInt(span_y * scale_) + 2 * margin_ + kTitleBand + kLegendBand;
   image_ = cv::Mat(std::max(h, 100), std::max(w, 100), CV_8UC3, cv::Scalar(255, 255, 255));
 }
 
 cv::Point MapCanvas::ToPixel(const Eigen::Vector2d& p) const {
-  return {static_cast<int>(margin_ + (p.x() - bounds_[0]) * scale_),
-          static_cast<int>(image_.rows - margin_ - 30 - (p.y() - bounds_[1]) * scale_)};
+  return {ToPixelInt(margin_ + (p.x() - bounds_[0]) * scale_),
+          ToPixelInt(image_.rows - margin_ - kTitleBand - (p.y() - bounds_[1]) * scale_)};
 }
 
 void MapCanvas::DrawWorld(const world::WorldModel& world) {
   for (const auto& w : world.Walls())
     cv::line(image_, ToPixel(w.a), ToPixel(w.b), colours::kWall, 3);
   for (const auto& c : world.Cylinders()) {
-    cv::circle(image_, ToPixel(c.centre), std::max(2, static_cast<int>(c.radius * scale_)),
+    cv::circle(image_, ToPixel(c.centre), std::max(2, ToPixelInt(c.radius * scale_)),
                colours::kPillar, cv::FILLED, cv::LINE_AA);
   }
   for (const auto& c : world.Corners()) {
@@ -39,8 +67,8 @@ void MapCanvas::DrawWorld(const world::WorldModel& world) {
 void MapCanvas::DrawObstacles(const world::Scene& obstacles, const cv::Scalar& colour) {
   for (const auto& s : obstacles.segments) cv::line(image_, ToPixel(s.a), ToPixel(s.b), colour, 2);
   for (const auto& c : obstacles.circles) {
-    cv::circle(image_, ToPixel(c.centre), std::max(2, static_cast<int>(c.radius * scale_)), colour,
-               2, cv::LINE_AA);
+    cv::circle(image_, ToPixel(c.centre), std::max(2, ToPixelInt(c.radius * scale_)), colour, 2,
+               cv::LINE_AA);
   }
 }
 
@@ -88,8 +116,34 @@ void MapCanvas::DrawTitle(const std::string& text) {
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
 }
 
+void MapCanvas::WriteTo(config::OutputFile& file) const {
+  const std::string& path = file.Path();
+  const size_t dot = path.find_last_of('.');
+  std::vector<uchar> encoded;
+  if (dot == std::string::npos || !cv::imencode(path.substr(dot), image_, encoded)) {
+    throw std::runtime_error(path + ": cannot encode the picture");
+  }
+  file.Stream().write(reinterpret_cast<const char*>(encoded.data()),
+                      static_cast<std::streamsize>(encoded.size()));
+}
+
 void MapCanvas::Save(const std::string& path) const {
-  if (!cv::imwrite(path, image_)) throw std::runtime_error(path + ": cannot write the PNG");
+  CheckPictureName(path);
+  config::OutputFile file(path);
+  WriteTo(file);
+  file.Commit();
+}
+
+void MapCanvas::CheckPictureName(const std::string& path) {
+  bool known = false;
+  try {
+    known = cv::haveImageWriter(path);
+  } catch (const cv::Exception&) {
+    known = false;
+  }
+  if (!known) {
+    throw config::ConfigError(path + ": not a picture name OpenCV can write; name it .png");
+  }
 }
 
 }  // namespace structloc::rendering

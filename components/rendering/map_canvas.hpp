@@ -1,6 +1,11 @@
 // Draws maps, scenes, paths, poses and scans into a PNG with OpenCV: the
 // pictures of `structloc render`, the replay's --plot and the demo's
 // Fig. 44-style summary. DDS-free. Map frame x right, y up.
+//
+// The picture never exceeds max_side_px on a side: a larger extent (a map in
+// millimetres, walls a million metres long) is drawn at a smaller scale
+// instead of requesting gigabytes, and coordinates far outside the picture
+// are clamped before they become pixel integers.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "output_file.hpp"
 #include "pose2d.hpp"
 #include "ray_cast.hpp"
 #include "world_model.hpp"
@@ -16,8 +22,17 @@ namespace structloc::rendering {
 
 class MapCanvas {
  public:
-  // bounds: min x, min y, max x, max y of what must be visible (metres).
-  MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre = 40.0, int margin_px = 40);
+  static constexpr int kDefaultMaxSidePx = 4096;
+
+  // bounds: min x, min y, max x, max y of what must be visible (metres);
+  // pixels_per_metre is lowered when the map would exceed max_side_px. Throws
+  // std::runtime_error when the bounds are not finite.
+  MapCanvas(const Eigen::Vector4d& bounds, double pixels_per_metre = 40.0, int margin_px = 40,
+            int max_side_px = kDefaultMaxSidePx);
+
+  // The scale used, and whether it is below the one asked for.
+  double PixelsPerMetre() const { return scale_; }
+  bool ScaledDown() const { return scaled_down_; }
 
   void DrawWorld(const world::WorldModel& world);
   void DrawObstacles(const world::Scene& obstacles, const cv::Scalar& colour);
@@ -30,14 +45,21 @@ class MapCanvas {
   // Legend entries (colour, text), drawn top left.
   void DrawLegend(const std::vector<std::pair<cv::Scalar, std::string>>& entries);
   void DrawTitle(const std::string& text);
-  // Throws std::runtime_error when the file cannot be written.
+  // Encodes the picture in the format its file name asks for and writes it
+  // through `file` (Commit() is left to the caller); throws std::runtime_error.
+  void WriteTo(config::OutputFile& file) const;
+  // WriteTo a new file and Commit(): an existing picture is replaced only on success.
   void Save(const std::string& path) const;
+  // Throws config::ConfigError when OpenCV cannot write pictures named like
+  // `path` (e.g. "p.xyz"), so that callers refuse it before doing any work.
+  static void CheckPictureName(const std::string& path);
 
   cv::Point ToPixel(const Eigen::Vector2d& p) const;
 
  private:
   Eigen::Vector4d bounds_;
   double scale_;
+  bool scaled_down_ = false;
   int margin_;
   cv::Mat image_;
 };

@@ -4,15 +4,18 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <sstream>
 
 #include "localiser_options.hpp"
 #include "map_canvas.hpp"
+#include "output_file.hpp"
 #include "pose_tracker.hpp"
 #include "prefilter.hpp"
 #include "recording_writers.hpp"
+#include "strict_xml.hpp"
 #include "world_model_xml.hpp"
 
 namespace structloc::replay {
@@ -33,21 +36,36 @@ struct PendingScan {
 
 class Replayer {
  public:
-  explicit Replayer(const ReplayOptions& o) : o_(o), out_(o.out_tum) {
+  // Reads and checks every input, then opens the outputs (temporary files).
+  explicit Replayer(const ReplayOptions& o) : o_(o) {
+    if (!o.initial_pose) throw config::ConfigError("replay needs --initial-pose \"X Y THETA\"");
+    if (!o.plot_path.empty()) rendering::MapCanvas::CheckPictureName(o.plot_path);
+    RefuseSameOutputs();
     if (!o.no_map) world_ = std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path));
     if (!o.params_path.empty()) params_ = localisation::LoadLocaliserOptions(o.params_path);
-    if (!o.initial_pose) throw std::runtime_error("replay needs --initial-pose \"X Y THETA\"");
-    if (!o.fixes_path.empty()) fixes_ = std::make_unique<logs::FixesCsvWriter>(o.fixes_path, true);
+    if (!o.truth_path.empty()) {
+      truth_ = logs::ReadTum(o.truth_path);
+      if (truth_.empty()) {
+        throw std::runtime_error(o.truth_path +
+                                 ": no poses in it (TUM lines \"t x y z qx qy qz qw\")");
+      }
+    }
+    reader_ = std::make_unique<logs::CarmenReader>(o.log_path, o.limits);
+    const std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
+    out_ = std::make_unique<logs::TumWriter>(o.out_tum, inputs);
+    if (!o.fixes_path.empty()) {
+      fixes_ = std::make_unique<logs::FixesCsvWriter>(o.fixes_path, true, inputs);
+    }
+    if (!o.plot_path.empty()) plot_ = std::make_unique<config::OutputFile>(o.plot_path, inputs);
   }
 
   ReplayReport Run() {
     report_.no_map = o_.no_map;
-    logs::CarmenReader reader(o_.log_path);
     logs::CarmenRecord r;
     size_t records = 0;
-    while (reader.Next(r)) {
+    while (reader_->Next(r)) {
       ++records;
-      time_increment_ = reader.LaserTimeIncrement();
+      time_increment_ = reader_->LaserTimeIncrement();
       if (r.kind == logs::CarmenRecord::Kind::kOdometry) {
         AddOdometry(r.stamp, *r.robot_pose);
       } else {
@@ -58,10 +76,15 @@ class Replayer {
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
     }
     Drain(true);
-    report_.log = reader.Stats();
-    out_.Close();
-    if (fixes_) fixes_->Close();
+    report_.log = reader_->Stats();
+    if (report_.scans_used == 0) {
+      throw std::runtime_error(o_.log_path + ": no scan could be localised, nothing written\n" +
+                               FormatInputSummary(report_));
+    }
     Finish();
+    out_->Close();
+    if (fixes_) fixes_->Close();
+    if (plot_) plot_->Commit();
     return report_;
   }
 
@@ -196,7 +219,7 @@ class Replayer {
   }
 
   void Emit(const logs::CarmenRecord& rec, const geometry::Pose2D& pose) {
-    out_.Pose(rec.stamp, pose);
+    out_->Pose(rec.stamp, pose);
     report_.estimate.push_back({rec.stamp, pose});
     if (!o_.plot_path.empty() && report_.scans_used % 10 == 1) {
       const geometry::Pose2D laser = geometry::Compose(pose, report_.sensor_mount);
@@ -214,13 +237,28 @@ class Replayer {
         report_.scans_used > 0 ? static_cast<double>(features_) / report_.scans_used : 0.0;
     report_.median_update_us = Percentile(times_us_, 0.5);
     report_.p99_update_us = Percentile(times_us_, 0.99);
-    std::vector<logs::StampedPose> truth;
     if (!o_.truth_path.empty()) {
-      truth = logs::ReadTum(o_.truth_path);
-      report_.estimate_error = CompareTrajectories(report_.estimate, truth);
-      report_.odometry_error = CompareTrajectories(odometry_only_, truth);
+      report_.estimate_error = CompareTrajectories(report_.estimate, truth_);
+      report_.odometry_error = CompareTrajectories(odometry_only_, truth_);
     }
-    if (!o_.plot_path.empty()) Plot(truth);
+    if (plot_) Plot(truth_);
+  }
+
+  // Two outputs of one run must not be the same file.
+  void RefuseSameOutputs() const {
+    const std::vector<std::pair<std::string, std::string>> outputs = {
+        {"--out", o_.out_tum}, {"--fixes-out", o_.fixes_path}, {"--plot", o_.plot_path}};
+    for (size_t i = 0; i < outputs.size(); ++i) {
+      for (size_t j = i + 1; j < outputs.size(); ++j) {
+        const auto& [a, path_a] = outputs[i];
+        const auto& [b, path_b] = outputs[j];
+        std::error_code error;
+        if (!path_a.empty() && !path_b.empty() &&
+            (path_a == path_b || std::filesystem::equivalent(path_a, path_b, error))) {
+          throw config::ConfigError(path_a + ": given as both " + a + " and " + b);
+        }
+      }
+    }
   }
 
   void Plot(const std::vector<logs::StampedPose>& truth) {
@@ -246,8 +284,12 @@ class Replayer {
     };
     const auto truth_path = path(truth), odom_path = path(odometry_only_),
                est_path = path(report_.estimate);
-    if (!std::isfinite(bounds[0])) return;
     const double span = std::max(bounds[2] - bounds[0], bounds[3] - bounds[1]);
+    if (!std::isfinite(span)) {
+      throw std::runtime_error(o_.plot_path +
+                               ": cannot draw the plot: the map or the poses "
+                               "reach beyond any finite extent");
+    }
     rendering::MapCanvas canvas(bounds, std::clamp(1200.0 / std::max(span, 1.0), 2.0, 60.0));
     if (world_) canvas.DrawWorld(*world_);
     canvas.DrawPoints(scan_points_, cv::Scalar(230, 200, 160), 1);
@@ -261,13 +303,16 @@ class Replayer {
     if (!truth.empty()) legend.insert(legend.begin(), {rendering::colours::kTruth, "ground truth"});
     canvas.DrawLegend(legend);
     canvas.DrawTitle("replay of " + o_.log_path);
-    canvas.Save(o_.plot_path);
+    canvas.WriteTo(*plot_);
   }
 
   ReplayOptions o_;
-  logs::TumWriter out_;
-  std::unique_ptr<logs::FixesCsvWriter> fixes_;
   std::unique_ptr<world::WorldModel> world_;
+  std::vector<logs::StampedPose> truth_;
+  std::unique_ptr<logs::CarmenReader> reader_;
+  std::unique_ptr<logs::TumWriter> out_;
+  std::unique_ptr<logs::FixesCsvWriter> fixes_;
+  std::unique_ptr<config::OutputFile> plot_;
   localisation::LocaliserOptions params_;
   std::unique_ptr<PoseTracker> tracker_;
   std::vector<logs::StampedPose> odometry_;
@@ -294,21 +339,27 @@ ReplayReport RunReplay(const ReplayOptions& options) {
   return Replayer(options).Run();
 }
 
+std::string FormatInputSummary(const ReplayReport& r) {
+  std::ostringstream out;
+  out << "log: " << r.log.lines << " lines, " << r.log.scans << " scans, " << r.log.odometry
+      << " odometry lines, " << r.log.malformed << " malformed\n";
+  for (const auto& m : r.log.malformed_lines) {
+    out << "  malformed line " << m.line << ": " << m.reason << "\n";
+  }
+  if (r.log.malformed > r.log.malformed_lines.size()) {
+    out << "  (" << r.log.malformed - r.log.malformed_lines.size() << " more malformed lines)\n";
+  }
+  for (const auto& [type, n] : r.log.skipped) out << "  skipped " << n << " " << type << " lines\n";
+  out << "scans used: " << r.scans_used << "\n";
+  for (const auto& [why, n] : r.scans_rejected) out << "  rejected " << n << ": " << why << "\n";
+  return out.str();
+}
+
 std::string FormatReport(const ReplayReport& r) {
   std::ostringstream out;
   out.setf(std::ios::fixed);
   out.precision(1);
-  out << "log: " << r.log.lines << " lines, " << r.log.scans << " scans, " << r.log.odometry
-      << " odometry lines, " << r.log.malformed << " malformed";
-  if (!r.log.malformed_lines.empty()) {
-    out << " (first at line";
-    for (size_t l : r.log.malformed_lines) out << " " << l;
-    out << ")";
-  }
-  out << "\n";
-  for (const auto& [type, n] : r.log.skipped) out << "  skipped " << n << " " << type << " lines\n";
-  out << "scans used: " << r.scans_used << "\n";
-  for (const auto& [why, n] : r.scans_rejected) out << "  rejected " << n << ": " << why << "\n";
+  out << FormatInputSummary(r);
   if (r.no_map) {
     out << "features matched per scan: n/a (--no-map: odometry passed through; prefilter and "
            "line fits timed)\n";
@@ -324,6 +375,10 @@ std::string FormatReport(const ReplayReport& r) {
   out << "sensor mounting used: x " << r.sensor_mount.x << " m, y " << r.sensor_mount.y
       << " m, theta " << r.sensor_mount.theta << " rad\n";
   auto error = [&out](const char* what, const TrajectoryError& e) {
+    if (e.matched == 0) {
+      out << what << ": n/a (no estimated pose matches a ground-truth stamp)\n";
+      return;
+    }
     out.precision(1);
     out << what << ": position RMSE " << 1e3 * e.position_rmse_m << " mm, max "
         << 1e3 * e.position_max_m << " mm, heading RMSE " << std::setprecision(3)

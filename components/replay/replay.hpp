@@ -4,6 +4,10 @@
 // given ground truth, the error of the estimate and of odometry alone.
 // --no-map passes odometry through while still parsing, prefiltering and
 // line-fitting every scan, for logs without a world model. DDS-free.
+//
+// Every input is read and checked before any output is opened; outputs are
+// written to temporary files renamed only when the run succeeded, and never
+// over an input. A run that localises no scan is an error.
 #pragma once
 
 #include <functional>
@@ -19,14 +23,15 @@ namespace structloc::replay {
 
 struct ReplayOptions {
   std::string map_path;                          // world model (unless no_map)
-  std::string log_path;                          // CARMEN log (.gz read through gzip)
+  std::string log_path;                          // CARMEN log (plain or .gz)
   std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot
   std::string out_tum;                           // estimate, one line per scan
   std::string params_path;  // localisation parameters (default: built-in defaults)
   std::string truth_path;   // optional TUM ground truth
-  std::string plot_path;    // optional PNG
+  std::string plot_path;    // optional picture (.png)
   std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
   bool no_map = false;
+  logs::CarmenLimits limits;  // beams per scan and lines per log
   // Called every few percent of the log with the scans done so far.
   std::function<void(size_t scans, double fraction)> progress;
 };
@@ -48,10 +53,15 @@ struct ReplayReport {
   std::vector<logs::StampedPose> estimate;
 };
 
-// Throws std::runtime_error (or config::ConfigError) with a message a user can act on.
+// Throws std::runtime_error (or config::ConfigError) with a message a user can
+// act on when an input is unusable, no scan could be localised, or an output
+// could not be written; outputs are then left as they were.
 ReplayReport RunReplay(const ReplayOptions& options);
 
 // The summary as printed by "structloc replay".
 std::string FormatReport(const ReplayReport& report);
+// Its first part: lines read, malformed lines with their reasons, scans used
+// and rejected by reason (also the explanation when no scan was usable).
+std::string FormatInputSummary(const ReplayReport& report);
 
 }  // namespace structloc::replay
