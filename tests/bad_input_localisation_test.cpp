@@ -1,15 +1,263 @@
-// Regression tests for the bad-input review of 12de806 (localisation defects): each
-// test is named after the defect it keeps fixed (H = high, M = medium, L = low).
+// Regression tests for the bad-input review of 12de806 (localisation defects):
+// each test is named after the defect it keeps fixed (H = high, M = medium,
+// L = low). The tracker-level tests run the core directly; the others run the
+// real structloc_localisation process against a feeder over DDS.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include "child_process.hpp"
 #include "cli_runner.hpp"
+#include "localisation_feed.hpp"
+#include "pose_tracker.hpp"
+#include "scenario.hpp"
 #include "temp_dir.hpp"
-#include "test_paths.hpp"
+#include "test_domains.hpp"
+#include "world_model_xml.hpp"
 
 namespace structloc {
 namespace {
 
-TEST(BadInputLocalisation, ScaffoldBuilds) { SUCCEED(); }
+using namespace std::chrono_literals;
+using localisation::PoseTracker;
+using localisation::Rejection;
+
+constexpr int kDomain = testing::domains::kBadInputLocalisation;
+
+struct TrackerFixture {
+  world::WorldModel world = world::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"));
+  localisation::LocaliserOptions options =
+      localisation::LoadLocaliserOptions(testing::SourcePath("maps/params/office_sick.xml"));
+  PoseTracker tracker{world, options, localisation::TrackerOptions{}};
+};
+
+Eigen::Matrix3d DiagonalCovariance() {
+  return Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
+}
+
+std::string PoseArgument(const geometry::Pose2D& p) {
+  return std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta);
+}
+
+process::ChildProcess StartLocalisation(std::vector<std::string> extra, int domain = kDomain) {
+  std::vector<std::string> args = {"--domain", std::to_string(domain), "--qos",
+                                   testing::ShippedQos()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return process::ChildProcess(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation", args);
+}
+
+simulation::Scenario Office(double seconds) {
+  auto scenario = simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+  scenario.duration_s = seconds;
+  return scenario;
+}
+
+// --- tracker level --------------------------------------------------------
+
+TEST(BadInputLocalisation, H4_InitialPoseCovarianceMustBePositiveDefinite) {
+  TrackerFixture f;
+  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {0, 0, 0}).has_value());
+  Eigen::Matrix3d not_pd = Eigen::Vector3d(1e-6, 1e-6, 1e-6).asDiagonal();
+  not_pd(0, 1) = not_pd(1, 0) = 1.0;  // positive diagonal, indefinite
+  EXPECT_EQ(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, not_pd), Rejection::kInitialPoseInvalid);
+  Eigen::Matrix3d asymmetric = DiagonalCovariance();
+  asymmetric(0, 2) = 0.005;
+  EXPECT_EQ(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, asymmetric), Rejection::kInitialPoseInvalid);
+  EXPECT_FALSE(f.tracker.HasInitialPose());
+  EXPECT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
+  EXPECT_TRUE(f.tracker.HasInitialPose());
+  EXPECT_NE(std::string(localisation::ToString(Rejection::kInitialPoseInvalid))
+                .find("symmetric positive definite"),
+            std::string::npos);
+}
+
+TEST(BadInputLocalisation, M1_OdometryWithoutAUnitQuaternionOrWithAHeadingJumpIsRejected) {
+  geometry_msgs::msg::Quaternion zero;
+  zero.w(0.0);
+  EXPECT_TRUE(std::isnan(dds::YawFromQuaternion(zero)));
+  auto scaled = dds::ToQuaternion(0.7);
+  scaled.z(scaled.z() * 3);
+  scaled.w(scaled.w() * 0.2);
+  EXPECT_TRUE(std::isnan(dds::YawFromQuaternion(scaled)));
+  EXPECT_NEAR(dds::YawFromQuaternion(dds::ToQuaternion(0.7)), 0.7, 1e-12);
+
+  TrackerFixture f;
+  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {0, 0, 1.5}).has_value());
+  EXPECT_EQ(f.tracker.AddOdometry(1.02, {0, 0, std::nan("")}), Rejection::kOdometryNonFinite);
+  // Yaw 1.5 -> 0 in 20 ms: what an all-zero quaternion read as yaw 0 looked like.
+  EXPECT_EQ(f.tracker.AddOdometry(1.04, {0.001, 0, 0.0}), Rejection::kOdometryJump);
+  EXPECT_FALSE(f.tracker.AddOdometry(1.06, {0.002, 0, 1.52}).has_value());
+}
+
+TEST(BadInputLocalisation, M11_ScanWithAnAbsurdTimeIncrementIsRejected) {
+  TrackerFixture f;
+  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {2, 6.5, 0}).has_value());
+  ASSERT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
+  std::vector<float> ranges(361, 5.0f);
+  localisation::ScanInput scan;
+  scan.stamp = 1.0;
+  scan.angle_min = -1.57;
+  scan.angle_increment = 3.14 / 360;
+  scan.angle_max = scan.angle_min + 360 * scan.angle_increment;
+  scan.time_increment = 1e30;
+  scan.range_max = 30;
+  scan.ranges = ranges.data();
+  scan.count = ranges.size();
+  const auto outcome = f.tracker.ProcessScan(scan, 0.0);
+  EXPECT_EQ(outcome.verdict, PoseTracker::ScanVerdict::kRejected);
+  EXPECT_EQ(outcome.rejection, Rejection::kScanTooLong);
+}
+
+TEST(BadInputLocalisation, M7_LocaliserRejectionsAreCountedWithTheirReason) {
+  TrackerFixture f;
+  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {2, 6.5, 0}).has_value());
+  ASSERT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
+  const size_t beams = static_cast<size_t>(f.options.max_beams) + 1;
+  std::vector<float> ranges(beams, 5.0f);
+  localisation::ScanInput scan;
+  scan.stamp = 1.0;
+  scan.angle_min = -1.57;
+  scan.angle_increment = 3.14 / static_cast<double>(beams - 1);
+  scan.angle_max = scan.angle_min + static_cast<double>(beams - 1) * scan.angle_increment;
+  scan.range_max = 30;
+  scan.ranges = ranges.data();
+  scan.count = ranges.size();
+  const auto outcome = f.tracker.ProcessScan(scan, 0.0);
+  EXPECT_EQ(outcome.verdict, PoseTracker::ScanVerdict::kRejected);
+  EXPECT_EQ(outcome.rejection, Rejection::kTooManyBeams);
+  EXPECT_EQ(f.tracker.Stats().scans_lost, 0u);
+  EXPECT_EQ(f.tracker.Stats().Rejected(), 1u);
+}
+
+// --- the component over DDS -----------------------------------------------
+
+TEST(BadInputLocalisation, H4_M1_M11_HostileSamplesAreRejectedWithReasonsAndTrackingHolds) {
+  const auto scenario = Office(10.0);
+  testing::LocalisationFeed feed("hostile_feeder", kDomain);
+  auto localisation = StartLocalisation({"--initial-pose", PoseArgument(scenario.initial_pose)});
+  ASSERT_TRUE(feed.WaitForLocalisation(10s)) << localisation.CapturedOutput();
+  feed.Play(scenario, [&](int k, const simulation::SimState& s, sensor_msgs::msg::LaserScan& scan) {
+    if (k == 30) {
+      // H4: a wrong pose with a positive diagonal that is not positive definite.
+      geometry_msgs::msg::PoseWithCovarianceStamped bad;
+      bad.header().stamp(scan.header().stamp());
+      bad.header().frame_id("map");
+      bad.pose().pose().position().x(s.truth.x + 0.3);
+      bad.pose().pose().position().y(s.truth.y);
+      bad.pose().pose().orientation(dds::ToQuaternion(s.truth.theta));
+      bad.pose().covariance()[0] = bad.pose().covariance()[7] = 1e-6;
+      bad.pose().covariance()[35] = 1e-6;
+      bad.pose().covariance()[1] = bad.pose().covariance()[6] = 1.0;
+      feed.InitialPoseWriter().Write(bad);
+    }
+    if (k % 5 == 0) {
+      // M1: an uninitialised orientation on every fifth odometry sample.
+      auto odom = simulator::ToOdometry(s, 0.0, testing::LocalisationFeed::kClockOffset);
+      odom.header().stamp(dds::ToRosTime(dds::FromRosTime(odom.header().stamp()) + 0.001));
+      odom.pose().pose().orientation(geometry_msgs::msg::Quaternion());
+      odom.pose().pose().orientation().w(0.0);
+      feed.OdometryWriter().Write(odom);
+    }
+    if (k % 7 == 0) scan.time_increment(1e30f);  // M11
+    return true;
+  });
+  const auto headline_while_fed = feed.Headline().second;
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_FALSE(localisation.Poll().has_value()) << localisation.CapturedOutput();
+  EXPECT_FALSE(feed.NonFinitePoseSeen());
+  EXPECT_GT(feed.Poses(), 70u);  // of 85 good scans
+  EXPECT_LT(feed.WorstError(), 0.015);
+  EXPECT_NE(feed.Value("rejected: initial pose not finite or its covariance not symmetric "
+                       "positive definite"),
+            "");
+  EXPECT_NE(feed.Value("rejected: odometry pose or stamp not finite, or its orientation not a "
+                       "unit quaternion"),
+            "");
+  EXPECT_NE(feed.Value("rejected: time_increment x beams longer than max_scan_duration_s"), "");
+  EXPECT_EQ(headline_while_fed, "localised");
+}
+
+TEST(BadInputLocalisation, M7_DiagnosticsNameTheMissingSourceAndEscalate) {
+  testing::LocalisationFeed feed("silent_feeder", kDomain);
+  auto localisation = StartLocalisation({"--initial-pose", "2 6.5 0"});
+  ASSERT_TRUE(feed.WaitForLocalisation(10s)) << localisation.CapturedOutput();
+  // An initial pose was given, but no odometry arrives: say that, not "no initial pose".
+  ASSERT_TRUE(testing::WaitUntil([&] { return feed.Headline().first == 1; }, 5s));
+  EXPECT_NE(feed.Headline().second.find("no odometry on rt/odom yet"), std::string::npos)
+      << feed.Headline().second;
+  // Silent for longer than 5 s: an error, with the elapsed time.
+  ASSERT_TRUE(testing::WaitUntil([&] { return feed.Headline().first == 2; }, 8s))
+      << feed.Headline().second;
+  EXPECT_NE(feed.Headline().second.find("no odometry on rt/odom yet for "), std::string::npos);
+  EXPECT_NE(localisation.CapturedOutput().find("ERROR no odometry on rt/odom yet"),
+            std::string::npos)
+      << localisation.CapturedOutput();
+}
+
+TEST(BadInputLocalisation, M7_IncompatibleQosIsReported) {
+  testing::LocalisationFeed feed("qos_feeder", kDomain);
+  // A reader that wants TRANSIENT_LOCAL durability from the VOLATILE pose writer.
+  feed.Node().Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      {"rt/pose", "latched_result"}, [](const geometry_msgs::msg::PoseWithCovarianceStamped&) {});
+  auto localisation = StartLocalisation({"--initial-pose", "2 6.5 0"});
+  ASSERT_TRUE(feed.WaitForLocalisation(10s)) << localisation.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return feed.AnyMessageContains("incompatible DURABILITY QoS"); }, 10s))
+      << localisation.CapturedOutput();
+  EXPECT_EQ(feed.Headline().first, 2);
+  EXPECT_NE(localisation.CapturedOutput().find("publication on rt/pose cannot match a peer"),
+            std::string::npos)
+      << localisation.CapturedOutput();
+}
+
+TEST(BadInputLocalisation, M8_TwoInstancesOnOneDomainAreDetected) {
+  testing::LocalisationFeed feed("duplicate_watcher", kDomain);
+  auto first = StartLocalisation({});
+  auto second = StartLocalisation({});
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] {
+        return first.CapturedOutput().find("another participant named 'localisation'") !=
+                   std::string::npos &&
+               second.CapturedOutput().find("another participant named 'localisation'") !=
+                   std::string::npos;
+      },
+      15s))
+      << first.CapturedOutput() << second.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return feed.AnyMessageContains("two instances of this component"); }, 10s));
+  EXPECT_EQ(feed.Headline().first, 2);
+}
+
+TEST(BadInputLocalisation, M10_UnusableStateFileIsIgnoredAndTheComponentStarts) {
+  testing::TempDir dir;
+  std::filesystem::create_directory(dir / "a_folder");
+  for (const auto& state :
+       {dir.Write("empty.txt", ""), dir.Write("nan.txt", "map_to_odom nan 1 2 3 4 5\n"),
+        dir / "a_folder"}) {
+    auto localisation = StartLocalisation({"--state-file", state}, kDomain);
+    ASSERT_TRUE(testing::WaitUntil(
+        [&] { return localisation.CapturedOutput().find("running") != std::string::npos; }, 10s))
+        << localisation.CapturedOutput();
+    EXPECT_NE(localisation.CapturedOutput().find("ignoring the saved pose: " + state),
+              std::string::npos)
+        << localisation.CapturedOutput();
+    EXPECT_FALSE(localisation.Poll().has_value()) << localisation.CapturedOutput();
+    EXPECT_EQ(localisation.Stop(5s), 0);
+  }
+}
+
+TEST(BadInputLocalisation, L6_DomainOutOfRangeIsAConfigurationError) {
+  for (const char* domain : {"300", "-1"}) {
+    const auto result = testing::RunExecutable(
+        "structloc_localisation", {"--domain", domain, "--qos", testing::ShippedQos()}, 20s);
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    EXPECT_NE(result.output.find("configuration error: domain id"), std::string::npos)
+        << result.output;
+  }
+  process::ChildProcess warned(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+                               {"--domain", "110", "--qos", testing::ShippedQos(), "--help"});
+  ASSERT_TRUE(warned.WaitExit(10s).has_value());
+}
 
 }  // namespace
 }  // namespace structloc
