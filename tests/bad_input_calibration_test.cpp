@@ -327,8 +327,10 @@ TEST(BadInputCalibration, L4_InfiniteAndNegativeVariancesAreNamedAsSuch) {
 TEST(BadInputCalibration, L4_HugeValuesAreNotPrintedWithHundredsOfDigits) {
   const testing::TempDir dir;
   auto recording = Simulate({});
-  // One absurd fix far away: the run fails, but every number stays readable.
-  recording.fixes_csv += "2000,1e150,1e150,0\n";
+  // The last fix absurdly far away: the run fails, but every number stays readable.
+  const size_t last_line = recording.fixes_csv.rfind('\n', recording.fixes_csv.size() - 2) + 1;
+  const size_t x = recording.fixes_csv.find(',', last_line) + 1;
+  recording.fixes_csv.replace(x, recording.fixes_csv.find(',', x) - x, "1e150");
   const auto run = RunCalibrate(dir, recording, RobotXml());
   EXPECT_NE(run.cli.exit_code, 0) << run.cli.output;
   EXPECT_FALSE(std::regex_search(run.cli.output, std::regex("[0-9]{30}"))) << run.cli.output;

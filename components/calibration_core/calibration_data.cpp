@@ -42,8 +42,9 @@ std::string Where(const std::string& path, size_t line) {
 uint64_t Ticks(const std::string& path, size_t line, const std::string& text, uint64_t max_value,
                int bits) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
-    throw std::runtime_error(Where(path, line) + "traction_ticks '" + text +
-                             "' is not a non-negative integer (the raw counter value)");
+    throw std::runtime_error(Where(path, line) + "'" + text +
+                             "' is not a non-negative integer (traction_ticks holds the raw "
+                             "counter value)");
   }
   errno = 0;
   const unsigned long long value = std::strtoull(text.c_str(), nullptr, 10);

@@ -479,23 +479,29 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
 
 double DeadReckoningRms(const std::vector<EncoderSample>& encoders, const std::vector<Fix>& fixes,
                         const kinematics::RobotParameters& p) {
-  if (fixes.empty()) return 0.0;
+  if (encoders.empty()) return 0.0;
+  // Only fixes the encoders cover: odometry says nothing about the others.
+  const auto inside = [&](const Fix& f) {
+    return f.t >= encoders.front().t && f.t <= encoders.back().t;
+  };
+  const auto first = std::find_if(fixes.begin(), fixes.end(), inside);
+  if (first == fixes.end()) return 0.0;
   // The base pose at the first fix, from the sensor pose and the mounting.
-  const geometry::Pose2D start = geometry::Compose(fixes.front().pose, geometry::Inverse(p.sensor));
+  const geometry::Pose2D start = geometry::Compose(first->pose, geometry::Inverse(p.sensor));
   kinematics::DeadReckoning dr(p, start);
   size_t k = 0;
-  while (k < encoders.size() && encoders[k].t <= fixes.front().t) ++k;
+  while (k < encoders.size() && encoders[k].t <= first->t) ++k;
   if (k > 0) --k;
   dr.Add(encoders[k].traction_ticks, encoders[k].steering_ticks);
   double sum = 0.0;
   size_t n = 0;
-  for (const auto& f : fixes) {
-    while (k + 1 < encoders.size() && encoders[k + 1].t <= f.t) {
+  for (auto f = first; f != fixes.end() && inside(*f); ++f) {
+    while (k + 1 < encoders.size() && encoders[k + 1].t <= f->t) {
       ++k;
       dr.Add(encoders[k].traction_ticks, encoders[k].steering_ticks);
     }
     const geometry::Pose2D sensor = geometry::Compose(dr.Pose(), p.sensor);
-    sum += (sensor.Translation() - f.pose.Translation()).squaredNorm();
+    sum += (sensor.Translation() - f->pose.Translation()).squaredNorm();
     ++n;
   }
   return std::sqrt(sum / static_cast<double>(n));

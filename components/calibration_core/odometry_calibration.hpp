@@ -99,8 +99,9 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
                             const kinematics::RobotParameters& nominal,
                             const CalibrationOptions& options);
 
-// Open-loop dead reckoning of the fix sensor over all fixes, started at the
-// first fix: RMS position error against the fixes (how far odometry alone drifts).
+// Open-loop dead reckoning of the fix sensor over the fixes inside the encoder
+// recording, started at the first of them: RMS position error against those
+// fixes (how far odometry alone drifts); 0 when no fix is inside.
 double DeadReckoningRms(const std::vector<EncoderSample>& encoders, const std::vector<Fix>& fixes,
                         const kinematics::RobotParameters& parameters);
 
