@@ -4,17 +4,25 @@
 // curves both ways, known parameter errors) so that every test runs in seconds.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <map>
 #include <random>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include "calibration_data.hpp"
+#include "child_process.hpp"
 #include "cli_runner.hpp"
+#include "dds_test_support.hpp"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "odometry_calibration.hpp"
 #include "robot_parameters.hpp"
+#include "ros_conversions.hpp"
+#include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 #include "tricycle.hpp"
@@ -279,7 +287,7 @@ TEST(BadInputCalibration, M6_CalibrateRefusesToWriteOverAnInputAndReportsWriteFa
 
 testing::CliResult RunComponent(std::vector<std::string> args) {
   args.insert(args.begin(),
-              {"--domain", "93", "--qos", testing::SourcePath("qos/structloc_qos.xml")});
+              {"--domain", "171", "--qos", testing::SourcePath("qos/structloc_qos.xml")});
   return testing::RunExecutable("structloc_calibration", args, std::chrono::seconds(30));
 }
 
@@ -287,6 +295,64 @@ TEST(BadInputCalibration, M6_ComponentRefusesAnOutDirThatIsNotAFolderAtStartUp) 
   const auto run = RunComponent({"--out-dir", "/dev/null", "--record-s", "6", "--exit-when-done"});
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_TRUE(Contains(run.output, "--out-dir /dev/null exists and is not a folder")) << run.output;
+}
+
+// Plays a recording on rt/wheel_encoders and rt/pose (encoders at 20 Hz, all
+// fixes, in stamp order) once the component's readers are matched.
+void Publish(dds::Node& node, const Inputs& inputs) {
+  auto encoders =
+      node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(dds::topics::kWheelEncoders);
+  auto fixes = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      dds::topics::kPose);
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return encoders.MatchedReaders() > 0 && fixes.MatchedReaders() > 0; },
+      std::chrono::seconds(10)));
+  size_t f = 0;
+  for (size_t k = 0; k < inputs.encoders.size(); k += 5) {
+    const auto& e = inputs.encoders[k];
+    for (; f < inputs.fixes.size() && inputs.fixes[f].t <= e.t; ++f) {
+      geometry_msgs::msg::PoseWithCovarianceStamped m;
+      m.header().stamp(dds::ToRosTime(inputs.fixes[f].t));
+      m.pose().pose().position().x(inputs.fixes[f].pose.x);
+      m.pose().pose().position().y(inputs.fixes[f].pose.y);
+      m.pose().pose().orientation(dds::ToQuaternion(inputs.fixes[f].pose.theta));
+      m.pose().covariance()[0] = m.pose().covariance()[7] = 1e-4;
+      m.pose().covariance()[35] = 1e-4;
+      fixes.Write(m);
+    }
+    structloc_msgs::msg::WheelEncoders m;
+    m.header().stamp(dds::ToRosTime(e.t));
+    m.traction_ticks(e.traction_ticks);
+    m.steering_ticks(static_cast<int32_t>(e.steering_ticks));
+    encoders.Write(m);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+}
+
+TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) {
+  const testing::TempDir dir;
+  const auto inputs = Read(dir, Simulate({}));
+  const std::string out = dir / "out";
+  constexpr int kDomain = 172;
+  process::ChildProcess component(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",
+       "--out-dir", out, "--exit-when-done"});
+  ASSERT_TRUE(testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
+                                 std::chrono::seconds(10)))
+      << component.CapturedOutput();
+  // The folder checked at start-up turns into a file before the result is written.
+  std::filesystem::remove_all(out);
+  dir.Write("out", "not a folder");
+  dds::Node node(testing::TestNodeOptions("recording_player", kDomain));
+  Publish(node, inputs);
+  const auto code = component.WaitExit(std::chrono::seconds(30));
+  ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
+  EXPECT_EQ(*code, 1) << component.CapturedOutput();
+  EXPECT_TRUE(Contains(component.CapturedOutput(), "calibration: estimated"))
+      << component.CapturedOutput();
+  EXPECT_TRUE(Contains(component.CapturedOutput(), "the result could not be written"))
+      << component.CapturedOutput();
 }
 
 TEST(BadInputCalibration, L1_CounterBitsAreRangeCheckedBeforeNarrowing) {

@@ -3,6 +3,8 @@
 // calibration; prints each parameter with its standard deviation. Writes the
 // robot file only for a successful estimate (exit 0); a meaningless one exits
 // 1 with its likely cause and leaves --out untouched.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
 
@@ -24,7 +26,9 @@ void PrintReport(const calibration::CalibrationReport& report,
                  const kinematics::RobotParameters& nominal) {
   const auto nominal_values = Values(nominal);
   const auto values = Values(report.parameters);
-  for (int k = 0; k < calibration::kParameterCount; ++k) {
+  const bool estimated_any =
+      std::find(report.estimated.begin(), report.estimated.end(), true) != report.estimated.end();
+  for (int k = 0; k < calibration::kParameterCount && report.iterations > 0; ++k) {
     const auto param = static_cast<calibration::Parameter>(k);
     const size_t i = static_cast<size_t>(k);
     if (report.estimated[i]) {
@@ -40,8 +44,13 @@ void PrintReport(const calibration::CalibrationReport& report,
   if (report.correlation.rows() > 1) {
     std::cout << "  correlations of the estimated parameters:\n" << report.correlation << "\n";
   }
-  std::printf("  weighted residual RMS: %.4g before, %.4g after (%d iterations)\n",
-              report.residual_rms_before, report.residual_rms_after, report.iterations);
+  if (estimated_any) {
+    std::printf("  weighted residual RMS: %.4g before, %.4g after (%d iterations)\n",
+                report.residual_rms_before, report.residual_rms_after, report.iterations);
+  } else if (report.intervals_used > 0) {
+    std::printf("  weighted residual RMS with the nominal parameters: %.4g\n",
+                report.residual_rms_before);
+  }
   if (report.dead_reckoning_rms_nominal > 0) {
     std::printf(
         "  dead reckoning over the whole recording, RMS against the fixes: %.4g m nominal, "
