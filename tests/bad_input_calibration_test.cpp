@@ -329,6 +329,27 @@ void Publish(dds::Node& node, const Inputs& inputs) {
   }
 }
 
+TEST(BadInputCalibration, M2_ComponentExitsNonZeroWhenTheCalibrationFails) {
+  const testing::TempDir dir;
+  const auto inputs = Read(dir, Simulate({0, 32, true}));
+  constexpr int kDomain = 173;
+  process::ChildProcess component(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",
+       "--out-dir", dir / "out", "--exit-when-done"});
+  ASSERT_TRUE(testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
+                                 std::chrono::seconds(10)))
+      << component.CapturedOutput();
+  dds::Node node(testing::TestNodeOptions("recording_player", kDomain));
+  Publish(node, inputs);
+  const auto code = component.WaitExit(std::chrono::seconds(30));
+  ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
+  EXPECT_EQ(*code, 1) << component.CapturedOutput();
+  EXPECT_TRUE(Contains(component.CapturedOutput(), "traction encoder never changes"))
+      << component.CapturedOutput();
+  EXPECT_FALSE(Exists(dir / "out/calibrated.xml"));
+}
+
 TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) {
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({}));

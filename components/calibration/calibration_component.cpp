@@ -121,7 +121,7 @@ void CalibrationComponent::Step() {
     due = !estimated_ && options_.record_s > 0 && encoders_.size() > 1 &&
           encoders_.back().t - encoders_.front().t >= options_.record_s;
   }
-  if (due) Estimate();
+  if (due) Estimate(false);
   if (now - last_diagnostics_s_ >= 1.0) PublishDiagnostics(now);
 }
 
@@ -131,12 +131,14 @@ void CalibrationComponent::Stop() {
     std::lock_guard<std::mutex> lock(mutex_);
     pending = !estimated_ && encoders_.size() > 1 && fixes_.size() > 2;
   }
-  if (pending) Estimate();  // "until told": estimate with what was recorded
+  // "Until stopped" ends here as planned; a stop before --record-s is the
+  // user's choice, so its estimate is a bonus whose failure is no error.
+  if (pending) Estimate(options_.record_s > 0);
   std::lock_guard<std::mutex> lock(mutex_);
   if (!failure_.empty()) throw std::runtime_error(failure_);
 }
 
-void CalibrationComponent::Estimate() {
+void CalibrationComponent::Estimate(bool stopped_early) {
   std::vector<EncoderSample> encoders;
   std::vector<Fix> fixes;
   {
@@ -176,10 +178,10 @@ void CalibrationComponent::Estimate() {
                           : report.warnings.empty() ? std::string("?")
                                                     : report.warnings.back();
   outcome_ = report.success ? "calibrated" : "calibration failed: " + why;
-  if (!report.success) {
+  if (!write_error.empty()) {
+    failure_ = "the result could not be written: " + write_error;
+  } else if (!report.success && !stopped_early) {
     failure_ = "calibration failed: " + why;
-  } else if (!write_error.empty()) {
-    failure_ = "calibrated, but the result could not be written: " + write_error;
   }
 }
 

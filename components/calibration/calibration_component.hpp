@@ -4,8 +4,9 @@
 // parameters with the DDS-free calibration core, publishes the result latched
 // (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
 // recording and the calibrated robot file. Gaps in the encoder stream are
-// detected and reported, never silently bridged. A failed estimate or a result
-// that cannot be written makes the process exit non-zero.
+// detected and reported, never silently bridged. A failed estimate of a
+// complete recording, or a result that cannot be written, makes the process
+// exit non-zero.
 #pragma once
 
 #include <mutex>
@@ -43,13 +44,15 @@ class CalibrationComponent : public dds::Component {
   CalibrationComponent(dds::Node& node, const CalibrationComponentOptions& options);
   void Step() override;
   // Estimates with what was recorded if that has not happened yet; throws
-  // std::runtime_error (exit code 1) when the calibration failed or its result
-  // could not be written.
+  // std::runtime_error (exit code 1) when the result could not be written, or
+  // when the calibration failed after a complete recording (--record-s
+  // reached, or 0 = until stopped).
   void Stop() override;
   bool Done() const override { return options_.exit_when_done && estimated_; }
 
  private:
-  void Estimate();
+  // `stopped_early`: the recording was cut short by a stop before --record-s.
+  void Estimate(bool stopped_early);
   // Writes the recording and, for a successful estimate, calibrated.xml into
   // out_dir; returns what went wrong, or "" when everything was written.
   std::string WriteResults(const std::vector<EncoderSample>& encoders,
