@@ -1,15 +1,71 @@
 // Calibration component (see header).
 #include "calibration_component.hpp"
 
+#include <unistd.h>
+
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "calibration_conversions.hpp"
 #include "diagnostics.hpp"
+#include "output_file.hpp"
 #include "recording_writers.hpp"
 
 namespace structloc::calibration {
+namespace {
+
+void CheckFixTopic(const std::string& topic) {
+  const std::string hint =
+      "; give a topic of geometry_msgs/PoseWithCovarianceStamped fixes (default rt/pose)";
+  if (topic.empty()) throw config::ConfigError("--fix-topic is empty" + hint);
+  for (const char c : topic) {
+    if (!std::isgraph(static_cast<unsigned char>(c))) {
+      throw config::ConfigError("--fix-topic '" + topic +
+                                "' contains a space or control character" + hint);
+    }
+  }
+  namespace t = dds::topics;
+  for (const auto* other :
+       {&t::kScan, &t::kOdom, &t::kWheelEncoders, &t::kGroundTruth, &t::kCmdVel, &t::kTf,
+        &t::kFeatures, &t::kStatus, &t::kCalibration, &t::kDiagnostics}) {
+    if (topic == other->name) {
+      throw config::ConfigError("--fix-topic " + topic +
+                                " is a structloc topic of another message type (no fix would "
+                                "ever arrive)" +
+                                hint);
+    }
+  }
+}
+
+void PrepareOutputFolder(const std::string& folder) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (!std::filesystem::is_directory(folder)) {
+    throw config::ConfigError("--out-dir " + folder +
+                              (std::filesystem::exists(folder)
+                                   ? std::string(" exists and is not a folder")
+                                   : " cannot be created (" + error.message() + ")") +
+                              "; give a folder for encoders.csv, fixes.csv and calibrated.xml");
+  }
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    throw config::ConfigError("--out-dir " + folder + " is not writable");
+  }
+}
+
+}  // namespace
+
+void CalibrationComponentOptions::Validate() const {
+  CheckFixTopic(fix_topic);
+  if (!(record_s >= 0)) throw config::ConfigError("--record-s must be >= 0");
+  try {
+    calibration.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(e.what());
+  }
+  if (!out_dir.empty()) PrepareOutputFolder(out_dir);
+}
 
 CalibrationComponent::CalibrationComponent(dds::Node& node,
                                            const CalibrationComponentOptions& options)
@@ -47,10 +103,14 @@ CalibrationComponent::CalibrationComponent(dds::Node& node,
         }
         fixes_.push_back(f);
       });
+  std::ostringstream length;
+  if (options_.record_s > 0) {
+    length << options_.record_s << " s";
+  } else {
+    length << "until stopped";
+  }
   std::cout << "calibration: recording " << dds::topics::kWheelEncoders.name << " and "
-            << options_.fix_topic << " for "
-            << (options_.record_s > 0 ? std::to_string(options_.record_s) + " s" : "until stopped")
-            << std::endl;
+            << options_.fix_topic << " for " << length.str() << std::endl;
 }
 
 void CalibrationComponent::Step() {
@@ -61,7 +121,7 @@ void CalibrationComponent::Step() {
     due = !estimated_ && options_.record_s > 0 && encoders_.size() > 1 &&
           encoders_.back().t - encoders_.front().t >= options_.record_s;
   }
-  if (due) Estimate();
+  if (due) Estimate(false);
   if (now - last_diagnostics_s_ >= 1.0) PublishDiagnostics(now);
 }
 
@@ -71,10 +131,14 @@ void CalibrationComponent::Stop() {
     std::lock_guard<std::mutex> lock(mutex_);
     pending = !estimated_ && encoders_.size() > 1 && fixes_.size() > 2;
   }
-  if (pending) Estimate();  // "until told": estimate with what was recorded
+  // "Until stopped" ends here as planned; a stop before --record-s is the
+  // user's choice, so its estimate is a bonus whose failure is no error.
+  if (pending) Estimate(options_.record_s > 0);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!failure_.empty()) throw std::runtime_error(failure_);
 }
 
-void CalibrationComponent::Estimate() {
+void CalibrationComponent::Estimate(bool stopped_early) {
   std::vector<EncoderSample> encoders;
   std::vector<Fix> fixes;
   {
@@ -87,8 +151,8 @@ void CalibrationComponent::Estimate() {
   try {
     report = Calibrate(encoders, fixes, options_.nominal, options_.calibration);
   } catch (const std::exception& e) {
-    report.warnings.push_back(e.what());
     report.success = false;
+    report.failure = e.what();
   }
   std::ostringstream text;
   text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from "
@@ -102,34 +166,49 @@ void CalibrationComponent::Estimate() {
          << report.standard_deviation[static_cast<size_t>(k)];
   }
   for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
+  if (!report.success && !report.failure.empty()) text << "\n  FAILED: " << report.failure;
+  for (const auto& cause : report.likely_causes) text << "\n  likely cause: " << cause;
   std::cout << text.str() << std::endl;
-  if (!options_.out_dir.empty()) {
-    try {
-      std::filesystem::create_directories(options_.out_dir);
-      logs::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
-      for (const auto& s : encoders)
-        enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
-      enc.Close();
-      logs::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
-      for (const auto& f : fixes)
-        fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
-      fix.Close();
-      if (report.success) {
-        kinematics::SaveRobotParameters(report.parameters, options_.out_dir + "/calibrated.xml",
-                                        "calibrated live by structloc_calibration");
-      }
-      std::cout << "calibration: wrote " << options_.out_dir << std::endl;
-    } catch (const std::exception& e) {
-      std::cerr << "calibration: " << e.what() << std::endl;
-    }
-  }
+  const std::string write_error = WriteResults(encoders, fixes, report);
+  if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
   auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.back().t);
   result_.Write(msg);
   std::lock_guard<std::mutex> lock(mutex_);
-  outcome_ = report.success
-                 ? "calibrated"
-                 : "calibration failed: " +
-                       (report.warnings.empty() ? std::string("?") : report.warnings.back());
+  const std::string why = !report.failure.empty()   ? report.failure
+                          : report.warnings.empty() ? std::string("?")
+                                                    : report.warnings.back();
+  outcome_ = report.success ? "calibrated" : "calibration failed: " + why;
+  if (!write_error.empty()) {
+    failure_ = "the result could not be written: " + write_error;
+  } else if (!report.success && !stopped_early) {
+    failure_ = "calibration failed: " + why;
+  }
+}
+
+std::string CalibrationComponent::WriteResults(const std::vector<EncoderSample>& encoders,
+                                               const std::vector<Fix>& fixes,
+                                               const CalibrationReport& report) const {
+  if (options_.out_dir.empty()) return "";
+  try {
+    logs::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
+    for (const auto& s : encoders)
+      enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
+    enc.Close();
+    logs::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
+    for (const auto& f : fixes)
+      fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
+    fix.Close();
+    if (report.success) {
+      config::OutputFile robot(options_.out_dir + "/calibrated.xml", {options_.robot_path});
+      kinematics::WriteRobotParameters(report.parameters, robot.Stream(),
+                                       "calibrated live by structloc_calibration");
+      robot.Commit();
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  std::cout << "calibration: wrote " << options_.out_dir << std::endl;
+  return "";
 }
 
 void CalibrationComponent::PublishDiagnostics(double now) {

@@ -4,7 +4,9 @@
 // parameters with the DDS-free calibration core, publishes the result latched
 // (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
 // recording and the calibrated robot file. Gaps in the encoder stream are
-// detected and reported, never silently bridged.
+// detected and reported, never silently bridged. A failed estimate of a
+// complete recording, or a result that cannot be written, makes the process
+// exit non-zero.
 #pragma once
 
 #include <mutex>
@@ -23,22 +25,38 @@ namespace structloc::calibration {
 
 struct CalibrationComponentOptions {
   kinematics::RobotParameters nominal;
+  std::string robot_path;  // the nominal robot file: never overwritten
   CalibrationOptions calibration;
   double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
   std::string fix_topic = "rt/pose";
   std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
   bool exit_when_done = false;
+
+  // Throws config::ConfigError (exit code 2) for options that cannot work: an
+  // empty --fix-topic or one of structloc's topics of another message type,
+  // nothing to estimate, an --out-dir that is not (and cannot become) a
+  // writable folder. Creates --out-dir when it is missing.
+  void Validate() const;
 };
 
 class CalibrationComponent : public dds::Component {
  public:
   CalibrationComponent(dds::Node& node, const CalibrationComponentOptions& options);
   void Step() override;
+  // Estimates with what was recorded if that has not happened yet; throws
+  // std::runtime_error (exit code 1) when the result could not be written, or
+  // when the calibration failed after a complete recording (--record-s
+  // reached, or 0 = until stopped).
   void Stop() override;
   bool Done() const override { return options_.exit_when_done && estimated_; }
 
  private:
-  void Estimate();
+  // `stopped_early`: the recording was cut short by a stop before --record-s.
+  void Estimate(bool stopped_early);
+  // Writes the recording and, for a successful estimate, calibrated.xml into
+  // out_dir; returns what went wrong, or "" when everything was written.
+  std::string WriteResults(const std::vector<EncoderSample>& encoders,
+                           const std::vector<Fix>& fixes, const CalibrationReport& report) const;
   void PublishDiagnostics(double now);
 
   CalibrationComponentOptions options_;
@@ -51,6 +69,7 @@ class CalibrationComponent : public dds::Component {
   double largest_gap_s_ = 0.0;
   bool estimated_ = false;
   std::string outcome_;
+  std::string failure_;  // why the run produced no usable result ("" = it did)
   double last_diagnostics_s_ = 0.0;
 };
 

@@ -49,6 +49,8 @@ structloc_msgs::msg::CalibrationResult ToCalibrationResult(const CalibrationRepo
   msg.fixes_used(static_cast<uint32_t>(r.intervals_used));
   msg.fixes_rejected(static_cast<uint32_t>(r.intervals_downweighted + r.intervals_skipped));
   for (const auto& w : r.warnings) msg.warnings().push_back(w);
+  if (!r.failure.empty()) msg.warnings().push_back("FAILED: " + r.failure);
+  for (const auto& cause : r.likely_causes) msg.warnings().push_back("likely cause: " + cause);
   return msg;
 }
 

@@ -1,7 +1,9 @@
 // Calibration input files (see header).
 #include "calibration_data.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -31,17 +33,65 @@ double Number(const std::string& path, size_t line, const std::string& text, boo
   return v;
 }
 
+std::string Where(const std::string& path, size_t line) {
+  return path + ":" + std::to_string(line) + ": ";
+}
+
+// A raw counter value: decimal digits only (no sign, exponent or fraction),
+// at most `max_value`.
+uint64_t Ticks(const std::string& path, size_t line, const std::string& text, uint64_t max_value,
+               int bits) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    throw std::runtime_error(Where(path, line) + "'" + text +
+                             "' is not a non-negative integer (traction_ticks holds the raw "
+                             "counter value)");
+  }
+  errno = 0;
+  const unsigned long long value = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE || value > max_value) {
+    throw std::runtime_error(Where(path, line) + "traction_ticks " + text + " does not fit a " +
+                             std::to_string(bits) + "-bit counter (largest " +
+                             std::to_string(max_value) +
+                             "); check traction_counter_bits in the robot file");
+  }
+  return value;
+}
+
 std::ifstream Open(const std::string& path, std::string* header) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open");
   if (!std::getline(in, *header)) throw std::runtime_error(path + ": empty file (no header)");
+  const std::string byte_order_mark = "\xEF\xBB\xBF";
+  if (header->rfind(byte_order_mark, 0) == 0) header->erase(0, byte_order_mark.size());
   while (!header->empty() && (header->back() == '\r' || header->back() == ' ')) header->pop_back();
   return in;
 }
 
 }  // namespace
 
-std::vector<EncoderSample> ReadEncodersCsv(const std::string& path) {
+std::string DescribeDropped(const FixesFile& file) {
+  const size_t nan = file.dropped_non_finite - file.dropped_infinite;
+  const size_t total = file.dropped_non_finite + file.dropped_negative_variance;
+  if (total == 0) return "none dropped";
+  std::string text = std::to_string(total) + " dropped (";
+  std::string separator;
+  auto add = [&](size_t count, const char* what) {
+    if (count == 0) return;
+    text += separator + std::to_string(count) + " with " + what;
+    separator = ", ";
+  };
+  add(nan, "NaN");
+  add(file.dropped_infinite, "an infinite value");
+  add(file.dropped_negative_variance, "a negative variance");
+  return text + "; first at line " + std::to_string(file.first_dropped_line) + ")";
+}
+
+std::vector<EncoderSample> ReadEncodersCsv(const std::string& path, int traction_counter_bits) {
+  if (traction_counter_bits < 1 || traction_counter_bits > 64) {
+    throw std::invalid_argument("ReadEncodersCsv: traction_counter_bits must be 1..64");
+  }
+  const uint64_t max_ticks =
+      traction_counter_bits == 64 ? UINT64_MAX : (uint64_t{1} << traction_counter_bits) - 1;
   std::string header;
   auto in = Open(path, &header);
   if (header != "t,traction_ticks,steering_ticks") {
@@ -57,12 +107,7 @@ std::vector<EncoderSample> ReadEncodersCsv(const std::string& path) {
       throw std::runtime_error(path + ":" + std::to_string(n) + ": expected 3 fields");
     EncoderSample s;
     s.t = Number(path, n, f[0], false);
-    const double ticks = Number(path, n, f[1], false);
-    if (ticks < 0 || ticks != std::floor(ticks)) {
-      throw std::runtime_error(path + ":" + std::to_string(n) +
-                               ": traction_ticks must be a non-negative integer");
-    }
-    s.traction_ticks = static_cast<uint64_t>(ticks);
+    s.traction_ticks = Ticks(path, n, f[1], max_ticks, traction_counter_bits);
     s.steering_ticks = Number(path, n, f[2], false);
     if (!samples.empty() && !(s.t > samples.back().t)) {
       throw std::runtime_error(path + ":" + std::to_string(n) + ": time " + f[0] +
@@ -106,9 +151,15 @@ FixesFile ReadFixesCsv(const std::string& path) {
       fix.variance = {Number(path, n, f[4], true), Number(path, n, f[5], true),
                       Number(path, n, f[6], true)};
     }
-    if (!geometry::IsFinite(fix.pose) || !fix.variance.allFinite() ||
-        (fix.variance.array() < 0).any()) {
-      ++file.dropped_non_finite;
+    const bool has_nan = std::isnan(fix.pose.x) || std::isnan(fix.pose.y) ||
+                         std::isnan(fix.pose.theta) || fix.variance.hasNaN();
+    const bool finite = geometry::IsFinite(fix.pose) && fix.variance.allFinite();
+    const bool negative_variance = (fix.variance.array() < 0).any();
+    if (!finite || negative_variance) {
+      if (!finite) ++file.dropped_non_finite;
+      if (!finite && !has_nan) ++file.dropped_infinite;
+      if (finite) ++file.dropped_negative_variance;
+      if (file.first_dropped_line == 0) file.first_dropped_line = n;
       continue;
     }
     file.fixes.push_back(fix);

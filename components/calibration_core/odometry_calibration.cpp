@@ -4,9 +4,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
+#include "calibration_diagnosis.hpp"
+#include "strict_xml.hpp"
 #include "tricycle.hpp"
 
 namespace structloc::calibration {
@@ -23,6 +27,37 @@ const char* ParameterUnit(Parameter p) {
   return units[p];
 }
 
+std::array<bool, kParameterCount> ParseParameterList(const std::string& list) {
+  std::string names;
+  for (int k = 0; k < kParameterCount; ++k) {
+    names += std::string(k > 0 ? ", " : "") + ParameterName(static_cast<Parameter>(k));
+  }
+  if (list.empty()) {
+    throw config::ConfigError("--estimate is empty; name at least one of " + names);
+  }
+  std::array<bool, kParameterCount> chosen{};
+  size_t start = 0;
+  while (true) {
+    const size_t comma = list.find(',', start);
+    const std::string name = list.substr(start, comma == std::string::npos ? comma : comma - start);
+    bool known = false;
+    for (int k = 0; k < kParameterCount; ++k) {
+      if (name == ParameterName(static_cast<Parameter>(k))) {
+        chosen[static_cast<size_t>(k)] = known = true;
+      }
+    }
+    if (!known) {
+      throw config::ConfigError("--estimate '" + list + "': " +
+                                (name.empty() ? std::string("empty parameter name")
+                                              : "unknown parameter '" + name + "'") +
+                                "; choose from " + names);
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return chosen;
+}
+
 void CalibrationOptions::Validate() const {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("calibration: ") + what);
@@ -32,6 +67,12 @@ void CalibrationOptions::Validate() const {
   require(huber_k > 0, "huber_k must be > 0");
   require(max_iterations >= 1, "max_iterations must be >= 1");
   require(max_encoder_gap_s > 0, "max_encoder_gap_s must be > 0");
+  require(std::find(estimate.begin(), estimate.end(), true) != estimate.end(),
+          "no parameter to estimate");
+  require(max_outlier_fraction >= 0 && max_outlier_fraction <= 1,
+          "max_outlier_fraction must be within 0..1");
+  require(max_dead_reckoning_ratio > 0, "max_dead_reckoning_ratio must be > 0");
+  require(max_wheel_speed_m_s > 0, "max_wheel_speed_m_s must be > 0");
 }
 
 namespace {
@@ -179,6 +220,12 @@ class Problem {
   std::vector<Interval> intervals_;
 };
 
+std::string Text(double value, int digits = 4) {
+  std::ostringstream out;
+  out << std::setprecision(digits) << value;
+  return out.str();
+}
+
 double Rms(const Vector& r) {
   return r.size() ? std::sqrt(r.squaredNorm() / static_cast<double>(r.size())) : 0.0;
 }
@@ -193,6 +240,75 @@ Vector HuberWeights(const Vector& r, double k) {
   return w;
 }
 
+CalibrationReport Fail(CalibrationReport report, const std::vector<EncoderSample>& encoders,
+                       const std::vector<Fix>& fixes, const kinematics::RobotParameters& nominal,
+                       const std::string& failure) {
+  report.success = false;
+  report.failure = failure;
+  report.likely_causes = LikelyCauses(encoders, fixes, nominal);
+  return report;
+}
+
+// The first encoder step that moves the wheel faster than the options allow
+// with the nominal parameters, described; nullopt when there is none.
+std::optional<std::string> ImplausibleEncoderStep(const std::vector<EncoderSample>& encoders,
+                                                  const kinematics::RobotParameters& nominal,
+                                                  const CalibrationOptions& options) {
+  for (size_t k = 1; k < encoders.size(); ++k) {
+    const int64_t delta =
+        nominal.TickDelta(encoders[k - 1].traction_ticks, encoders[k].traction_ticks);
+    const double distance = std::abs(nominal.WheelAngle(delta) * nominal.wheel_radius);
+    const double dt = encoders[k].t - encoders[k - 1].t;
+    if (distance > options.max_wheel_speed_m_s * std::max(dt, 0.05)) {
+      return "the traction ticks jump by " + std::to_string(delta) +
+             " between t = " + Text(encoders[k - 1].t, 12) + " and " + Text(encoders[k].t, 12) +
+             " s (" + Text(distance) + " m with the nominal parameters, faster than " +
+             Text(options.max_wheel_speed_m_s) + " m/s)";
+    }
+  }
+  return std::nullopt;
+}
+
+// Whether an estimate deserves the name: finite residuals, mostly inliers,
+// plausible values, and open-loop dead reckoning better than with the nominal
+// parameters (an independent check of the relative-motion fit).
+CalibrationReport Judge(CalibrationReport report, const std::vector<EncoderSample>& encoders,
+                        const std::vector<Fix>& fixes, const kinematics::RobotParameters& nominal,
+                        const CalibrationOptions& options) {
+  if (!std::isfinite(report.residual_rms_after)) {
+    return Fail(std::move(report), encoders, fixes, nominal,
+                "the residuals with the estimated parameters are not finite");
+  }
+  const double outlier_fraction = static_cast<double>(report.intervals_downweighted) /
+                                  static_cast<double>(report.intervals_used);
+  if (outlier_fraction > options.max_outlier_fraction) {
+    return Fail(std::move(report), encoders, fixes, nominal,
+                std::to_string(report.intervals_downweighted) + " of " +
+                    std::to_string(report.intervals_used) +
+                    " fix intervals are outliers (more than " +
+                    Text(100 * options.max_outlier_fraction) +
+                    " %): the odometry model does not explain the fixes");
+  }
+  try {
+    report.parameters.Validate();
+  } catch (const std::invalid_argument& e) {
+    return Fail(std::move(report), encoders, fixes, nominal,
+                std::string("the estimate is implausible: ") + e.what());
+  }
+  report.dead_reckoning_rms_nominal = DeadReckoningRms(encoders, fixes, nominal);
+  report.dead_reckoning_rms_calibrated = DeadReckoningRms(encoders, fixes, report.parameters);
+  if (!(report.dead_reckoning_rms_calibrated <
+        options.max_dead_reckoning_ratio * report.dead_reckoning_rms_nominal)) {
+    return Fail(std::move(report), encoders, fixes, nominal,
+                "dead reckoning with the estimate is not better than with the nominal "
+                "parameters (RMS against the fixes " +
+                    Text(report.dead_reckoning_rms_calibrated) + " m calibrated, " +
+                    Text(report.dead_reckoning_rms_nominal) + " m nominal)");
+  }
+  report.success = true;
+  return report;
+}
+
 }  // namespace
 
 CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
@@ -205,9 +321,19 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
   report.parameters = nominal;
   if (encoders.size() < 2)
     throw std::invalid_argument("calibration: fewer than two encoder samples");
-  for (size_t k = 1; k < encoders.size(); ++k) {
-    if (!(encoders[k].t > encoders[k - 1].t))
+  for (size_t k = 0; k < encoders.size(); ++k) {
+    if (k > 0 && !(encoders[k].t > encoders[k - 1].t))
       throw std::invalid_argument("calibration: encoder times must increase");
+    if (encoders[k].traction_ticks > nominal.MaxTractionTick()) {
+      throw std::invalid_argument(
+          "calibration: encoder sample " + std::to_string(k + 1) + " has traction ticks " +
+          std::to_string(encoders[k].traction_ticks) + ", more than the robot's " +
+          std::to_string(nominal.traction_counter_bits) +
+          "-bit counter holds; check traction_counter_bits");
+    }
+  }
+  if (const auto jump = ImplausibleEncoderStep(encoders, nominal, options)) {
+    return Fail(std::move(report), encoders, fixes, nominal, *jump);
   }
   const Problem problem(encoders, fixes, nominal, options, report);
   if (problem.Size() < 5) {
@@ -223,6 +349,10 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
   }
   std::array<double, kParameterCount> values = Values(nominal);
   report.residual_rms_before = Rms(problem.Whitened(values));
+  if (!std::isfinite(report.residual_rms_before)) {
+    return Fail(std::move(report), encoders, fixes, nominal,
+                "the residuals with the nominal parameters are not finite");
+  }
   std::array<bool, kParameterCount> active = options.estimate;
   const std::array<double, kParameterCount> step_scale{1e-4, 1e-3, 1e-4, 1e-7, 1e-3, 1e-3, 1e-4};
 
@@ -232,6 +362,7 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
       if (active[static_cast<size_t>(k)]) index.push_back(k);
     }
     const Eigen::Index n = static_cast<Eigen::Index>(index.size());
+    if (n == 0) break;  // every requested parameter proved unobservable
     values = Values(nominal);
     Vector r = problem.Whitened(values);
     Vector w = HuberWeights(r, options.huber_k);
@@ -248,7 +379,7 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
       }
     };
     int it = 0;
-    for (; it < options.max_iterations && n > 0; ++it) {
+    for (; it < options.max_iterations; ++it) {
       jacobian_at(values);
       const Eigen::MatrixXd h = jacobian.transpose() * w.asDiagonal() * jacobian;
       const Vector g = jacobian.transpose() * (w.array() * r.array()).matrix();
@@ -286,26 +417,24 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
     std::array<double, kParameterCount> std{};
     int worst = -1;
     double worst_ratio = 1.0;
-    Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(n, n);
-    if (n > 0) {
-      jacobian_at(values);
-      const Eigen::MatrixXd h = jacobian.transpose() * w.asDiagonal() * jacobian;
-      const double dof = std::max(1.0, static_cast<double>(r.size() - n));
-      const double scale = std::max(1.0, cost / dof);
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(h);
-      const double largest = eig.eigenvalues().maxCoeff();
-      Eigen::VectorXd inv = eig.eigenvalues();
-      for (Eigen::Index k = 0; k < inv.size(); ++k)
-        inv(k) = inv(k) > 1e-12 * largest ? 1.0 / inv(k) : 1e300;
-      covariance = scale * eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
-      for (Eigen::Index c = 0; c < n; ++c) {
-        const size_t k = static_cast<size_t>(index[static_cast<size_t>(c)]);
-        std[k] = std::sqrt(std::max(0.0, covariance(c, c)));
-        const double ratio = std[k] / options.max_std[k];
-        if (!(ratio <= worst_ratio)) {
-          worst_ratio = std::isfinite(ratio) ? ratio : 1e300;
-          worst = static_cast<int>(k);
-        }
+    jacobian_at(values);
+    const Eigen::MatrixXd h = jacobian.transpose() * w.asDiagonal() * jacobian;
+    const double dof = std::max(1.0, static_cast<double>(r.size() - n));
+    const double scale = std::max(1.0, cost / dof);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(h);
+    const double largest = eig.eigenvalues().maxCoeff();
+    Eigen::VectorXd inv = eig.eigenvalues();
+    for (Eigen::Index k = 0; k < inv.size(); ++k)
+      inv(k) = inv(k) > 1e-12 * largest ? 1.0 / inv(k) : 1e300;
+    const Eigen::MatrixXd covariance =
+        scale * eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const size_t k = static_cast<size_t>(index[static_cast<size_t>(c)]);
+      std[k] = std::sqrt(std::max(0.0, covariance(c, c)));
+      const double ratio = std[k] / options.max_std[k];
+      if (!(ratio <= worst_ratio)) {
+        worst_ratio = std::isfinite(ratio) ? ratio : 1e300;
+        worst = static_cast<int>(k);
       }
     }
     if (worst >= 0) {
@@ -342,32 +471,37 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
       report.warnings.push_back(std::to_string(report.intervals_downweighted) +
                                 " fix intervals look like outliers and were down-weighted");
     }
-    report.success = true;
-    return report;
+    return Judge(std::move(report), encoders, fixes, nominal, options);
   }
-  report.warnings.push_back("no parameter could be estimated from this trajectory");
-  return report;
+  return Fail(std::move(report), encoders, fixes, nominal,
+              "no parameter could be estimated from this trajectory");
 }
 
 double DeadReckoningRms(const std::vector<EncoderSample>& encoders, const std::vector<Fix>& fixes,
                         const kinematics::RobotParameters& p) {
-  if (fixes.empty()) return 0.0;
+  if (encoders.empty()) return 0.0;
+  // Only fixes the encoders cover: odometry says nothing about the others.
+  const auto inside = [&](const Fix& f) {
+    return f.t >= encoders.front().t && f.t <= encoders.back().t;
+  };
+  const auto first = std::find_if(fixes.begin(), fixes.end(), inside);
+  if (first == fixes.end()) return 0.0;
   // The base pose at the first fix, from the sensor pose and the mounting.
-  const geometry::Pose2D start = geometry::Compose(fixes.front().pose, geometry::Inverse(p.sensor));
+  const geometry::Pose2D start = geometry::Compose(first->pose, geometry::Inverse(p.sensor));
   kinematics::DeadReckoning dr(p, start);
   size_t k = 0;
-  while (k < encoders.size() && encoders[k].t <= fixes.front().t) ++k;
+  while (k < encoders.size() && encoders[k].t <= first->t) ++k;
   if (k > 0) --k;
   dr.Add(encoders[k].traction_ticks, encoders[k].steering_ticks);
   double sum = 0.0;
   size_t n = 0;
-  for (const auto& f : fixes) {
-    while (k + 1 < encoders.size() && encoders[k + 1].t <= f.t) {
+  for (auto f = first; f != fixes.end() && inside(*f); ++f) {
+    while (k + 1 < encoders.size() && encoders[k + 1].t <= f->t) {
       ++k;
       dr.Add(encoders[k].traction_ticks, encoders[k].steering_ticks);
     }
     const geometry::Pose2D sensor = geometry::Compose(dr.Pose(), p.sensor);
-    sum += (sensor.Translation() - f.pose.Translation()).squaredNorm();
+    sum += (sensor.Translation() - f->pose.Translation()).squaredNorm();
     ++n;
   }
   return std::sqrt(sum / static_cast<double>(n));

@@ -46,6 +46,17 @@ struct CalibrationOptions {
   // A parameter whose standard deviation exceeds this (in its unit) is "not
   // observable" from the trajectory: reported as such and kept at nominal.
   std::array<double, kParameterCount> max_std{0.002, 0.02, 0.0175, 0.00005, 0.1, 0.1, 0.05};
+  // The estimate fails when more than this fraction of the fix intervals are
+  // outliers (the model does not explain the data)...
+  double max_outlier_fraction = 0.5;
+  // ... or when its open-loop dead-reckoning RMS against the fixes is not
+  // below this times the nominal parameters' (1 = it must be better).
+  double max_dead_reckoning_ratio = 1.0;
+  // ... or when, with the nominal parameters, one encoder step moves the wheel
+  // faster than this (over at least 0.05 s): a counter that wraps at fewer
+  // bits than traction_counter_bits, wrong ticks per revolution, a corrupt row.
+  double max_wheel_speed_m_s = 20.0;
+  // Throws std::invalid_argument (also when no parameter is to be estimated).
   void Validate() const;
 };
 
@@ -61,19 +72,36 @@ struct CalibrationReport {
   size_t intervals_skipped = 0;       // across encoder gaps or outside the encoder span
   size_t encoder_gaps = 0;
   int iterations = 0;
+  // Open-loop dead reckoning RMS against the fixes (DeadReckoningRms); 0 when
+  // the estimate failed before it was checked.
+  double dead_reckoning_rms_nominal = 0.0;
+  double dead_reckoning_rms_calibrated = 0.0;
   std::vector<std::string> warnings;
+  // True only for a usable estimate: plausible encoder steps, at least one
+  // parameter estimated, finite residuals, at most max_outlier_fraction
+  // outliers, plausible values and better dead reckoning than nominal. Otherwise `failure` says
+  // which test failed and `likely_causes` what in the inputs probably caused it.
   bool success = false;
+  std::string failure;
+  std::vector<std::string> likely_causes;
 };
 
+// Parses a comma-separated list of parameter names (--estimate); throws
+// config::ConfigError for an empty list, an empty item or an unknown name.
+std::array<bool, kParameterCount> ParseParameterList(const std::string& list);
+
 // Throws std::invalid_argument on unusable input (too few fixes inside the
-// encoder time span, invalid options or nominal parameters).
+// encoder time span, traction ticks beyond the counter width, invalid options
+// or nominal parameters). A meaningless estimate is not thrown but reported
+// with success == false.
 CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
                             const std::vector<Fix>& fixes,
                             const kinematics::RobotParameters& nominal,
                             const CalibrationOptions& options);
 
-// Open-loop dead reckoning of the fix sensor over all fixes, started at the
-// first fix: RMS position error against the fixes (how far odometry alone drifts).
+// Open-loop dead reckoning of the fix sensor over the fixes inside the encoder
+// recording, started at the first of them: RMS position error against those
+// fixes (how far odometry alone drifts); 0 when no fix is inside.
 double DeadReckoningRms(const std::vector<EncoderSample>& encoders, const std::vector<Fix>& fixes,
                         const kinematics::RobotParameters& parameters);
 

@@ -1,22 +1,75 @@
 // "structloc calibrate --encoders E.csv --fixes F.csv --robot NOMINAL.xml
 //  --out CALIBRATED.xml [--estimate LIST] [--advice]": offline odometry
-// calibration; prints each parameter with its standard deviation.
+// calibration; prints each parameter with its standard deviation. Writes the
+// robot file only for a successful estimate (exit 0); a meaningless one exits
+// 1 with its likely cause and leaves --out untouched.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "command_line.hpp"
 #include "odometry_calibration.hpp"
+#include "output_file.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
+namespace {
+
+std::array<double, calibration::kParameterCount> Values(const kinematics::RobotParameters& p) {
+  return {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
+          p.sensor.x,     p.sensor.y,      p.sensor.theta};
+}
+
+void PrintReport(const calibration::CalibrationReport& report,
+                 const calibration::CalibrationOptions& options,
+                 const kinematics::RobotParameters& nominal) {
+  const auto nominal_values = Values(nominal);
+  const auto values = Values(report.parameters);
+  const bool estimated_any =
+      std::find(report.estimated.begin(), report.estimated.end(), true) != report.estimated.end();
+  for (int k = 0; k < calibration::kParameterCount && report.iterations > 0; ++k) {
+    const auto param = static_cast<calibration::Parameter>(k);
+    const size_t i = static_cast<size_t>(k);
+    if (report.estimated[i]) {
+      std::printf("  %-22s %.8g +- %.2g %s   (nominal %.8g)\n", calibration::ParameterName(param),
+                  values[i], report.standard_deviation[i], calibration::ParameterUnit(param),
+                  nominal_values[i]);
+    } else if (options.estimate[i]) {
+      std::printf("  %-22s NOT OBSERVABLE: kept nominal %.8g %s\n",
+                  calibration::ParameterName(param), nominal_values[i],
+                  calibration::ParameterUnit(param));
+    }
+  }
+  if (report.correlation.rows() > 1) {
+    std::cout << "  correlations of the estimated parameters:\n" << report.correlation << "\n";
+  }
+  if (estimated_any) {
+    std::printf("  weighted residual RMS: %.4g before, %.4g after (%d iterations)\n",
+                report.residual_rms_before, report.residual_rms_after, report.iterations);
+  } else if (report.intervals_used > 0) {
+    std::printf("  weighted residual RMS with the nominal parameters: %.4g\n",
+                report.residual_rms_before);
+  }
+  if (report.dead_reckoning_rms_nominal > 0) {
+    std::printf(
+        "  dead reckoning over the whole recording, RMS against the fixes: %.4g m nominal, "
+        "%.4g m calibrated\n",
+        report.dead_reckoning_rms_nominal, report.dead_reckoning_rms_calibrated);
+  }
+  for (const auto& w : report.warnings) std::printf("  WARNING: %s\n", w.c_str());
+}
+
+}  // namespace
 
 int CalibrateCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"encoders", true, "encoders.csv (t,traction_ticks,steering_ticks)"},
       {"fixes", true, "fixes.csv (t,x,y,theta[,var_x,var_y,var_theta])"},
       {"robot", true, "nominal robot parameter file"},
-      {"out", true, "calibrated robot parameter file to write"},
+      {"out", true,
+       "calibrated robot parameter file to write (only when the estimate succeeds; never over "
+       "an input)"},
       {"estimate", true,
        "comma-separated parameters (default wheel_radius,axle_distance,steering_offset; also "
        "steering_rad_per_tick,sensor_x,sensor_y,sensor_theta)"},
@@ -29,66 +82,34 @@ int CalibrateCommand(const Invocation& inv) {
       return 0;
     }
     calibration::CalibrationOptions options;
-    if (auto list = cli.Get("estimate")) {
-      options.estimate.fill(false);
-      std::stringstream ss(*list);
-      for (std::string name; std::getline(ss, name, ',');) {
-        bool known = false;
-        for (int k = 0; k < calibration::kParameterCount; ++k) {
-          if (name == calibration::ParameterName(static_cast<calibration::Parameter>(k))) {
-            options.estimate[static_cast<size_t>(k)] = known = true;
-          }
-        }
-        if (!known) throw config::ConfigError("--estimate: unknown parameter '" + name + "'");
-      }
-    }
-    const auto nominal = kinematics::LoadRobotParameters(cli.Required("robot"));
-    const auto encoders = calibration::ReadEncodersCsv(cli.Required("encoders"));
-    const auto fixes = calibration::ReadFixesCsv(cli.Required("fixes"));
-    const std::string out = cli.Required("out");
+    if (auto list = cli.Get("estimate")) options.estimate = calibration::ParseParameterList(*list);
+    const std::string robot_path = cli.Required("robot");
+    const std::string encoders_path = cli.Required("encoders");
+    const std::string fixes_path = cli.Required("fixes");
+    config::OutputFile out(cli.Required("out"), {robot_path, encoders_path, fixes_path});
+    const auto nominal = kinematics::LoadRobotParameters(robot_path);
+    const auto encoders =
+        calibration::ReadEncodersCsv(encoders_path, nominal.traction_counter_bits);
+    const auto fixes = calibration::ReadFixesCsv(fixes_path);
     const auto report = calibration::Calibrate(encoders, fixes.fixes, nominal, options);
-    std::printf(
-        "%zu encoder samples, %zu fixes (%zu with NaN dropped), %zu fix intervals used, "
-        "%zu skipped\n",
-        encoders.size(), fixes.fixes.size(), fixes.dropped_non_finite, report.intervals_used,
-        report.intervals_skipped);
-    const auto nominal_values = std::array<double, calibration::kParameterCount>{
-        nominal.wheel_radius,          nominal.axle_distance, nominal.steering_offset,
-        nominal.steering_rad_per_tick, nominal.sensor.x,      nominal.sensor.y,
-        nominal.sensor.theta};
-    const auto& p = report.parameters;
-    const auto values = std::array<double, calibration::kParameterCount>{
-        p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
-        p.sensor.x,     p.sensor.y,      p.sensor.theta};
-    for (int k = 0; k < calibration::kParameterCount; ++k) {
-      const auto param = static_cast<calibration::Parameter>(k);
-      if (report.estimated[static_cast<size_t>(k)]) {
-        std::printf("  %-22s %.8g +- %.2g %s   (nominal %.8g)\n", calibration::ParameterName(param),
-                    values[static_cast<size_t>(k)],
-                    report.standard_deviation[static_cast<size_t>(k)],
-                    calibration::ParameterUnit(param), nominal_values[static_cast<size_t>(k)]);
-      } else if (options.estimate[static_cast<size_t>(k)]) {
-        std::printf("  %-22s NOT OBSERVABLE: kept nominal %.8g %s\n",
-                    calibration::ParameterName(param), nominal_values[static_cast<size_t>(k)],
-                    calibration::ParameterUnit(param));
+    std::printf("%zu encoder samples, %zu fixes (%s), %zu fix intervals used, %zu skipped\n",
+                encoders.size(), fixes.fixes.size(), calibration::DescribeDropped(fixes).c_str(),
+                report.intervals_used, report.intervals_skipped);
+    PrintReport(report, options, nominal);
+    if (!report.success) {
+      std::cerr << "structloc calibrate: calibration FAILED: " << report.failure << "\n";
+      for (const auto& cause : report.likely_causes) {
+        std::cerr << "  likely cause: " << cause << "\n";
       }
+      std::cerr << "  " << out.Path() << " was not written" << std::endl;
+      return 1;
     }
-    if (report.correlation.rows() > 1) {
-      std::cout << "  correlations of the estimated parameters:\n" << report.correlation << "\n";
-    }
-    std::printf("  weighted residual RMS: %.3f before, %.3f after (%d iterations)\n",
-                report.residual_rms_before, report.residual_rms_after, report.iterations);
-    std::printf(
-        "  dead reckoning over the whole recording, RMS against the fixes: %.3f m nominal, "
-        "%.3f m calibrated\n",
-        calibration::DeadReckoningRms(encoders, fixes.fixes, nominal),
-        calibration::DeadReckoningRms(encoders, fixes.fixes, report.parameters));
-    for (const auto& w : report.warnings) std::printf("  WARNING: %s\n", w.c_str());
-    kinematics::SaveRobotParameters(report.parameters, out,
-                                    "calibrated by structloc calibrate from " +
-                                        cli.Required("encoders") + " and " + cli.Required("fixes"));
-    std::cout << "wrote " << out << "\n";
-    return report.success ? 0 : 1;
+    kinematics::WriteRobotParameters(
+        report.parameters, out.Stream(),
+        "calibrated by structloc calibrate from " + encoders_path + " and " + fixes_path);
+    out.Commit();
+    std::cout << "wrote " << out.Path() << "\n";
+    return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc calibrate: " << e.what() << "\n" << config::CommandLine::Usage(specs);
     return 2;

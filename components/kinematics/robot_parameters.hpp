@@ -11,14 +11,28 @@
 // traction_ticks_per_rev; distance = wheel_radius * wheel angle (EQ 46).
 // sensor_* is the pose on the robot of the sensor whose position fixes the
 // calibration uses (default: the reference point itself).
+// Values outside the plausibility bounds below are refused: they are typing or
+// unit mistakes (millimetres for metres, degrees for radians, 1e-300 ticks).
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 
 #include "pose2d.hpp"
 
 namespace structloc::kinematics {
+
+// Plausibility bounds every robot file must meet (see RobotParameters::Validate).
+inline constexpr double kMinRobotLength_m = 1e-3;   // wheel radius, axle distance
+inline constexpr double kMaxRobotLength_m = 100.0;  // ... and |sensor_x|, |sensor_y|
+inline constexpr double kMinTicksPerRev = 1.0;      // traction_ticks_per_rev
+inline constexpr double kMaxTicksPerRev = 1e9;
+inline constexpr double kMinSteeringRadPerTick = 1e-9;  // |steering_rad_per_tick|
+inline constexpr double kMaxSteeringRadPerTick = 1.0;
+inline constexpr double kMaxSteeringZeroTick = 1e15;  // |steering_zero_tick|, exact in double
+inline constexpr int kMinCounterBits = 8;             // traction_counter_bits
+inline constexpr int kMaxCounterBits = 63;
 
 struct RobotParameters {
   double wheel_radius = 0.185;   // m, traction (front) wheel
@@ -39,14 +53,21 @@ struct RobotParameters {
   }
   // Signed tick difference from `previous` to `current` across a counter wrap.
   int64_t TickDelta(uint64_t previous, uint64_t current) const;
+  // Largest raw traction counter value, 2^traction_counter_bits - 1.
+  uint64_t MaxTractionTick() const;
   double WheelAngle(int64_t tick_delta) const {
     return static_cast<double>(tick_delta) * 2.0 * geometry::kPi / traction_ticks_per_rev;
   }
 };
 
+// Throws config::ConfigError "FILE:LINE: problem" for a missing, malformed or
+// implausible parameter.
 RobotParameters LoadRobotParameters(const std::string& path);
-// Writes a parameter file (the calibration's output); throws on I/O failure.
-void SaveRobotParameters(const RobotParameters& p, const std::string& path,
-                         const std::string& comment);
+// Writes a parameter file (the calibration's output) to `out`; `comment` may
+// hold any text (paths with "--" included): it is made safe for an XML comment.
+void WriteRobotParameters(const RobotParameters& p, std::ostream& out, const std::string& comment);
+// `text` as the body of a well-formed XML comment: no "--", no trailing "-",
+// control characters replaced by '?'.
+std::string XmlCommentBody(const std::string& text);
 
 }  // namespace structloc::kinematics
