@@ -2,10 +2,10 @@
 //  --out TRAJ.tum [--params P.xml] [--truth TRUTH.tum] [--plot OUT.png] [--no-map]":
 // runs a recorded CARMEN log through the localisation core, offline.
 #include <iostream>
-#include <sstream>
 
 #include "command_line.hpp"
 #include "replay.hpp"
+#include "strict_number.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -33,12 +33,13 @@ int ReplayCommand(const Invocation& inv) {
     o.truth_path = cli.GetOr("truth", "");
     o.plot_path = cli.GetOr("plot", "");
     o.fixes_path = cli.GetOr("fixes-out", "");
-    std::istringstream pose(cli.Required("initial-pose"));
-    geometry::Pose2D p;
-    if (!(pose >> p.x >> p.y >> p.theta) || !geometry::IsFinite(p)) {
-      throw config::ConfigError("--initial-pose must be three numbers \"X Y THETA\"");
+    const std::string pose_text = cli.Required("initial-pose");
+    const auto pose = config::ParseNumberList(pose_text, 3);
+    if (!pose) {
+      throw config::ConfigError(
+          "--initial-pose must be exactly three numbers \"X Y THETA\", got '" + pose_text + "'");
     }
-    o.initial_pose = p;
+    o.initial_pose = {(*pose)[0], (*pose)[1], (*pose)[2]};
     o.progress = [](size_t scans, double) {
       std::cerr << "\rstructloc replay: " << scans << " scans localised" << std::flush;
     };
