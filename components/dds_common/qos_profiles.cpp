@@ -7,6 +7,7 @@
 #include <map>
 
 #include "strict_xml.hpp"
+#include "topics.hpp"
 
 namespace structloc::dds {
 namespace {
@@ -68,6 +69,38 @@ void CheckValues(const config::XmlFile& file, const tinyxml2::XMLElement& elemen
   }
 }
 
+// A <leaseDuration> of zero makes Fast DDS fail when the participant is
+// created, with only its own log line; refuse it here with file:line.
+void CheckLease(const config::XmlFile& file, const tinyxml2::XMLElement& lease) {
+  bool zero = true;
+  for (const char* part : {"sec", "nanosec"}) {
+    const auto* e = lease.FirstChildElement(part);
+    const char* text = e != nullptr ? e->GetText() : nullptr;
+    if (text != nullptr && std::string(text) != "0") zero = false;
+  }
+  if (zero) file.Fail(lease, "leaseDuration must be longer than 0 (structloc ships 3 s)");
+}
+
+void CheckLeases(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
+  for (const auto* child = element.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (std::string(child->Name()) == "leaseDuration") CheckLease(file, *child);
+    CheckLeases(file, *child);
+  }
+}
+
+// Every profile the components create endpoints with (topics.hpp).
+std::set<std::string> TopicProfiles() {
+  std::set<std::string> names;
+  for (const auto* topic :
+       {&topics::kScan, &topics::kOdom, &topics::kWheelEncoders, &topics::kGroundTruth,
+        &topics::kCmdVel, &topics::kPose, &topics::kInitialPose, &topics::kTf, &topics::kFeatures,
+        &topics::kStatus, &topics::kCalibration, &topics::kDiagnostics}) {
+    names.insert(topic->qos_profile);
+  }
+  return names;
+}
+
 std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
   const char* name = element.Attribute("profile_name");
   if (name == nullptr || *name == '\0') file.Fail(element, "profile without profile_name");
@@ -98,12 +131,22 @@ QosProfiles QosProfiles::Load(const std::string& path) {
       const std::string name = ProfileName(file, *e);
       if (!names->insert(name).second) file.Fail(*e, "duplicate profile '" + name + "'");
       CheckValues(file, *e);
+      CheckLeases(file, *e);
     }
   } catch (const config::ConfigError& e) {
     throw QosError(std::string("QoS profiles: ") + e.what());
   }
   if (result.participant_profiles_.empty()) {
     throw QosError("QoS profiles: " + path + ": defines no <participant> profile");
+  }
+  for (const auto& profile : TopicProfiles()) {
+    for (const auto& [kind, names] : {std::pair{"data_writer", &result.writer_profiles_},
+                                      std::pair{"data_reader", &result.reader_profiles_}}) {
+      if (names->count(profile) == 0) {
+        throw QosError("QoS profiles: " + path + ": no <" + kind + " profile_name=\"" + profile +
+                       "\">, which the components' topics use");
+      }
+    }
   }
   auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
   if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
