@@ -73,7 +73,8 @@ std::optional<double> AttributeReader::OptionalDouble(const char* name) {
   if (raw == nullptr) return std::nullopt;
   const auto value = ParseFiniteDouble(raw);
   if (!value) {
-    Fail(std::string("attribute ") + name + "=\"" + raw + "\" is not a finite decimal number");
+    Fail(std::string("attribute ") + name + "=\"" + raw +
+         "\" is not a finite number (decimal digits only)");
   }
   return *value;
 }
@@ -102,7 +103,7 @@ std::optional<long long> AttributeReader::OptionalInteger(const char* name) {
   const auto value = ParseInteger(raw);
   if (!value) {
     Fail(std::string("attribute ") + name + "=\"" + raw +
-         "\" is not a decimal integer in the range of a 64-bit integer");
+         "\" is not an integer (decimal digits, within 64 bits)");
   }
   return *value;
 }
@@ -117,8 +118,8 @@ double AttributeReader::DoubleIn(const char* name, double min, double max) {
   const double value = Double(name);
   if (value < min || value > max) {
     std::ostringstream msg;
-    msg << "attribute " << name << "=\"" << element_.Attribute(name) << "\" must be from " << min
-        << " to " << max;
+    msg << "attribute " << name << " must be from " << min << " to " << max << ", not \""
+        << element_.Attribute(name) << "\"";
     Fail(msg.str());
   }
   return value;
@@ -127,8 +128,8 @@ double AttributeReader::DoubleIn(const char* name, double min, double max) {
 long long AttributeReader::CheckedInteger(const char* name, long long value, long long min,
                                           long long max) const {
   if (value < min || value > max) {
-    Fail(std::string("attribute ") + name + "=\"" + element_.Attribute(name) +
-         "\" must be an integer from " + std::to_string(min) + " to " + std::to_string(max));
+    Fail(std::string("attribute ") + name + " must be an integer from " + std::to_string(min) +
+         " to " + std::to_string(max) + ", not \"" + element_.Attribute(name) + "\"");
   }
   return value;
 }

@@ -3,9 +3,9 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
-#include <cstdlib>
 #include <map>
 
+#include "strict_number.hpp"
 #include "strict_xml.hpp"
 #include "topics.hpp"
 
@@ -30,11 +30,10 @@ const std::map<std::string, std::set<std::string>>& KnownKinds() {
 }
 
 bool IsNonNegativeInteger(const char* text, long max, long* out) {
-  if (text == nullptr || *text == '\0') return false;
-  char* end = nullptr;
-  const long value = std::strtol(text, &end, 10);
-  if (*end != '\0' || value < 0 || value > max) return false;
-  *out = value;
+  if (text == nullptr) return false;
+  const auto value = config::ParseInteger(text);
+  if (!value || *value < 0 || *value > max) return false;
+  *out = static_cast<long>(*value);
   return true;
 }
 
