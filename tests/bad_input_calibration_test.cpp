@@ -24,6 +24,7 @@
 #include "ros_conversions.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "temp_dir.hpp"
+#include "test_domains.hpp"
 #include "test_paths.hpp"
 #include "tricycle.hpp"
 
@@ -286,8 +287,8 @@ TEST(BadInputCalibration, M6_CalibrateRefusesToWriteOverAnInputAndReportsWriteFa
 }
 
 testing::CliResult RunComponent(std::vector<std::string> args) {
-  args.insert(args.begin(),
-              {"--domain", "171", "--qos", testing::SourcePath("qos/structloc_qos.xml")});
+  args.insert(args.begin(), {"--domain", std::to_string(testing::domains::kBadInputCalibration),
+                             "--qos", testing::SourcePath("qos/structloc_qos.xml")});
   return testing::RunExecutable("structloc_calibration", args, std::chrono::seconds(30));
 }
 
@@ -332,7 +333,7 @@ void Publish(dds::Node& node, const Inputs& inputs) {
 TEST(BadInputCalibration, M2_ComponentExitsNonZeroWhenTheCalibrationFails) {
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({0, 32, true}));
-  constexpr int kDomain = 173;
+  constexpr int kDomain = testing::domains::kBadInputCalibration;
   process::ChildProcess component(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",
@@ -354,7 +355,7 @@ TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) 
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({}));
   const std::string out = dir / "out";
-  constexpr int kDomain = 172;
+  constexpr int kDomain = testing::domains::kBadInputCalibration;
   process::ChildProcess component(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",

@@ -246,18 +246,5 @@ TEST(BadInputLocalisation, M10_UnusableStateFileIsIgnoredAndTheComponentStarts) 
   }
 }
 
-TEST(BadInputLocalisation, L6_DomainOutOfRangeIsAConfigurationError) {
-  for (const char* domain : {"300", "-1"}) {
-    const auto result = testing::RunExecutable(
-        "structloc_localisation", {"--domain", domain, "--qos", testing::ShippedQos()}, 20s);
-    EXPECT_EQ(result.exit_code, 2) << result.output;
-    EXPECT_NE(result.output.find("configuration error: domain id"), std::string::npos)
-        << result.output;
-  }
-  process::ChildProcess warned(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-                               {"--domain", "110", "--qos", testing::ShippedQos(), "--help"});
-  ASSERT_TRUE(warned.WaitExit(10s).has_value());
-}
-
 }  // namespace
 }  // namespace structloc

@@ -18,16 +18,17 @@ namespace structloc::cli {
 
 int DemoCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
-      {"domain", true, "DDS domain id (default 0)"},
-      {"time-scale", true, "simulated seconds per wall second (default 2)"},
+      {"domain", true, "DDS domain id, 0..232 (default 0)"},
+      {"time-scale", true, "simulated seconds per wall second, 0.01..1000 (default 2)"},
       {"out", true, "PNG to write (default build/demo/fig44_office.png)"},
   };
   try {
+    // Every option is checked here, before anything starts.
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
+    const int domain = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
+    const double time_scale = cli.NumberIn("time-scale", 2.0, 0.01, 1000.0);
     const std::string share = STRUCTLOC_SHARE_DIR;
     const auto scenario = simulation::LoadScenario(share + "/maps/scenarios/office_people.xml");
-    const int domain = static_cast<int>(cli.Integer("domain", 0));
-    const double time_scale = cli.Number("time-scale", 2.0);
     const std::string png = cli.GetOr("out", inv.bin_dir + "/../demo/fig44_office.png");
     std::filesystem::create_directories(std::filesystem::path(png).parent_path());
 

@@ -29,8 +29,10 @@ struct Subcommand {
 
 const Subcommand kSubcommands[] = {
     {"launch", structloc::cli::LaunchCommand,
-     "FILE.launch.xml [NAME:=VALUE ...] [--duration S]  start components from a launch file"},
-    {"demo", structloc::cli::DemoCommand, "run the main demo"},
+     "FILE.launch.xml [NAME:=VALUE ...] [--duration S] [--max-value-bytes N] "
+     "[--max-total-bytes N]  start components from a launch file"},
+    {"demo", structloc::cli::DemoCommand,
+     "[--domain N] [--time-scale X] [--out PICTURE.png]  run the main demo"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,
@@ -43,22 +45,26 @@ const Subcommand kSubcommands[] = {
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
 };
 
-void Usage() {
-  std::cerr << "usage: structloc SUBCOMMAND ...\n";
-  for (const auto& s : kSubcommands) std::cerr << "  " << s.name << " " << s.help << "\n";
+void Usage(std::ostream& out) {
+  out << "usage: structloc SUBCOMMAND ...  (structloc SUBCOMMAND --help lists its options)\n";
+  for (const auto& s : kSubcommands) out << "  " << s.name << " " << s.help << "\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || std::strcmp(argv[1], "--help") == 0) {
-    Usage();
-    return argc < 2 ? 2 : 0;
+  if (argc >= 2 && std::strcmp(argv[1], "--help") == 0) {
+    Usage(std::cout);
+    return 0;
+  }
+  if (argc < 2) {
+    Usage(std::cerr);
+    return 2;
   }
   for (const auto& s : kSubcommands) {
     if (std::strcmp(argv[1], s.name) == 0) return s.run({argc, argv, ExecutableDir()});
   }
   std::cerr << "structloc: unknown subcommand '" << argv[1] << "'\n";
-  Usage();
+  Usage(std::cerr);
   return 2;
 }

@@ -3,11 +3,11 @@
 //  [--fixes-out FIXES.csv] [--max-beams N] [--max-lines N]":
 // runs a recorded CARMEN log through the localisation core, offline.
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include "command_line.hpp"
 #include "replay.hpp"
+#include "strict_number.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -62,12 +62,13 @@ int ReplayCommand(const Invocation& inv) {
     o.fixes_path = cli.GetOr("fixes-out", "");
     o.limits.max_beams = Limit(cli, "max-beams", o.limits.max_beams, 10000000);
     o.limits.max_lines = Limit(cli, "max-lines", o.limits.max_lines, 1000000000000);
-    std::istringstream pose(cli.Required("initial-pose"));
-    geometry::Pose2D p;
-    if (!(pose >> p.x >> p.y >> p.theta) || !geometry::IsFinite(p)) {
-      throw config::ConfigError("--initial-pose must be three numbers \"X Y THETA\"");
+    const std::string pose_text = cli.Required("initial-pose");
+    const auto pose = config::ParseNumberList(pose_text, 3);
+    if (!pose) {
+      throw config::ConfigError(
+          "--initial-pose must be exactly three numbers \"X Y THETA\", got '" + pose_text + "'");
     }
-    o.initial_pose = p;
+    o.initial_pose = {(*pose)[0], (*pose)[1], (*pose)[2]};
     o.progress = [&progress_shown](size_t scans, double) {
       std::cerr << "\rstructloc replay: " << scans << " scans localised" << std::flush;
       progress_shown = true;

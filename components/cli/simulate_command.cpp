@@ -12,17 +12,25 @@ int SimulateCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"scenario", true, "scenario XML file (maps/scenarios/*.xml)"},
       {"out", true, "output folder (created)"},
-      {"seed", true, "override the scenario's seed"},
+      {"seed", true, "override the scenario's seed (0..4294967295)"},
+      {"max-duration", true,
+       "longest duration_s a scenario may ask for, in seconds (default " +
+           std::to_string(static_cast<int>(simulation::ScenarioLimits::kDefaultMaxDurationS)) +
+           ")"},
+      {"max-walls", true,
+       "most walls a world may have (default " +
+           std::to_string(world::WorldLimits::kDefaultMaxWalls) +
+           "); coordinates must lie within 100 km of the map origin"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
-    auto scenario = simulation::LoadScenario(cli.Required("scenario"));
-    if (cli.Has("seed")) {
-      const long long seed = cli.Integer("seed", 0);
-      if (seed < 0 || seed > 0xffffffffLL)
-        throw config::ConfigError("--seed must be 0..4294967295");
-      scenario.seed = static_cast<uint32_t>(seed);
-    }
+    simulation::ScenarioLimits limits;
+    limits.max_duration_s = cli.NumberIn("max-duration", limits.max_duration_s, 1.0, 1e7);
+    limits.world.max_walls = static_cast<size_t>(
+        cli.IntegerIn("max-walls", static_cast<long long>(limits.world.max_walls), 1, 100000000));
+    auto scenario = simulation::LoadScenario(cli.Required("scenario"), limits);
+    if (cli.Has("seed"))
+      scenario.seed = static_cast<uint32_t>(cli.IntegerIn("seed", 0, 0, 0xffffffffLL));
     const std::string out = cli.Required("out");
     const auto summary = simulation::RecordScenario(scenario, out);
     std::cout << "structloc simulate: " << scenario.name << " (seed " << scenario.seed

@@ -1,24 +1,47 @@
 // Implementation of the strict command-line parser.
 #include "command_line.hpp"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 
+#include "strict_number.hpp"
+
 namespace structloc::config {
+namespace {
+
+// "structloc replay" for argv = {"/path/structloc", "replay", ...} and first = 2.
+std::string ProgramName(const char* const* argv, int first) {
+  std::string name;
+  for (int i = 0; i < first; ++i) {
+    std::string part = argv[i];
+    if (i == 0) part = part.substr(part.find_last_of('/') + 1);
+    name += (i == 0 ? "" : " ") + part;
+  }
+  return name;
+}
+
+}  // namespace
 
 CommandLine::CommandLine(int argc, const char* const* argv, int first,
                          const std::vector<OptionSpec>& specs) {
+  bool declares_help = false;
+  for (const auto& s : specs) declares_help = declares_help || s.name == "help";
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--help" && !declares_help) {
+      std::cout << "usage: " << ProgramName(argv, first) << " [options]\n" << Usage(specs);
+      std::cout.flush();
+      std::exit(0);
+    }
     if (arg.rfind("--", 0) != 0) throw ConfigError("unexpected argument '" + arg + "'");
     const std::string name = arg.substr(2);
     const OptionSpec* spec = nullptr;
     for (const auto& s : specs) {
       if (s.name == name) spec = &s;
     }
-    if (spec == nullptr) throw ConfigError("unknown option '" + arg + "'\n" + Usage(specs));
+    if (spec == nullptr)
+      throw ConfigError("unknown option '" + arg + "' (--help lists the options)");
     if (!spec->takes_value) {
       // Flags may carry an explicit true/false (launch files always pass a value).
       const std::string next = i + 1 < argc ? argv[i + 1] : "";
@@ -50,10 +73,18 @@ std::string CommandLine::Required(const std::string& name) const {
 double CommandLine::Number(const std::string& name, double fallback) const {
   auto raw = Get(name);
   if (!raw) return fallback;
-  char* end = nullptr;
-  const double value = std::strtod(raw->c_str(), &end);
-  if (end == raw->c_str() || *end != '\0' || !std::isfinite(value)) {
-    throw ConfigError("option --" + name + " '" + *raw + "' is not a finite number");
+  const auto value = ParseFiniteDouble(*raw);
+  if (!value) throw ConfigError("option --" + name + " '" + *raw + "' is not a finite number");
+  return *value;
+}
+
+double CommandLine::NumberIn(const std::string& name, double fallback, double min,
+                             double max) const {
+  const double value = Number(name, fallback);
+  if (value < min || value > max) {
+    std::ostringstream msg;
+    msg << "option --" << name << " " << value << " must be from " << min << " to " << max;
+    throw ConfigError(msg.str());
   }
   return value;
 }
@@ -61,11 +92,17 @@ double CommandLine::Number(const std::string& name, double fallback) const {
 long long CommandLine::Integer(const std::string& name, long long fallback) const {
   auto raw = Get(name);
   if (!raw) return fallback;
-  char* end = nullptr;
-  errno = 0;
-  const long long value = std::strtoll(raw->c_str(), &end, 10);
-  if (end == raw->c_str() || *end != '\0' || errno == ERANGE) {
-    throw ConfigError("option --" + name + " '" + *raw + "' is not an integer");
+  const auto value = ParseInteger(*raw);
+  if (!value) throw ConfigError("option --" + name + " '" + *raw + "' is not an integer");
+  return *value;
+}
+
+long long CommandLine::IntegerIn(const std::string& name, long long fallback, long long min,
+                                 long long max) const {
+  const long long value = Integer(name, fallback);
+  if (value < min || value > max) {
+    throw ConfigError("option --" + name + " " + std::to_string(value) + " must be from " +
+                      std::to_string(min) + " to " + std::to_string(max));
   }
   return value;
 }

@@ -1,5 +1,6 @@
 // A small strict parser for "--key value" and "--flag" command lines, shared by
-// the components and the structloc CLI: unknown options are errors with a hint.
+// the components and the structloc CLI: unknown options are errors with a hint,
+// numbers are parsed strictly (see strict_number.hpp), and "--help" is built in.
 #pragma once
 
 #include <map>
@@ -20,7 +21,9 @@ struct OptionSpec {
 
 class CommandLine {
  public:
-  // Throws ConfigError on an unknown option or a missing value.
+  // Throws ConfigError on an unknown option or a missing value. "--help" (unless
+  // `specs` declares its own "help") prints "usage: PROGRAM [options]" and the
+  // option list to stdout and exits with 0, as argparse does.
   CommandLine(int argc, const char* const* argv, int first, const std::vector<OptionSpec>& specs);
 
   bool Has(const std::string& name) const { return values_.count(name) != 0; }
@@ -28,7 +31,11 @@ class CommandLine {
   std::string GetOr(const std::string& name, const std::string& fallback) const;
   std::string Required(const std::string& name) const;
   double Number(const std::string& name, double fallback) const;
+  // A number in [min, max]; the message names the bounds.
+  double NumberIn(const std::string& name, double fallback, double min, double max) const;
   long long Integer(const std::string& name, long long fallback) const;
+  long long IntegerIn(const std::string& name, long long fallback, long long min,
+                      long long max) const;
 
   static std::string Usage(const std::vector<OptionSpec>& specs);
 

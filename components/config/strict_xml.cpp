@@ -1,15 +1,19 @@
 // Implementation of the strict XML reader: parsing, typed attributes, errors with file:line.
 #include "strict_xml.hpp"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "strict_number.hpp"
 
 namespace structloc::config {
 
 XmlFile XmlFile::Load(const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) {
+    throw ConfigError(path + ": is a folder, not an XML file");
+  }
   std::ifstream probe(path);
   if (!probe) throw ConfigError(path + ": cannot open file");
   XmlFile file;
@@ -21,6 +25,11 @@ XmlFile XmlFile::Load(const std::string& path) {
     throw ConfigError(msg.str());
   }
   if (file.doc_->RootElement() == nullptr) throw ConfigError(path + ": no root element");
+  if (const auto* second = file.doc_->RootElement()->NextSiblingElement()) {
+    file.Fail(*second, "a second root element after </" +
+                           std::string(file.doc_->RootElement()->Name()) +
+                           ">; a file holds exactly one");
+  }
   return file;
 }
 
@@ -62,13 +71,12 @@ void AttributeReader::Fail(const std::string& what) const {
 std::optional<double> AttributeReader::OptionalDouble(const char* name) {
   const char* raw = Raw(name);
   if (raw == nullptr) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(raw, &end);
-  if (end == raw || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
-    Fail(std::string("attribute ") + name + "=\"" + raw + "\" is not a finite number");
+  const auto value = ParseFiniteDouble(raw);
+  if (!value) {
+    Fail(std::string("attribute ") + name + "=\"" + raw +
+         "\" is not a finite number (decimal digits only)");
   }
-  return value;
+  return *value;
 }
 
 double AttributeReader::Double(const char* name) {
@@ -92,19 +100,38 @@ double AttributeReader::NonNegativeDouble(const char* name) {
 std::optional<long long> AttributeReader::OptionalInteger(const char* name) {
   const char* raw = Raw(name);
   if (raw == nullptr) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const long long value = std::strtoll(raw, &end, 10);
-  if (end == raw || *end != '\0' || errno == ERANGE) {
-    Fail(std::string("attribute ") + name + "=\"" + raw + "\" is not an integer");
+  const auto value = ParseInteger(raw);
+  if (!value) {
+    Fail(std::string("attribute ") + name + "=\"" + raw +
+         "\" is not an integer (decimal digits, within 64 bits)");
   }
-  return value;
+  return *value;
 }
 
 long long AttributeReader::Integer(const char* name) {
   auto value = OptionalInteger(name);
   if (!value) Fail(std::string("missing attribute ") + name);
   return *value;
+}
+
+double AttributeReader::DoubleIn(const char* name, double min, double max) {
+  const double value = Double(name);
+  if (value < min || value > max) {
+    std::ostringstream msg;
+    msg << "attribute " << name << " must be from " << min << " to " << max << ", not \""
+        << element_.Attribute(name) << "\"";
+    Fail(msg.str());
+  }
+  return value;
+}
+
+long long AttributeReader::CheckedInteger(const char* name, long long value, long long min,
+                                          long long max) const {
+  if (value < min || value > max) {
+    Fail(std::string("attribute ") + name + " must be an integer from " + std::to_string(min) +
+         " to " + std::to_string(max) + ", not \"" + element_.Attribute(name) + "\"");
+  }
+  return value;
 }
 
 bool AttributeReader::Bool(const char* name) {

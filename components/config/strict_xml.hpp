@@ -5,11 +5,13 @@
 
 #include <tinyxml2.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace structloc::config {
 
@@ -22,7 +24,8 @@ class ConfigError : public std::runtime_error {
 // A parsed XML file that remembers its path for error messages.
 class XmlFile {
  public:
-  // Throws ConfigError when the file is missing, unreadable or not well-formed.
+  // Throws ConfigError when the file is missing, a folder, unreadable, not
+  // well-formed, or has more than one root element.
   static XmlFile Load(const std::string& path);
 
   const tinyxml2::XMLElement& Root() const;
@@ -48,8 +51,24 @@ class AttributeReader {
   double PositiveDouble(const char* name);
   double NonNegativeDouble(const char* name);
   std::optional<double> OptionalDouble(const char* name);
+  // A finite number in [min, max]; the message names the bound.
+  double DoubleIn(const char* name, double min, double max);
   long long Integer(const char* name);
   std::optional<long long> OptionalInteger(const char* name);
+  // An integer in [min, max] (by default the whole range of T), returned as T:
+  // never truncated or wrapped into a narrower type.
+  template <class T>
+  T IntegerIn(const char* name, T min = std::numeric_limits<T>::min(),
+              T max = std::numeric_limits<T>::max()) {
+    return static_cast<T>(CheckedInteger(name, Integer(name), Clamp(min), Clamp(max)));
+  }
+  template <class T>
+  std::optional<T> OptionalIntegerIn(const char* name, T min = std::numeric_limits<T>::min(),
+                                     T max = std::numeric_limits<T>::max()) {
+    const auto value = OptionalInteger(name);
+    if (!value) return std::nullopt;
+    return static_cast<T>(CheckedInteger(name, *value, Clamp(min), Clamp(max)));
+  }
   bool Bool(const char* name);
   std::string String(const char* name);
   std::optional<std::string> OptionalString(const char* name);
@@ -61,6 +80,16 @@ class AttributeReader {
 
  private:
   const char* Raw(const char* name);
+  long long CheckedInteger(const char* name, long long value, long long min, long long max) const;
+  template <class T>
+  static long long Clamp(T bound) {
+    constexpr auto kMax = std::numeric_limits<long long>::max();
+    if constexpr (std::is_unsigned_v<T>) {
+      return bound > static_cast<unsigned long long>(kMax) ? kMax : static_cast<long long>(bound);
+    } else {
+      return static_cast<long long>(bound);
+    }
+  }
   const XmlFile& file_;
   const tinyxml2::XMLElement& element_;
   std::set<std::string> read_;

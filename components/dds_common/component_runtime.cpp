@@ -13,7 +13,7 @@ namespace structloc::dds {
 
 std::vector<config::OptionSpec> StandardOptions() {
   return {
-      {"domain", true, "DDS domain id (default 0)"},
+      {"domain", true, "DDS domain id, 0..232 (default 0)"},
       {"qos", true,
        "Fast DDS QoS profiles file (default " STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml)"},
       {"participant-profile", true,
@@ -39,7 +39,7 @@ int RunComponent(int argc, char** argv, const std::string& name,
     }
     NodeOptions options;
     options.name = name;
-    options.domain_id = static_cast<int>(cli.Integer("domain", 0));
+    options.domain_id = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
     options.qos_file = cli.GetOr("qos", STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml");
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);

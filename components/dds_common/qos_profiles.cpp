@@ -3,10 +3,11 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
-#include <cstdlib>
 #include <map>
 
+#include "strict_number.hpp"
 #include "strict_xml.hpp"
+#include "topics.hpp"
 
 namespace structloc::dds {
 namespace {
@@ -29,11 +30,10 @@ const std::map<std::string, std::set<std::string>>& KnownKinds() {
 }
 
 bool IsNonNegativeInteger(const char* text, long max, long* out) {
-  if (text == nullptr || *text == '\0') return false;
-  char* end = nullptr;
-  const long value = std::strtol(text, &end, 10);
-  if (*end != '\0' || value < 0 || value > max) return false;
-  *out = value;
+  if (text == nullptr) return false;
+  const auto value = config::ParseInteger(text);
+  if (!value || *value < 0 || *value > max) return false;
+  *out = static_cast<long>(*value);
   return true;
 }
 
@@ -68,6 +68,38 @@ void CheckValues(const config::XmlFile& file, const tinyxml2::XMLElement& elemen
   }
 }
 
+// A <leaseDuration> of zero makes Fast DDS fail when the participant is
+// created, with only its own log line; refuse it here with file:line.
+void CheckLease(const config::XmlFile& file, const tinyxml2::XMLElement& lease) {
+  bool zero = true;
+  for (const char* part : {"sec", "nanosec"}) {
+    const auto* e = lease.FirstChildElement(part);
+    const char* text = e != nullptr ? e->GetText() : nullptr;
+    if (text != nullptr && std::string(text) != "0") zero = false;
+  }
+  if (zero) file.Fail(lease, "leaseDuration must be longer than 0 (structloc ships 3 s)");
+}
+
+void CheckLeases(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
+  for (const auto* child = element.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (std::string(child->Name()) == "leaseDuration") CheckLease(file, *child);
+    CheckLeases(file, *child);
+  }
+}
+
+// Every profile the components create endpoints with (topics.hpp).
+std::set<std::string> TopicProfiles() {
+  std::set<std::string> names;
+  for (const auto* topic :
+       {&topics::kScan, &topics::kOdom, &topics::kWheelEncoders, &topics::kGroundTruth,
+        &topics::kCmdVel, &topics::kPose, &topics::kInitialPose, &topics::kTf, &topics::kFeatures,
+        &topics::kStatus, &topics::kCalibration, &topics::kDiagnostics}) {
+    names.insert(topic->qos_profile);
+  }
+  return names;
+}
+
 std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
   const char* name = element.Attribute("profile_name");
   if (name == nullptr || *name == '\0') file.Fail(element, "profile without profile_name");
@@ -98,12 +130,22 @@ QosProfiles QosProfiles::Load(const std::string& path) {
       const std::string name = ProfileName(file, *e);
       if (!names->insert(name).second) file.Fail(*e, "duplicate profile '" + name + "'");
       CheckValues(file, *e);
+      CheckLeases(file, *e);
     }
   } catch (const config::ConfigError& e) {
     throw QosError(std::string("QoS profiles: ") + e.what());
   }
   if (result.participant_profiles_.empty()) {
     throw QosError("QoS profiles: " + path + ": defines no <participant> profile");
+  }
+  for (const auto& profile : TopicProfiles()) {
+    for (const auto& [kind, names] : {std::pair{"data_writer", &result.writer_profiles_},
+                                      std::pair{"data_reader", &result.reader_profiles_}}) {
+      if (names->count(profile) == 0) {
+        throw QosError("QoS profiles: " + path + ": no <" + kind + " profile_name=\"" + profile +
+                       "\">, which the components' topics use");
+      }
+    }
   }
   auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
   if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {

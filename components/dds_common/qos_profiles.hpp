@@ -1,6 +1,8 @@
 // Loads a Fast DDS QoS profiles file and hands out QoS by profile name, after
 // validating what Fast DDS 2.9 would silently accept (depth 0, negative
-// durations, unknown kinds) or replace with defaults (a broken file).
+// durations, unknown kinds, a lease of 0) or replace with defaults (a broken
+// file), and that every topic profile of the topic table exists for both
+// writers and readers. structloc_check_qos runs exactly this.
 #pragma once
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -23,8 +25,8 @@ class QosError : public std::runtime_error {
 
 class QosProfiles {
  public:
-  // Validates the file's structure and values, then loads it into Fast DDS.
-  // Throws QosError naming the file, line and problem.
+  // Validates the file's structure, values and topic profiles, then loads it
+  // into Fast DDS. Throws QosError naming the file, line and problem.
   static QosProfiles Load(const std::string& path);
 
   eprosima::fastdds::dds::DomainParticipantQos Participant(const std::string& profile) const;

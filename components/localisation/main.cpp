@@ -1,7 +1,6 @@
 // structloc_localisation: entry point of the localisation component.
-#include <sstream>
-
 #include "localisation_component.hpp"
+#include "strict_number.hpp"
 #include "world_model_xml.hpp"
 
 #ifndef STRUCTLOC_SHARE_DIR
@@ -29,12 +28,12 @@ int main(int argc, char** argv) {
         loc::LocalisationComponentOptions options;
         options.state_file = cli.GetOr("state-file", "");
         if (auto text = cli.Get("initial-pose")) {
-          std::istringstream in(*text);
-          structloc::geometry::Pose2D p;
-          if (!(in >> p.x >> p.y >> p.theta) || !structloc::geometry::IsFinite(p)) {
-            throw ConfigError("--initial-pose must be \"X Y THETA\", got '" + *text + "'");
+          const auto pose = structloc::config::ParseNumberList(*text, 3);
+          if (!pose) {
+            throw ConfigError("--initial-pose must be exactly three numbers \"X Y THETA\", got '" +
+                              *text + "'");
           }
-          options.initial_pose = p;
+          options.initial_pose = structloc::geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
         }
         return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params,
                                                             options);

@@ -30,6 +30,13 @@ void LocaliserOptions::Validate() const {
   require(max_correction_m > 0.0, "gates: max_correction_m must be > 0");
   require(max_correction_rad > 0.0, "gates: max_correction_rad must be > 0");
   require(max_beams >= line_fit.window_points, "gates: max_beams must be >= window_points");
+  require(max_beams <= LocaliserLimits::kMaxBeams, "gates: max_beams must be <= 1000000");
+  require(solver.bisection_iterations <= LocaliserLimits::kMaxBisectionIterations,
+          "solver: bisection_iterations must be <= 60");
+  require(solver.max_iterations <= LocaliserLimits::kMaxSolverIterations,
+          "solver: max_iterations must be <= 1000");
+  require(kohonen.iterations <= LocaliserLimits::kMaxKohonenIterations,
+          "kohonen: iterations must be <= 100000");
 }
 
 namespace {
@@ -41,6 +48,9 @@ const tinyxml2::XMLElement& Section(const XmlFile& file, const tinyxml2::XMLElem
                                     const char* name) {
   const auto* e = root.FirstChildElement(name);
   if (e == nullptr) file.Fail(root, std::string("missing section <") + name + ">");
+  if (const auto* second = e->NextSiblingElement(name)) {
+    file.Fail(*second, std::string("a second <") + name + "> section; write each section once");
+  }
   return *e;
 }
 
@@ -63,7 +73,7 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
   }
   {
     AttributeReader a(file, Section(file, root, "line_fit"));
-    o.line_fit.window_points = static_cast<int>(a.Integer("window_points"));
+    o.line_fit.window_points = a.IntegerIn<int>("window_points");
     o.line_fit.max_rms_m = a.Double("max_rms_m");
     a.Finish();
   }
@@ -79,26 +89,27 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
     }
     o.walls.gate_r_m = a.Double("gate_r_m");
     o.walls.gate_alpha_rad = a.Double("gate_alpha_rad");
-    o.walls.min_cluster_size = static_cast<int>(a.Integer("min_cluster_size"));
+    o.walls.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
     o.walls.extent_margin_m = a.Double("extent_margin_m");
     o.walls.min_point_sigma_m = a.Double("min_point_sigma_m");
     a.Finish();
   }
   {
     AttributeReader a(file, Section(file, root, "kohonen"));
-    o.kohonen.iterations = static_cast<int>(a.Integer("iterations"));
+    o.kohonen.iterations =
+        a.IntegerIn<int>("iterations", 1, LocaliserLimits::kMaxKohonenIterations);
     o.kohonen.initial_learning_rate = a.Double("initial_learning_rate");
     o.kohonen.initial_neighbourhood = a.Double("initial_neighbourhood");
-    o.kohonen_seed = static_cast<uint32_t>(a.Integer("seed"));
+    o.kohonen_seed = a.IntegerIn<uint32_t>("seed");
     a.Finish();
   }
   {
     AttributeReader a(file, Section(file, root, "corners"));
     o.use_corners = a.Bool("enabled");
-    o.corners.next_windows = static_cast<int>(a.Integer("next_windows"));
+    o.corners.next_windows = a.IntegerIn<int>("next_windows");
     o.corners.angle_tolerance_rad = a.Double("angle_tolerance_rad");
     o.corners.gate_m = a.Double("gate_m");
-    o.corners.min_cluster_size = static_cast<int>(a.Integer("min_cluster_size"));
+    o.corners.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
     o.corners.min_point_sigma_m = a.Double("min_point_sigma_m");
     a.Finish();
   }
@@ -109,7 +120,7 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
     o.cylinders.radius_tolerance_m = a.Double("radius_tolerance_m");
     o.cylinders.min_quality = a.Double("min_quality");
     o.cylinders.gate_m = a.Double("gate_m");
-    o.cylinders.min_cluster_size = static_cast<int>(a.Integer("min_cluster_size"));
+    o.cylinders.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
     o.cylinders.min_point_sigma_m = a.Double("min_point_sigma_m");
     a.Finish();
   }
@@ -125,10 +136,12 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
     } else {
       a.Fail("mode must be weighted, thesis_linear or bisection, not '" + mode + "'");
     }
-    o.solver.max_iterations = static_cast<int>(a.Integer("max_iterations"));
+    o.solver.max_iterations =
+        a.IntegerIn<int>("max_iterations", 1, LocaliserLimits::kMaxSolverIterations);
     o.solver.outlier_chi2 = a.Double("outlier_chi2");
     o.solver.search_half_width_m = a.Double("search_half_width_m");
-    o.solver.bisection_iterations = static_cast<int>(a.Integer("bisection_iterations"));
+    o.solver.bisection_iterations =
+        a.IntegerIn<int>("bisection_iterations", 1, LocaliserLimits::kMaxBisectionIterations);
     o.solver.max_feature_std_m = a.Double("max_feature_std_m");
     o.solver.max_feature_std_rad = a.Double("max_feature_std_rad");
     a.Finish();
@@ -152,7 +165,7 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
     AttributeReader a(file, gates);
     o.max_correction_m = a.Double("max_correction_m");
     o.max_correction_rad = a.Double("max_correction_rad");
-    o.max_beams = static_cast<int>(a.Integer("max_beams"));
+    o.max_beams = a.IntegerIn<int>("max_beams", 1, LocaliserLimits::kMaxBeams);
     a.Finish();
   }
   try {

@@ -27,6 +27,17 @@ struct VisibilitySettings {
   double refresh_angle_rad = 0.2;                  // ... or rotation (limited fields of view only)
 };
 
+// Upper bounds on the work one scan may cost, so that a typo such as
+// bisection_iterations="2000000000" is refused instead of hanging the replay.
+struct LocaliserLimits {
+  // Each bisection step halves the search interval: 60 steps take 0.2 m below
+  // double resolution.
+  static constexpr int kMaxBisectionIterations = 60;
+  static constexpr int kMaxSolverIterations = 1000;     // Gauss-Newton steps per scan
+  static constexpr int kMaxKohonenIterations = 100000;  // 50 x the thesis' 2000
+  static constexpr int kMaxBeams = 1000000;             // buffers are sized for max_beams
+};
+
 struct LocaliserOptions {
   PrefilterOptions prefilter;
   LineFitOptions line_fit;

@@ -1,12 +1,15 @@
 // ChildProcess implementation (see header).
 #include "child_process.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -15,31 +18,72 @@
 extern char** environ;
 
 namespace structloc::process {
+namespace {
+
+// In the forked child, before exec: only async-signal-safe calls. Reports a
+// failure as its errno through `error_pipe` (closed by a successful exec).
+[[noreturn]] void ExecChild(const char* path, char* const* argv, int output_fd, pid_t parent,
+                            int error_pipe) {
+  int error = 0;
+  if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
+  // The parent may have died before prctl took effect.
+  if (error == 0 && getppid() != parent) _exit(127);
+  if (error == 0 && output_fd >= 0) {
+    if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
+  }
+  if (error == 0) {
+    execve(path, argv, environ);
+    error = errno;
+  }
+  const ssize_t ignored = write(error_pipe, &error, sizeof(error));
+  static_cast<void>(ignored);
+  _exit(127);
+}
+
+}  // namespace
 
 ChildProcess::ChildProcess(const std::string& executable, const std::vector<std::string>& args,
                            Output output) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
   int fd = -1;
   if (output == Output::kCapture) {
     char log_template[] = "/tmp/structloc_child_XXXXXX";
     fd = mkstemp(log_template);
     if (fd < 0) throw std::runtime_error("cannot create a temp file for " + executable);
     log_path_ = log_template;
-    posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
-    posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
   }
   std::vector<std::string> all{executable};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  const int rc = posix_spawn(&pid_, executable.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  int error_pipe[2];
+  if (pipe2(error_pipe, O_CLOEXEC) != 0) {
+    const int error = errno;
+    if (fd >= 0) close(fd);
+    throw std::runtime_error("cannot start " + executable + ": " + std::strerror(error));
+  }
+  const pid_t parent = getpid();
+  pid_ = fork();
+  if (pid_ == 0) {
+    close(error_pipe[0]);
+    ExecChild(executable.c_str(), argv.data(), fd, parent, error_pipe[1]);
+  }
+  const int fork_error = pid_ < 0 ? errno : 0;
+  close(error_pipe[1]);
   if (fd >= 0) close(fd);
-  if (rc != 0) {
+  int exec_error = fork_error;
+  if (pid_ > 0) {
+    ssize_t n = 0;
+    do {
+      n = read(error_pipe[0], &exec_error, sizeof(exec_error));
+    } while (n < 0 && errno == EINTR);
+    if (n != static_cast<ssize_t>(sizeof(exec_error))) exec_error = 0;  // exec succeeded
+  }
+  close(error_pipe[0]);
+  if (exec_error != 0) {
+    if (pid_ > 0) waitpid(pid_, nullptr, 0);
     if (!log_path_.empty()) std::remove(log_path_.c_str());
-    throw std::runtime_error("cannot start " + executable + ": " + std::to_string(rc));
+    throw std::runtime_error("cannot start " + executable + ": " + std::strerror(exec_error));
   }
 }
 

@@ -1,7 +1,8 @@
-// One child process of ours: started with posix_spawn, output either inherited
-// or captured to a temp file, always reaped (SIGKILL in the destructor if it is
-// still running) so that neither the launcher nor a failing test leaves
-// processes behind. DDS-free.
+// One child process of ours: started with fork and exec, output either
+// inherited or captured to a temp file, always reaped (SIGKILL in the
+// destructor if it is still running), and sent SIGTERM by the kernel when the
+// thread that started it dies (PR_SET_PDEATHSIG), so that neither a launcher
+// killed with SIGKILL nor a failing test leaves processes behind. DDS-free.
 #pragma once
 
 #include <sys/types.h>
@@ -16,7 +17,9 @@ namespace structloc::process {
 class ChildProcess {
  public:
   enum class Output { kInherit, kCapture };
-  // Throws std::runtime_error when the executable cannot be started.
+  // Throws std::runtime_error ("cannot start PATH: No such file or directory")
+  // when the executable cannot be started. Start children from a thread that
+  // lives as long as they should (the main thread): they stop when it ends.
   ChildProcess(const std::string& executable, const std::vector<std::string>& args,
                Output output = Output::kCapture);
   ~ChildProcess();

@@ -8,9 +8,12 @@
 //   </launch>
 // Substitutions: $(var NAME), $(find-pkg-share structloc), $(env NAME).
 // Each <param name="N" value="V"/> becomes the command-line option "--N V".
-// Unknown elements and attributes are errors (file:line). DDS-free.
+// Unknown elements and attributes, duplicate <arg> names, executables that do
+// not exist, and substituted values above the size limits are errors
+// (file:line). DDS-free.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -29,9 +32,16 @@ struct LaunchDescription {
 };
 
 struct LaunchContext {
+  static constexpr size_t kDefaultMaxValueBytes = 64 * 1024;
+  static constexpr size_t kDefaultMaxTotalBytes = 4 * 1024 * 1024;
+
   std::string package_share_dir;                 // what $(find-pkg-share structloc) gives
   std::string executables_dir;                   // where exec names are looked up
   std::map<std::string, std::string> overrides;  // NAME:=VALUE from the command line
+  // Substitution bounds: $(var ...) can double a value per <arg>, so forty
+  // lines would otherwise ask for terabytes.
+  size_t max_value_bytes = kDefaultMaxValueBytes;  // one <arg> or <param> value
+  size_t max_total_bytes = kDefaultMaxTotalBytes;  // all values of the file together
 };
 
 // Throws config::ConfigError naming the file, line and problem.

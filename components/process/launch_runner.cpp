@@ -17,6 +17,7 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
     std::cout << std::endl;
     children.push_back(std::make_unique<ChildProcess>(node.executable, node.arguments,
                                                       ChildProcess::Output::kInherit));
+    std::cout << "[launch] " << node.name << " has pid " << children.back()->Pid() << std::endl;
   }
   const auto start = std::chrono::steady_clock::now();
   std::string reason = "stop signal";

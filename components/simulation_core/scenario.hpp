@@ -77,6 +77,23 @@ struct Scenario {
   kinematics::RobotParameters TrueParameters() const;
 };
 
-Scenario LoadScenario(const std::string& path);
+// Bounds on what one scenario may ask of the simulator, so that a typo such as
+// rate_hz="1e9" or duration_s="1e9" is refused with file:line instead of
+// hanging or filling the disk. Geometry is bounded by `world` (WorldLimits).
+struct ScenarioLimits {
+  static constexpr double kDefaultMaxDurationS = 3600.0;
+
+  double max_duration_s = kDefaultMaxDurationS;  // simulated seconds
+  double min_step_s = 1e-4;                      // integration step 0.1 ms ..
+  double max_step_s = 0.1;                       // .. 100 ms
+  double min_rate_hz = 0.1;                      // laser revolutions and odometry rate
+  double max_laser_rate_hz = 100.0;
+  double max_odom_rate_hz = 1000.0;
+  int min_beams = 10;
+  int max_beams = 100000;
+  world::WorldLimits world;
+};
+
+Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits = {});
 
 }  // namespace structloc::simulation

@@ -1,4 +1,5 @@
 // Scenario XML reader (see scenario.hpp; schema in maps/scenarios/README.md).
+#include <algorithm>
 #include <filesystem>
 
 #include "scenario.hpp"
@@ -11,13 +12,25 @@ namespace {
 using config::AttributeReader;
 using config::XmlFile;
 
-std::vector<Eigen::Vector2d> ReadWaypoints(const XmlFile& file,
-                                           const tinyxml2::XMLElement& parent) {
+// A map-frame coordinate within the world limits (the message names the bound).
+double Coordinate(AttributeReader& a, const char* name, const world::WorldLimits& limits) {
+  return a.DoubleIn(name, -limits.max_abs_coordinate_m, limits.max_abs_coordinate_m);
+}
+
+// A size or radius in (0, limit].
+double Size(AttributeReader& a, const char* name, double limit) {
+  const double value = a.DoubleIn(name, 0.0, limit);
+  if (!(value > 0.0)) a.Fail(std::string("attribute ") + name + " must be > 0");
+  return value;
+}
+
+std::vector<Eigen::Vector2d> ReadWaypoints(const XmlFile& file, const tinyxml2::XMLElement& parent,
+                                           const world::WorldLimits& limits) {
   config::RequireChildNames(file, parent, {"waypoint"});
   std::vector<Eigen::Vector2d> points;
   for (const auto* w = parent.FirstChildElement(); w != nullptr; w = w->NextSiblingElement()) {
     AttributeReader a(file, *w);
-    points.emplace_back(a.Double("x"), a.Double("y"));
+    points.emplace_back(Coordinate(a, "x", limits), Coordinate(a, "y", limits));
     a.Finish();
   }
   return points;
@@ -49,7 +62,8 @@ kinematics::RobotParameters Scenario::TrueParameters() const {
   return p;
 }
 
-Scenario LoadScenario(const std::string& path) {
+Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
+  const auto& geometry_limits = limits.world;
   const auto file = XmlFile::Load(path);
   const auto& root = file.Root("scenario");
   config::RequireChildNames(
@@ -58,21 +72,19 @@ Scenario LoadScenario(const std::string& path) {
   {
     AttributeReader a(file, root);
     s.name = a.String("name");
-    const long long seed = a.Integer("seed");
-    if (seed < 0 || seed > 0xffffffffLL) a.Fail("seed must be 0..4294967295");
-    s.seed = static_cast<uint32_t>(seed);
-    s.duration_s = a.PositiveDouble("duration_s");
-    s.step_s = a.PositiveDouble("step_s");
-    s.odom_rate_hz = a.PositiveDouble("odom_rate_hz");
+    s.seed = a.IntegerIn<uint32_t>("seed");
+    s.duration_s = Size(a, "duration_s", limits.max_duration_s);
+    s.step_s = a.DoubleIn("step_s", limits.min_step_s, limits.max_step_s);
+    s.odom_rate_hz = a.DoubleIn("odom_rate_hz", limits.min_rate_hz, limits.max_odom_rate_hz);
     a.Finish();
-    if (s.step_s > 0.1) a.Fail("step_s must be <= 0.1");
   }
   {
     const auto& e = Required(file, root, "world");
     AttributeReader a(file, e);
     s.world_path = Resolve(path, a.String("file"));
     a.Finish();
-    s.world = std::make_shared<world::WorldModel>(world::LoadWorldModel(s.world_path));
+    s.world =
+        std::make_shared<world::WorldModel>(world::LoadWorldModel(s.world_path, geometry_limits));
   }
   {
     const auto& e = Required(file, root, "robot");
@@ -88,23 +100,28 @@ Scenario LoadScenario(const std::string& path) {
     s.errors.axle_distance_scale = a.PositiveDouble("axle_distance_scale");
     s.errors.steering_offset_rad = a.Double("steering_offset_rad");
     s.errors.wheel_slip_std = a.NonNegativeDouble("wheel_slip_std");
-    s.errors.traction_start_tick = a.Integer("traction_start_tick");
+    // The simulated counter runs in double precision: exact up to 2^52 ticks.
+    const int bits = std::min(s.nominal.traction_counter_bits, 52);
+    s.errors.traction_start_tick =
+        a.IntegerIn<int64_t>("traction_start_tick", 0, (int64_t{1} << bits) - 1);
     a.Finish();
   }
   {
     const auto& e = Required(file, root, "initial_pose");
     AttributeReader a(file, e);
-    s.initial_pose = {a.Double("x"), a.Double("y"), a.Double("theta")};
+    s.initial_pose = {Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits),
+                      a.Double("theta")};
     a.Finish();
   }
   {
     const auto& e = Required(file, root, "laser");
     AttributeReader a(file, e);
     auto& l = s.laser;
-    l.mount = {a.Double("x"), a.Double("y"), a.Double("theta")};
+    l.mount = {Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits),
+               a.Double("theta")};
     l.field_of_view_rad = a.PositiveDouble("field_of_view_rad");
-    l.beams = static_cast<int>(a.Integer("beams"));
-    l.rate_hz = a.PositiveDouble("rate_hz");
+    l.beams = a.IntegerIn<int>("beams", limits.min_beams, limits.max_beams);
+    l.rate_hz = a.DoubleIn("rate_hz", limits.min_rate_hz, limits.max_laser_rate_hz);
     l.min_range_m = a.NonNegativeDouble("min_range_m");
     l.max_range_m = a.PositiveDouble("max_range_m");
     l.noise_std_m = a.NonNegativeDouble("noise_std_m");
@@ -115,7 +132,6 @@ Scenario LoadScenario(const std::string& path) {
     l.spurious_probability = a.NonNegativeDouble("spurious_probability");
     l.mixed_pixel_probability = a.NonNegativeDouble("mixed_pixel_probability");
     a.Finish();
-    if (l.beams < 10 || l.beams > 100000) a.Fail("beams must be 10..100000");
     if (l.field_of_view_rad > 2 * geometry::kPi + 1e-9) a.Fail("field_of_view_rad must be <= 2 pi");
     if (l.max_range_m <= l.min_range_m) a.Fail("max_range_m must be > min_range_m");
     if (l.spurious_probability > 1 || l.mixed_pixel_probability > 1)
@@ -123,8 +139,14 @@ Scenario LoadScenario(const std::string& path) {
     config::RequireChildNames(file, e, {"blocked"});
     for (const auto* b = e.FirstChildElement(); b != nullptr; b = b->NextSiblingElement()) {
       AttributeReader ba(file, *b);
-      l.blocked_sectors.emplace_back(ba.Double("from_rad"), ba.Double("to_rad"));
+      const double from = ba.Double("from_rad"), to = ba.Double("to_rad");
       ba.Finish();
+      if (from > to) {
+        ba.Fail(
+            "from_rad > to_rad: a sector must not wrap through +-pi; write it as two "
+            "<blocked> elements, one ending at pi and one starting at -pi");
+      }
+      l.blocked_sectors.emplace_back(from, to);
     }
   }
   {
@@ -145,7 +167,7 @@ Scenario LoadScenario(const std::string& path) {
     s.path.lookahead_m = a.PositiveDouble("lookahead_m");
     s.path.loop = a.Bool("loop");
     a.Finish();
-    s.path.waypoints = ReadWaypoints(file, e);
+    s.path.waypoints = ReadWaypoints(file, e, geometry_limits);
     if (s.path.mode != PathSpec::Mode::kCmdVel && s.path.waypoints.empty()) {
       file.Fail(e, "needs at least one <waypoint>");
     }
@@ -157,8 +179,10 @@ Scenario LoadScenario(const std::string& path) {
       AttributeReader a(file, *o);
       const std::string kind = o->Name();
       if (kind == "box") {
-        const Eigen::Vector2d c(a.Double("x"), a.Double("y"));
-        const double w = a.PositiveDouble("width_m"), h = a.PositiveDouble("depth_m");
+        const Eigen::Vector2d c(Coordinate(a, "x", geometry_limits),
+                                Coordinate(a, "y", geometry_limits));
+        const double w = Size(a, "width_m", geometry_limits.max_abs_coordinate_m);
+        const double h = Size(a, "depth_m", geometry_limits.max_abs_coordinate_m);
         const double yaw = a.Double("theta");
         a.Finish();
         const double cy = std::cos(yaw), sy = std::sin(yaw);
@@ -173,14 +197,15 @@ Scenario LoadScenario(const std::string& path) {
         }
       } else if (kind == "cylinder") {
         s.obstacles.circles.push_back(
-            {{a.Double("x"), a.Double("y")}, a.PositiveDouble("radius_m")});
+            {{Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits)},
+             Size(a, "radius_m", geometry_limits.max_radius_m)});
         a.Finish();
       } else {
         Person p;
-        p.radius_m = a.PositiveDouble("radius_m");
+        p.radius_m = Size(a, "radius_m", geometry_limits.max_radius_m);
         p.speed_m_s = a.PositiveDouble("speed_m_s");
         a.Finish();
-        p.waypoints = ReadWaypoints(file, *o);
+        p.waypoints = ReadWaypoints(file, *o, geometry_limits);
         if (p.waypoints.size() < 2) file.Fail(*o, "a person needs at least two <waypoint>s");
         s.people.push_back(p);
       }

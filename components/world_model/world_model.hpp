@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,13 +38,28 @@ struct CornerDerivation {
   double angle_tolerance_rad = 22.5 * 3.14159265358979 / 180.0;  // around 90 degrees
 };
 
+// Sanity bounds on a world model. A map beyond them is almost surely in the
+// wrong unit (millimetres) or hostile: coordinates of 1e8 m make wall sampling
+// take minutes, and corner derivation and visibility grow with the wall count.
+struct WorldLimits {
+  static constexpr double kDefaultMaxAbsCoordinateM = 1e5;  // 100 km from the map origin
+  static constexpr double kDefaultMaxRadiusM = 1e3;
+  static constexpr size_t kDefaultMaxWalls = 250000;
+
+  double max_abs_coordinate_m = kDefaultMaxAbsCoordinateM;  // |x| and |y| of every point
+  double max_radius_m = kDefaultMaxRadiusM;                 // cylinder radius
+  size_t max_walls = kDefaultMaxWalls;                      // walls per map
+};
+
 class WorldModel {
  public:
-  // Validates (finite values, walls longer than 1 mm, positive radii, unique
-  // ids per kind, at least one element) and derives corners. Throws
-  // std::invalid_argument naming the offending element.
+  // Validates (finite values within `limits`, walls longer than 1 mm, positive
+  // radii, unique ids per kind, at least one element, at most
+  // limits.max_walls walls) and derives corners. Throws std::invalid_argument
+  // naming the offending element.
   WorldModel(std::string name, std::vector<Wall> walls, std::vector<Corner> corners,
-             std::vector<Cylinder> cylinders, const CornerDerivation& derivation = {});
+             std::vector<Cylinder> cylinders, const CornerDerivation& derivation = {},
+             const WorldLimits& limits = {});
 
   const std::string& Name() const { return name_; }
   const std::vector<Wall>& Walls() const { return walls_; }
@@ -58,6 +74,8 @@ class WorldModel {
   std::vector<Wall> walls_;
   std::vector<Corner> corners_;
   std::vector<Cylinder> cylinders_;
+
+  void DeriveCorners(const CornerDerivation& derivation);
 };
 
 // Convenience for tests and tools: a wall from two end points.

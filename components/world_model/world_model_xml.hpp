@@ -4,7 +4,8 @@
 //     <corner x=".." y=".." [id=".."]/>
 //     <cylinder x=".." y=".." radius=".." [id=".."]/>
 //   </world>
-// Every problem is a config::ConfigError naming file, line and problem.
+// Every problem is a config::ConfigError naming file, line and problem;
+// coordinates, radii and the wall count must lie within `limits`.
 #pragma once
 
 #include <string>
@@ -14,8 +15,9 @@
 
 namespace structloc::world {
 
-WorldModel LoadWorldModel(const std::string& path);
+WorldModel LoadWorldModel(const std::string& path, const WorldLimits& limits = {});
 // Reads the <world> element of an already opened file (scenario files embed one).
-WorldModel ReadWorldModel(const config::XmlFile& file, const tinyxml2::XMLElement& world);
+WorldModel ReadWorldModel(const config::XmlFile& file, const tinyxml2::XMLElement& world,
+                          const WorldLimits& limits = {});
 
 }  // namespace structloc::world
