@@ -15,6 +15,16 @@
 #include "subcommands.hpp"
 
 namespace structloc::cli {
+namespace {
+
+// The demo's own accuracy bar (the integration test's): a run that misses it,
+// e.g. because another robot shares the DDS domain, must not look like success.
+constexpr double kMaxRmseM = 0.010;
+constexpr double kMaxErrorM = 0.030;
+constexpr double kMaxHeadingRmseDeg = 0.3;
+constexpr size_t kMinPoses = 500;
+
+}  // namespace
 
 int DemoCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
@@ -93,7 +103,21 @@ int DemoCommand(const Invocation& inv) {
         odo.heading_rmse_rad * 180 / geometry::kPi, odo.final_position_m);
     std::printf("  picture (true path, odometry, localised estimate): %s\n",
                 std::filesystem::weakly_canonical(png).c_str());
-    return 0;
+    int failed = 0;
+    for (const auto& problem : node.PeerProblems()) {
+      std::printf("  PROBLEM: %s\n", problem.c_str());
+      ++failed;
+    }
+    if (est.position_rmse_m > kMaxRmseM || est.position_max_m > kMaxErrorM ||
+        est.heading_rmse_rad * 180 / geometry::kPi > kMaxHeadingRmseDeg ||
+        evaluator.LostCount() > 0 || est.matched < kMinPoses) {
+      std::printf(
+          "  FAILED the demo's bar (RMSE <= %.0f mm, max <= %.0f mm, heading RMSE <= %.1f deg, "
+          "never lost, >= %zu poses): is another robot or demo on DDS domain %d?\n",
+          1e3 * kMaxRmseM, 1e3 * kMaxErrorM, kMaxHeadingRmseDeg, kMinPoses, domain);
+      ++failed;
+    }
+    return failed == 0 ? 0 : 1;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc demo: " << e.what() << "\n" << config::CommandLine::Usage(specs);
     return 2;

@@ -43,6 +43,9 @@ int ReplayCommand(const Invocation& inv) {
       {"max-lines", true,
        "most lines read from the log before giving up (default " +
            std::to_string(logs::CarmenLimits{}.max_lines) + ")"},
+      {"max-walls", true,
+       "refuse maps with more walls than this (default " +
+           std::to_string(world::WorldLimits::kDefaultMaxWalls) + ")"},
   };
   bool progress_shown = false;  // a "\r" progress line that a message must not continue
   const auto end_progress_line = [&progress_shown] {
@@ -62,6 +65,7 @@ int ReplayCommand(const Invocation& inv) {
     o.fixes_path = cli.GetOr("fixes-out", "");
     o.limits.max_beams = Limit(cli, "max-beams", o.limits.max_beams, 10000000);
     o.limits.max_lines = Limit(cli, "max-lines", o.limits.max_lines, 1000000000000);
+    o.world_limits.max_walls = Limit(cli, "max-walls", o.world_limits.max_walls, 100000000);
     const std::string pose_text = cli.Required("initial-pose");
     const auto pose = config::ParseNumberList(pose_text, 3);
     if (!pose) {

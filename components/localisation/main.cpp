@@ -1,4 +1,7 @@
 // structloc_localisation: entry point of the localisation component.
+#include <chrono>
+#include <iostream>
+
 #include "localisation_component.hpp"
 #include "strict_number.hpp"
 #include "world_model_xml.hpp"
@@ -18,11 +21,25 @@ int main(int argc, char** argv) {
        {"initial-pose", true,
         "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
         "it stands, or publish rt/initialpose with a stamp)"},
-       {"state-file", true, "where the pose is saved and resumed from (default: none)"}},
+       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
+       {"max-walls", true,
+        "refuse maps with more walls than this (default " +
+            std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
-        auto world =
-            std::make_unique<structloc::world::WorldModel>(structloc::world::LoadWorldModel(
-                cli.GetOr("map", STRUCTLOC_SHARE_DIR "/maps/office_floor.xml")));
+        structloc::world::WorldLimits limits;
+        limits.max_walls = static_cast<size_t>(
+            cli.IntegerIn("max-walls", static_cast<long long>(limits.max_walls), 1, 100000000));
+        const std::string map = cli.GetOr("map", STRUCTLOC_SHARE_DIR "/maps/office_floor.xml");
+        std::cout << "localisation: loading map " << map << std::endl;
+        const auto started = std::chrono::steady_clock::now();
+        auto world = std::make_unique<structloc::world::WorldModel>(
+            structloc::world::LoadWorldModel(map, limits));
+        std::cout
+            << "localisation: map has " << world->Walls().size() << " walls, "
+            << world->Corners().size() << " corners, " << world->Cylinders().size()
+            << " cylinders (loaded in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
+            << " s)" << std::endl;
         const auto params = loc::LoadLocaliserOptions(
             cli.GetOr("params", STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml"));
         loc::LocalisationComponentOptions options;

@@ -2,6 +2,7 @@
 #include "child_process.hpp"
 
 #include <fcntl.h>
+#include <linux/close_range.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -31,6 +32,9 @@ namespace {
   if (error == 0 && output_fd >= 0) {
     if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
   }
+  // Nothing else of the parent's may reach the child: its DDS sockets would
+  // stay bound, and its shared-memory ports stay open, as long as the child runs.
+  if (error == 0 && close_range(3, ~0U, CLOSE_RANGE_CLOEXEC) != 0) error = errno;
   if (error == 0) {
     execve(path, argv, environ);
     error = errno;

@@ -41,7 +41,7 @@ class Replayer {
     if (!o.initial_pose) throw config::ConfigError("replay needs --initial-pose \"X Y THETA\"");
     if (!o.plot_path.empty()) rendering::MapCanvas::CheckPictureName(o.plot_path);
     RefuseSameOutputs();
-    if (!o.no_map) world_ = std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path));
+    if (!o.no_map) world_ = std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path, o.world_limits));
     if (!o.params_path.empty()) params_ = localisation::LoadLocaliserOptions(o.params_path);
     if (!o.truth_path.empty()) {
       truth_ = logs::ReadTum(o.truth_path);

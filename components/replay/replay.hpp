@@ -18,6 +18,7 @@
 
 #include "carmen_reader.hpp"
 #include "trajectory_error.hpp"
+#include "world_model.hpp"
 
 namespace structloc::replay {
 
@@ -31,7 +32,8 @@ struct ReplayOptions {
   std::string plot_path;    // optional picture (.png)
   std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
   bool no_map = false;
-  logs::CarmenLimits limits;  // beams per scan and lines per log
+  logs::CarmenLimits limits;        // beams per scan and lines per log
+  world::WorldLimits world_limits;  // walls per map, coordinate bounds
   // Called every few percent of the log with the scans done so far.
   std::function<void(size_t scans, double fraction)> progress;
 };
