@@ -91,38 +91,16 @@ TEST(BadInputLocalisation, M1_OdometryWithoutAUnitQuaternionOrWithAHeadingJumpIs
 
 TEST(BadInputLocalisation, M11_ScanWithAnAbsurdTimeIncrementIsRejected) {
   TrackerFixture f;
-  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {2, 6.5, 0}).has_value());
-  ASSERT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
-  std::vector<float> ranges(361, 5.0f);
-  localisation::ScanInput scan;
-  scan.stamp = 1.0;
-  scan.angle_min = -1.57;
-  scan.angle_increment = 3.14 / 360;
-  scan.angle_max = scan.angle_min + 360 * scan.angle_increment;
-  scan.time_increment = 1e30;
-  scan.range_max = 30;
-  scan.ranges = ranges.data();
-  scan.count = ranges.size();
-  const auto outcome = f.tracker.ProcessScan(scan, 0.0);
+  f.Start();
+  const auto outcome = f.Scan(361, 1e30);
   EXPECT_EQ(outcome.verdict, PoseTracker::ScanVerdict::kRejected);
   EXPECT_EQ(outcome.rejection, Rejection::kScanTooLong);
 }
 
 TEST(BadInputLocalisation, M7_LocaliserRejectionsAreCountedWithTheirReason) {
   TrackerFixture f;
-  ASSERT_FALSE(f.tracker.AddOdometry(1.0, {2, 6.5, 0}).has_value());
-  ASSERT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
-  const size_t beams = static_cast<size_t>(f.options.max_beams) + 1;
-  std::vector<float> ranges(beams, 5.0f);
-  localisation::ScanInput scan;
-  scan.stamp = 1.0;
-  scan.angle_min = -1.57;
-  scan.angle_increment = 3.14 / static_cast<double>(beams - 1);
-  scan.angle_max = scan.angle_min + static_cast<double>(beams - 1) * scan.angle_increment;
-  scan.range_max = 30;
-  scan.ranges = ranges.data();
-  scan.count = ranges.size();
-  const auto outcome = f.tracker.ProcessScan(scan, 0.0);
+  f.Start();
+  const auto outcome = f.Scan(static_cast<size_t>(f.options.max_beams) + 1, 0.0);
   EXPECT_EQ(outcome.verdict, PoseTracker::ScanVerdict::kRejected);
   EXPECT_EQ(outcome.rejection, Rejection::kTooManyBeams);
   EXPECT_EQ(f.tracker.Stats().scans_lost, 0u);

@@ -28,7 +28,7 @@ constexpr size_t kMinPoses = 500;
 
 int DemoCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
-      {"domain", true, "DDS domain id, 0..232 (default 0)"},
+      {"domain", true, "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"time-scale", true, "simulated seconds per wall second, 0.01..1000 (default 2)"},
       {"out", true, "PNG to write (default build/demo/fig44_office.png)"},
   };

@@ -13,7 +13,7 @@ namespace structloc::dds {
 
 std::vector<config::OptionSpec> StandardOptions() {
   return {
-      {"domain", true, "DDS domain id, 0..232 (default 0)"},
+      {"domain", true, "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"qos", true,
        "Fast DDS QoS profiles file (default " STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml)"},
       {"participant-profile", true,
