@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "command_line.hpp"
 #include "subcommands.hpp"
 
 namespace {
@@ -62,7 +63,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   for (const auto& s : kSubcommands) {
-    if (std::strcmp(argv[1], s.name) == 0) return s.run({argc, argv, ExecutableDir()});
+    if (std::strcmp(argv[1], s.name) != 0) continue;
+    try {
+      return s.run({argc, argv, ExecutableDir()});
+    } catch (const config::HelpRequested& help) {
+      std::cout << help.usage;
+      return 0;
+    }
   }
   std::cerr << "structloc: unknown subcommand '" << argv[1] << "'\n";
   Usage(std::cerr);

@@ -1,8 +1,6 @@
 // Implementation of the strict command-line parser.
 #include "command_line.hpp"
 
-#include <cstdlib>
-#include <iostream>
 #include <sstream>
 
 #include "strict_number.hpp"
@@ -30,9 +28,7 @@ CommandLine::CommandLine(int argc, const char* const* argv, int first,
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help" && !declares_help) {
-      std::cout << "usage: " << ProgramName(argv, first) << " [options]\n" << Usage(specs);
-      std::cout.flush();
-      std::exit(0);
+      throw HelpRequested{"usage: " + ProgramName(argv, first) + " [options]\n" + Usage(specs)};
     }
     if (arg.rfind("--", 0) != 0) throw ConfigError("unexpected argument '" + arg + "'");
     const std::string name = arg.substr(2);

@@ -19,11 +19,18 @@ struct OptionSpec {
   std::string help;
 };
 
+// Thrown by CommandLine for "--help" when the program does not declare a
+// "help" option itself; the program's entry point prints `usage` and exits 0.
+// Not a std::exception, so that no "catch (const std::exception&)" on the way
+// mistakes it for an error.
+struct HelpRequested {
+  std::string usage;
+};
+
 class CommandLine {
  public:
-  // Throws ConfigError on an unknown option or a missing value. "--help" (unless
-  // `specs` declares its own "help") prints "usage: PROGRAM [options]" and the
-  // option list to stdout and exits with 0, as argparse does.
+  // Throws ConfigError on an unknown option or a missing value, and
+  // HelpRequested for "--help" unless `specs` declares its own "help".
   CommandLine(int argc, const char* const* argv, int first, const std::vector<OptionSpec>& specs);
 
   bool Has(const std::string& name) const { return values_.count(name) != 0; }
