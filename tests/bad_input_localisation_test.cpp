@@ -24,16 +24,37 @@ using localisation::Rejection;
 
 constexpr int kDomain = testing::domains::kBadInputLocalisation;
 
+Eigen::Matrix3d DiagonalCovariance() {
+  return Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
+}
+
+// A tracker on the office map; Start() gives it odometry and a pose at t = 1 s.
 struct TrackerFixture {
   world::WorldModel world = world::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"));
   localisation::LocaliserOptions options =
       localisation::LoadLocaliserOptions(testing::SourcePath("maps/params/office_sick.xml"));
   PoseTracker tracker{world, options, localisation::TrackerOptions{}};
-};
+  std::vector<float> ranges;
 
-Eigen::Matrix3d DiagonalCovariance() {
-  return Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
-}
+  void Start() {
+    ASSERT_FALSE(tracker.AddOdometry(1.0, {2, 6.5, 0}).has_value());
+    ASSERT_FALSE(tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
+  }
+  // A 180 deg scan at t = 1 s of `beams` 5 m readings.
+  PoseTracker::ScanOutcome Scan(size_t beams, double time_increment) {
+    ranges.assign(beams, 5.0f);
+    localisation::ScanInput scan;
+    scan.stamp = 1.0;
+    scan.angle_min = -1.57;
+    scan.angle_increment = 3.14 / static_cast<double>(beams - 1);
+    scan.angle_max = scan.angle_min + static_cast<double>(beams - 1) * scan.angle_increment;
+    scan.time_increment = time_increment;
+    scan.range_max = 30;
+    scan.ranges = ranges.data();
+    scan.count = ranges.size();
+    return tracker.ProcessScan(scan, 0.0);
+  }
+};
 
 std::string PoseArgument(const geometry::Pose2D& p) {
   return std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta);

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[1], s.name) != 0) continue;
     try {
       return s.run({argc, argv, ExecutableDir()});
-    } catch (const config::HelpRequested& help) {
+    } catch (const structloc::config::HelpRequested& help) {
       std::cout << help.usage;
       return 0;
     }
