@@ -1,4 +1,4 @@
-// Odometry calibration (SPEC 9, thesis 6.5.4, done properly): re-run the
+// Odometry calibration (thesis 6.5.4, done properly): re-run the
 // tricycle dead reckoning (EQ 46-48) from recorded encoder values for
 // candidate parameters and find those that best explain the relative motion
 // between consecutive position fixes (so one bad fix cannot poison the rest):

@@ -1,5 +1,5 @@
 // Lines in Hessian normal form (r, alpha): x cos(alpha) + y sin(alpha) = r,
-// r >= 0, alpha in (-pi, pi] (SPEC 3.1, EQ 7), and their transformation
+// r >= 0, alpha in (-pi, pi] (thesis 3.5.1, EQ 7), and their transformation
 // between frames (EQ 23, 24).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The thesis' tricycle (SPEC 8, EQ 46-48): one front wheel, driven and
+// The thesis' tricycle (thesis 5.2, EQ 46-48): one front wheel, driven and
 // steered, two passive rear wheels; the reference point is the middle of the
 // rear axle. Used for the simulator's true motion, for dead reckoning from
 // encoders (odometry), and by the calibration to re-run recorded encoders.

@@ -1,4 +1,4 @@
-// Step 4 (SPEC 4, EQ 31): corners from intersecting each window's line with
+// Step 4 (thesis 3.5.4, EQ 31): corners from intersecting each window's line with
 // the lines of the next k usable windows when they meet at pi/2 +- tolerance; the
 // intersections pile up at each corner and are gated around expected corners.
 #pragma once

@@ -1,4 +1,4 @@
-// Step 5 (SPEC 5, EQ 36-40): cylinders from sliding algebraic circle fits.
+// Step 5 (thesis 3.5.6, EQ 36-40): cylinders from sliding algebraic circle fits.
 // Only windows near an expected pillar are fitted (their centroid within
 // candidate_gate_m of the expected surface), solutions need a plausible radius
 // and fit quality Q = 1 / sum(residual^2) above a threshold, and are gated in

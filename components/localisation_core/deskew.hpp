@@ -1,4 +1,4 @@
-// Step 8 (SPEC 7, EQ 45): scans taken while moving. Each beam was measured
+// Step 8 (thesis 3.6, EQ 45): scans taken while moving. Each beam was measured
 // from a slightly different sensor pose; de-skewing moves every point into
 // the sensor frame at the scan's reference time (its stamp, the first beam).
 #pragma once

@@ -1,5 +1,5 @@
 // Where the world model and the odometric sensor pose say features should
-// appear in the scan (SPEC 3.3 EQ 23-24, 3.5.4, 3.5.6), computed once per
+// appear in the scan (thesis 3.5.3 EQ 23-24, 3.5.4, 3.5.6), computed once per
 // update for the visible features only, so the clustering hot loops compare
 // against precomputed numbers.
 #pragma once

@@ -1,4 +1,4 @@
-// The clustering the thesis tried and rejected (SPEC 3.4, EQ 21-22): a
+// The clustering the thesis tried and rejected (thesis 3.5.3, EQ 21-22): a
 // self-organising map with one neuron per expected wall, initialised at the
 // expected (r, alpha) and trained on randomly drawn window lines with a
 // decreasing learning rate and shrinking neighbourhood. Kept as a selectable

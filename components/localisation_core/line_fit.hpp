@@ -1,4 +1,4 @@
-// Step 2 (SPEC 3.2, EQ 18/20): a least-squares line through every window of
+// Step 2 (thesis 3.5.2, EQ 18/20): a least-squares line through every window of
 // `window_points` consecutive points, with sums updated incrementally as the
 // window slides (O(1) per window). Each window gives one point in (r, alpha)
 // space; windows on one straight wall pile up in a cluster. The hot loop uses

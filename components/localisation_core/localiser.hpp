@@ -1,4 +1,4 @@
-// One position update (SPEC 1-7 and 10): scan + odometric pose in, corrected
+// One position update (thesis 3.4-3.6 and 6.5): scan + odometric pose in, corrected
 // pose with covariance, matches, quality and a lost verdict out. Owns every
 // buffer it needs, sized at construction, so that the steady-state update
 // with the default (expectation) strategy never allocates. DDS-free.

@@ -1,4 +1,4 @@
-// Step 6 (SPEC 3.1, 4, 5, 6): the sensor pose from matched walls, corners,
+// Step 6 (thesis 3.5.1, 3.5.4, 3.5.6, 3.5.8): the sensor pose from matched walls, corners,
 // cylinders and the odometric prior. Three solvers:
 //   kWeighted  (default, beyond the thesis) one weighted nonlinear least-squares
 //              problem in (x, y, theta) jointly, Gauss-Newton, every row weighted

@@ -1,4 +1,4 @@
-// Step 1 of the pipeline (SPEC 2, thesis 3.4): range gate, rejection of
+// Step 1 of the pipeline (thesis 3.4): range gate, rejection of
 // unsupported points, thinning. NaN/inf/negative ranges are rejected and
 // counted, never propagated.
 #pragma once

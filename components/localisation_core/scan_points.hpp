@@ -24,7 +24,7 @@ struct ScanView {
   double range_min = 0.0;  // the sensor's own limits
   double range_max = 0.0;
 
-  // A full circle: beam n-1 neighbours beam 0 (SPEC 1).
+  // A full circle: beam n-1 neighbours beam 0 (thesis 3.4).
   bool WrapsAround() const {
     return count > 2 && std::abs(static_cast<double>(count) * angle_increment) >=
                             2.0 * geometry::kPi - 0.5 * std::abs(angle_increment);

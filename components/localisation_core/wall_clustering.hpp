@@ -1,4 +1,4 @@
-// Step 3 (SPEC 3.3, EQ 23-25): window lines join the cluster of the nearest
+// Step 3 (thesis 3.5.3, EQ 23-25): window lines join the cluster of the nearest
 // expected wall within the (r, alpha) gates; unmodelled obstacles form
 // clusters nobody uses. Each cluster yields the thesis' value (mean r,
 // circular-mean alpha) and, beyond the thesis, a refined line fitted through

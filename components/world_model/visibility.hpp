@@ -1,7 +1,7 @@
 // Which walls, corners and cylinders a sensor at a given pose can see: within
 // range and field of view, not hidden behind other walls or pillars, and (for
 // walls) long enough and not seen too obliquely to yield line fits. Only
-// these are expected by the localisation (SPEC 3.3).
+// these are expected by the localisation (thesis 3.5.3).
 #pragma once
 
 #include <vector>
