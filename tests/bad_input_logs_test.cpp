@@ -329,13 +329,20 @@ TEST(BadInputLogs, H5_FailedReplayLeavesAnExistingOutUntouched) {
   const std::string previous = "# timestamp x y z qx qy qz qw\n1 2 3 0 0 0 0 1\n";
   const std::string out = dir.Write("t.tum", previous);
   const std::string bad_map = dir.Write("bad.xml", "<world name=\"w\"><wall id=\"1\"/></world>");
-  const std::vector<std::vector<std::string>> runs = {
+  std::vector<std::vector<std::string>> runs = {
       {"replay", "--map", bad_map, "--log", RoomLog(), "--initial-pose", kRoomInitialPose, "--out",
        out},
       ReplayArgs(dir / "missing.clf", out),
       ReplayArgs(dir.Write("empty.clf", ""), out),
       With(ReplayArgs(RoomLog(), out), {"--truth", dir / "missing.tum"}),
+      // Every scan lost: the map explains nothing from a start 40 m away.
+      {"replay", "--map", testing::SourcePath("maps/robustness_room.xml"), "--log", RoomLog(),
+       "--initial-pose", "40 40 0", "--out", out},
   };
+  if (std::filesystem::exists("/dev/full")) {
+    // The second output fails after the first was written in full.
+    runs.push_back(With(ReplayArgs(RoomLog(), out), {"--fixes-out", "/dev/full"}));
+  }
   for (const auto& args : runs) {
     const auto r = RunCli(args);
     EXPECT_NE(r.exit_code, 0) << Describe(r);

@@ -297,10 +297,11 @@ CalibrationReport Judge(CalibrationReport report, const std::vector<EncoderSampl
   }
   report.dead_reckoning_rms_nominal = DeadReckoningRms(encoders, fixes, nominal);
   report.dead_reckoning_rms_calibrated = DeadReckoningRms(encoders, fixes, report.parameters);
-  if (!(report.dead_reckoning_rms_calibrated <
+  // Equal is fine: re-calibrating a calibrated robot confirms its parameters.
+  if (!(report.dead_reckoning_rms_calibrated <=
         options.max_dead_reckoning_ratio * report.dead_reckoning_rms_nominal)) {
     return Fail(std::move(report), encoders, fixes, nominal,
-                "dead reckoning with the estimate is not better than with the nominal "
+                "dead reckoning with the estimate is worse than with the nominal "
                 "parameters (RMS against the fixes " +
                     Text(report.dead_reckoning_rms_calibrated) + " m calibrated, " +
                     Text(report.dead_reckoning_rms_nominal) + " m nominal)");

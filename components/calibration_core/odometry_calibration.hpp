@@ -49,8 +49,9 @@ struct CalibrationOptions {
   // The estimate fails when more than this fraction of the fix intervals are
   // outliers (the model does not explain the data)...
   double max_outlier_fraction = 0.5;
-  // ... or when its open-loop dead-reckoning RMS against the fixes is not
-  // below this times the nominal parameters' (1 = it must be better).
+  // ... or when its open-loop dead-reckoning RMS against the fixes is above
+  // this times the nominal parameters' (1 = it must not be worse; equal is a
+  // robot that was calibrated already).
   double max_dead_reckoning_ratio = 1.0;
   // ... or when, with the nominal parameters, one encoder step moves the wheel
   // faster than this (over at least 0.05 s): a counter that wraps at fewer

@@ -11,6 +11,7 @@
 #include "child_process.hpp"
 #include "command_line.hpp"
 #include "live_evaluator.hpp"
+#include "map_canvas.hpp"
 #include "scenario.hpp"
 #include "subcommands.hpp"
 
@@ -28,7 +29,8 @@ constexpr size_t kMinPoses = 500;
 
 int DemoCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
-      {"domain", true, "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
+      {"domain", true,
+       "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"time-scale", true, "simulated seconds per wall second, 0.01..1000 (default 2)"},
       {"out", true, "PNG to write (default build/demo/fig44_office.png)"},
   };
@@ -40,6 +42,7 @@ int DemoCommand(const Invocation& inv) {
     const std::string share = STRUCTLOC_SHARE_DIR;
     const auto scenario = simulation::LoadScenario(share + "/maps/scenarios/office_people.xml");
     const std::string png = cli.GetOr("out", inv.bin_dir + "/../demo/fig44_office.png");
+    rendering::MapCanvas::CheckPictureName(png);
     std::filesystem::create_directories(std::filesystem::path(png).parent_path());
 
     dds::NodeOptions node_options{"demo_observer", domain, share + "/qos/structloc_qos.xml",

@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -33,6 +34,10 @@ OutputFile::OutputFile(std::string path, const std::vector<std::string>& inputs)
   if (std::filesystem::is_directory(path_, error)) {
     throw ConfigError(path_ + ": is a folder, not a file");
   }
+  // A symbolic link is followed: the file it names is replaced, the link stays.
+  if (std::filesystem::is_symlink(path_, error)) {
+    path_ = std::filesystem::weakly_canonical(path_, error).string();
+  }
   const auto status = std::filesystem::status(path_, error);
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     // A device or pipe (/dev/stdout, a FIFO): written in place, errors still checked.
@@ -46,6 +51,11 @@ OutputFile::OutputFile(std::string path, const std::vector<std::string>& inputs)
     throw ConfigError(path_ + ": cannot create an output file there (" +
                       std::string(std::strerror(errno)) + ")");
   }
+  // mkstemp makes the file private (0600); give it the mode a new file gets.
+  const mode_t mask = umask(0);
+  umask(mask);
+  const int chmod_result = fchmod(fd, 0666 & ~mask);
+  static_cast<void>(chmod_result);
   ::close(fd);
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!stream_) {
@@ -60,34 +70,37 @@ OutputFile::~OutputFile() {
   if (!temp_path_.empty()) std::remove(temp_path_.c_str());
 }
 
-void OutputFile::Commit() {
+void OutputFile::Flush() {
+  if (flushed_) return;
+  flushed_ = true;
   stream_.flush();
   const bool written = static_cast<bool>(stream_);
   stream_.close();
-  if (temp_path_.empty()) {
-    committed_ = true;
-    if (!written || stream_.fail()) throw std::runtime_error(path_ + ": writing failed");
-    return;
-  }
-  bool synced = false;
-  if (written && !stream_.fail()) {
+  bool synced = written && !stream_.fail();
+  if (synced && !temp_path_.empty()) {
     const int fd = ::open(temp_path_.c_str(), O_RDONLY);
     synced = fd >= 0 && ::fsync(fd) == 0;
     if (fd >= 0) ::close(fd);
   }
   if (!synced) {
-    std::remove(temp_path_.c_str());
+    const std::string reason = errno != 0 ? std::strerror(errno) : "stream error";
+    if (!temp_path_.empty()) std::remove(temp_path_.c_str());
     committed_ = true;
-    throw std::runtime_error(path_ + ": writing failed (" + std::string(std::strerror(errno)) +
+    throw std::runtime_error(path_ + ": writing failed (" + reason +
                              "); the previous file, if any, is unchanged");
   }
+}
+
+void OutputFile::Commit() {
+  Flush();
+  if (committed_) return;
+  committed_ = true;
+  if (temp_path_.empty()) return;
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     std::remove(temp_path_.c_str());
-    committed_ = true;
     throw std::runtime_error(path_ + ": cannot replace the file (" + reason + ")");
   }
-  committed_ = true;
 }
 
 }  // namespace structloc::config

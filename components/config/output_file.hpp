@@ -23,15 +23,20 @@ class OutputFile {
 
   std::ostream& Stream() { return stream_; }
   const std::string& Path() const { return path_; }
-  // Flushes, syncs and renames the temporary file onto the target (devices and
-  // pipes such as /dev/stdout are written in place); throws
-  // std::runtime_error naming the file when any write failed (disk full...).
+  // Writes everything to disk (flush, fsync) without replacing the target yet;
+  // throws std::runtime_error naming the file when a write failed (disk
+  // full...). A run with several outputs flushes them all before it commits
+  // any, so that a failure in one leaves every existing file untouched.
+  void Flush();
+  // Flush() if not done, then renames the temporary file onto the target
+  // (devices and pipes such as /dev/stdout are written in place).
   void Commit();
 
  private:
   std::string path_;
   std::string temp_path_;
   std::ofstream stream_;
+  bool flushed_ = false;
   bool committed_ = false;
 };
 

@@ -1,5 +1,6 @@
 // structloc_localisation: entry point of the localisation component.
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 #include "localisation_component.hpp"
@@ -49,6 +50,12 @@ int main(int argc, char** argv) {
           if (!pose) {
             throw ConfigError("--initial-pose must be exactly three numbers \"X Y THETA\", got '" +
                               *text + "'");
+          }
+          const double bound = structloc::world::WorldLimits::kDefaultMaxAbsCoordinateM;
+          if (std::abs((*pose)[0]) > bound || std::abs((*pose)[1]) > bound) {
+            throw ConfigError("--initial-pose must lie within " +
+                              std::to_string(static_cast<long long>(bound)) +
+                              " m of the map origin, got '" + *text + "'");
           }
           options.initial_pose = structloc::geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
         }

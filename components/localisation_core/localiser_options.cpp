@@ -73,7 +73,7 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
   }
   {
     AttributeReader a(file, Section(file, root, "line_fit"));
-    o.line_fit.window_points = a.IntegerIn<int>("window_points");
+    o.line_fit.window_points = a.IntegerIn<int>("window_points", 3, 100000);
     o.line_fit.max_rms_m = a.Double("max_rms_m");
     a.Finish();
   }

@@ -41,6 +41,7 @@ class CarmenWriter {
   // PARAM name value (CARMEN's parameter lines).
   void Param(const std::string& name, double value);
   // Flushes and renames onto the target; throws when anything failed.
+  void Flush() { file_.Flush(); }  // to disk, target not yet replaced
   void Close();
 
  private:
@@ -53,6 +54,7 @@ class TumWriter {
   explicit TumWriter(const std::string& path, const std::vector<std::string>& inputs = {});
   void Pose(double t, const geometry::Pose2D& pose);
   // Flushes and renames onto the target; throws when anything failed.
+  void Flush() { file_.Flush(); }  // to disk, target not yet replaced
   void Close();
 
  private:
@@ -66,6 +68,7 @@ class EncodersCsvWriter {
   explicit EncodersCsvWriter(const std::string& path, const std::vector<std::string>& inputs = {});
   void Sample(double t, uint64_t traction_ticks, int64_t steering_ticks);
   // Flushes and renames onto the target; throws when anything failed.
+  void Flush() { file_.Flush(); }  // to disk, target not yet replaced
   void Close();
 
  private:
@@ -81,6 +84,7 @@ class FixesCsvWriter {
   void Fix(double t, const geometry::Pose2D& pose, double var_x = 0, double var_y = 0,
            double var_theta = 0);
   // Flushes and renames onto the target; throws when anything failed.
+  void Flush() { file_.Flush(); }  // to disk, target not yet replaced
   void Close();
 
  private:

@@ -39,9 +39,18 @@ class Replayer {
   // Reads and checks every input, then opens the outputs (temporary files).
   explicit Replayer(const ReplayOptions& o) : o_(o) {
     if (!o.initial_pose) throw config::ConfigError("replay needs --initial-pose \"X Y THETA\"");
+    const double bound = o.world_limits.max_abs_coordinate_m;
+    if (!geometry::IsFinite(*o.initial_pose) || std::abs(o.initial_pose->x) > bound ||
+        std::abs(o.initial_pose->y) > bound) {
+      throw config::ConfigError("--initial-pose must lie within " +
+                                std::to_string(static_cast<long long>(bound)) +
+                                " m of the map origin");
+    }
     if (!o.plot_path.empty()) rendering::MapCanvas::CheckPictureName(o.plot_path);
     RefuseSameOutputs();
-    if (!o.no_map) world_ = std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path, o.world_limits));
+    if (!o.no_map)
+      world_ =
+          std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path, o.world_limits));
     if (!o.params_path.empty()) params_ = localisation::LoadLocaliserOptions(o.params_path);
     if (!o.truth_path.empty()) {
       truth_ = logs::ReadTum(o.truth_path);
@@ -81,7 +90,18 @@ class Replayer {
       throw std::runtime_error(o_.log_path + ": no scan could be localised, nothing written\n" +
                                FormatInputSummary(report_));
     }
+    if (!o_.no_map && report_.scans_lost == report_.scans_used) {
+      throw std::runtime_error(
+          o_.log_path + ": all " + std::to_string(report_.scans_used) +
+          " scans were lost, the map explains none of them; check --initial-pose, that the map "
+          "is in metres and in the log's frame; nothing written\n" +
+          FormatInputSummary(report_));
+    }
     Finish();
+    // Every output reaches the disk before any replaces an existing file.
+    out_->Flush();
+    if (fixes_) fixes_->Flush();
+    if (plot_) plot_->Flush();
     out_->Close();
     if (fixes_) fixes_->Close();
     if (plot_) plot_->Commit();

@@ -1,6 +1,8 @@
 // World model XML reader (see header).
 #include "world_model_xml.hpp"
 
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace structloc::world {
@@ -50,8 +52,10 @@ WorldModel ReadWorldModel(const config::XmlFile& file, const tinyxml2::XMLElemen
       c.centre = Point(a, "x", "y", limits);
       c.radius = a.PositiveDouble("radius");
       if (c.radius > limits.max_radius_m) {
-        a.Fail("radius " + std::to_string(c.radius) + " m is above the limit of " +
-               std::to_string(limits.max_radius_m) + " m");
+        std::ostringstream message;
+        message << "radius " << std::setprecision(6) << c.radius << " m is above the limit of "
+                << limits.max_radius_m << " m";
+        a.Fail(message.str());
       }
       a.Finish();
       cylinders.push_back(c);
