@@ -10,10 +10,22 @@
 #endif
 
 namespace structloc::dds {
+namespace {
+
+struct CallbacksDetachedAtExit {
+  explicit CallbacksDetachedAtExit(Node& node) : node(node) {}
+  ~CallbacksDetachedAtExit() { node.DetachCallbacks(); }
+  CallbacksDetachedAtExit(const CallbacksDetachedAtExit&) = delete;
+  CallbacksDetachedAtExit& operator=(const CallbacksDetachedAtExit&) = delete;
+  Node& node;
+};
+
+}  // namespace
 
 std::vector<config::OptionSpec> StandardOptions() {
   return {
-      {"domain", true, "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
+      {"domain", true,
+       "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"qos", true,
        "Fast DDS QoS profiles file (default " STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml)"},
       {"participant-profile", true,
@@ -44,6 +56,9 @@ int RunComponent(int argc, char** argv, const std::string& name,
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);
     auto component = factory(node, cli);
+    // Declared after the component, so destroyed before it, also when an
+    // exception leaves: no DDS callback can reach a destroyed component.
+    const CallbacksDetachedAtExit detach(node);
     std::cout << node.EndpointReport() << std::flush;
     std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;
     while (!component->Done() && !shutdown.WaitFor(component->Period())) component->Step();

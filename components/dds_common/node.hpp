@@ -19,6 +19,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,10 @@ class Node {
     endpoints_.push_back("subscribes " + Describe(topic, dds_topic->get_type_name()));
   }
 
+  // After this returns no subscription callback runs, now or later: called
+  // before the object the callbacks point into is destroyed.
+  void DetachCallbacks();
+
   // One line per endpoint: direction, topic, DDS type name, QoS profile.
   std::string EndpointReport() const;
   const NodeOptions& Options() const { return options_; }
@@ -97,8 +102,13 @@ class Node {
   std::vector<std::string> PeerProblems() const { return monitor_->Problems(); }
 
  private:
+  class DetachableListener : public eprosima::fastdds::dds::DataReaderListener {
+   public:
+    virtual void Detach() = 0;
+  };
+
   template <class PubSubType>
-  class CallbackListener : public eprosima::fastdds::dds::DataReaderListener {
+  class CallbackListener : public DetachableListener {
    public:
     CallbackListener(std::string node, std::string topic, PeerMonitor& monitor,
                      std::function<void(const typename PubSubType::type&)> callback)
@@ -111,11 +121,16 @@ class Node {
         const eprosima::fastdds::dds::RequestedIncompatibleQosStatus& status) override {
       monitor_.IncompatibleQos(topic_, "subscription", status.last_policy_id);
     }
+    void Detach() override {
+      std::lock_guard<std::mutex> lock(mutex_);
+      callback_ = nullptr;
+    }
     void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
       typename PubSubType::type sample;
       eprosima::fastdds::dds::SampleInfo info;
-      while (reader->take_next_sample(&sample, &info) ==
-             eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      std::lock_guard<std::mutex> lock(mutex_);  // Detach() waits for a running callback
+      while (callback_ && reader->take_next_sample(&sample, &info) ==
+                              eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
         if (!info.valid_data) continue;
         try {
           callback_(sample);
@@ -130,6 +145,7 @@ class Node {
     std::string node_;
     std::string topic_;
     PeerMonitor& monitor_;
+    std::mutex mutex_;
     std::function<void(const typename PubSubType::type&)> callback_;
   };
 
@@ -170,7 +186,7 @@ class Node {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
-  std::vector<std::unique_ptr<eprosima::fastdds::dds::DataReaderListener>> listeners_;
+  std::vector<std::unique_ptr<DetachableListener>> listeners_;
   std::vector<std::unique_ptr<WriterListener>> writer_listeners_;
   std::vector<std::string> endpoints_;
 };

@@ -71,9 +71,9 @@ int64_t RobotParameters::TickDelta(uint64_t previous, uint64_t current) const {
   const uint64_t modulus = uint64_t{1} << traction_counter_bits;
   const uint64_t mask = modulus - 1;
   const uint64_t diff = (current - previous) & mask;
-  // Differences above half the range are backwards motion across the wrap.
-  return diff >= modulus / 2 ? static_cast<int64_t>(diff) - static_cast<int64_t>(modulus)
-                             : static_cast<int64_t>(diff);
+  // Differences above half the range are backwards motion across the wrap;
+  // modulus - diff <= 2^62 always fits (2^63 itself, for 63 bits, would not).
+  return diff >= modulus / 2 ? -static_cast<int64_t>(modulus - diff) : static_cast<int64_t>(diff);
 }
 
 uint64_t RobotParameters::MaxTractionTick() const {
