@@ -14,6 +14,7 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "scenario.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
+#include "temp_dir.hpp"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -26,7 +27,8 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   const auto scenario =
       simulation::LoadScenario(testing::SourcePath("maps/scenarios/calibration_loop.xml"));
   const auto truth = scenario.TrueParameters();
-  const std::string out = "/tmp/structloc_live_cal_" + std::to_string(getpid());
+  const testing::TempDir dir;
+  const std::string out = dir / "calibration";
   dds::Node observer(testing::TestNodeOptions("cal_observer", kDomain));
   std::mutex mutex;
   std::string calibration_state;
@@ -92,7 +94,6 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   EXPECT_LT(std::abs(v.steering_offset_rad() - truth.steering_offset) * 180 / geometry::kPi, 0.05);
   EXPECT_TRUE(std::filesystem::exists(out + "/calibrated.xml"));
   EXPECT_TRUE(std::filesystem::exists(out + "/encoders.csv"));
-  std::filesystem::remove_all(out);
 }
 
 }  // namespace
