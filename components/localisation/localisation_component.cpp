@@ -27,8 +27,7 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
       node_(node),
       started_s_(dds::WallClockSeconds()),
       tracker_(*world_, localiser_options, TrackerOptions{}) {
-  const Eigen::Matrix3d initial_cov =
-      Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal();
+  const Eigen::Matrix3d initial_cov = TrackerOptions{}.InitialCovariance();
   if (options_.initial_pose) {
     pending_initial_pose_ = {{*options_.initial_pose, initial_cov}};
     std::cout << "localisation: initial pose from the command line" << std::endl;

@@ -43,6 +43,11 @@ const char* ToString(Rejection r) {
   return "unknown";
 }
 
+Eigen::Matrix3d TrackerOptions::InitialCovariance() const {
+  const double xy = initial_sigma_xy_m * initial_sigma_xy_m;
+  return Eigen::Vector3d(xy, xy, initial_sigma_theta_rad * initial_sigma_theta_rad).asDiagonal();
+}
+
 uint64_t TrackerStats::Rejected() const {
   uint64_t n = 0;
   for (auto c : rejected) n += c;

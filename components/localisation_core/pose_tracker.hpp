@@ -35,6 +35,8 @@ struct TrackerOptions {
   double initial_sigma_theta_rad = 0.03;
   bool deskew = true;  // de-skew scans from the odometry history
   void Validate() const;
+  // The covariance of a given initial pose (from the initial sigmas).
+  Eigen::Matrix3d InitialCovariance() const;
 };
 
 // Why an input was not used. The counters in TrackerStats are indexed by it.

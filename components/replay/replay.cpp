@@ -151,7 +151,7 @@ class Replayer {
       tracker_ = std::make_unique<PoseTracker>(*world_, params_, localisation::TrackerOptions{});
       for (const auto& p : odometry_) tracker_->AddOdometry(p.stamp, p.pose);
       tracker_->SetInitialPose(first.stamp, *o_.initial_pose,
-                               Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+                               localisation::TrackerOptions{}.InitialCovariance());
     }
     started_ = true;
   }
