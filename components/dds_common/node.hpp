@@ -43,7 +43,10 @@ class TopicWriter {
   using Message = typename PubSubType::type;
   TopicWriter() = default;
   explicit TopicWriter(eprosima::fastdds::dds::DataWriter* writer) : writer_(writer) {}
-  bool Write(Message& message) { return writer_ != nullptr && writer_->write(&message); }
+  // Fast DDS takes a non-const pointer but only serialises the sample.
+  bool Write(const Message& message) {
+    return writer_ != nullptr && writer_->write(const_cast<Message*>(&message));
+  }
   size_t MatchedReaders() const {
     eprosima::fastdds::dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);

@@ -156,10 +156,14 @@ void LocalisationComponent::Worker() {
     auto tf = ToMapToOdomTf(tracker_.MapToOdom(), stamp);
     auto features = ToScanFeatures(r, stamp);
     auto status = ToStatus(r, tracker_.Stats(), dropped_, stamp);
+    // Published outside the lock: the DDS threads delivering scans and
+    // odometry never wait for these writes.
+    lock.unlock();
     pose_.Write(pose);
     tf_.Write(tf);
     features_.Write(features);
     status_.Write(status);
+    lock.lock();
   }
 }
 
@@ -228,7 +232,7 @@ dds::HealthReport LocalisationComponent::Health(double now) {
 
 void LocalisationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   dds::HealthReport report = Health(now);
   const auto& stats = tracker_.Stats();
   const bool recent_problem =
@@ -257,7 +261,8 @@ void LocalisationComponent::PublishDiagnostics(double now) {
     std::cout << "localisation: " << dds::ToString(report.level) << " " << report.message
               << std::endl;
   }
-  auto diag = dds::ToDiagnosticArray("localisation", report, now);
+  const auto diag = dds::ToDiagnosticArray("localisation", report, now);
+  lock.unlock();
   diagnostics_.Write(diag);
 }
 
