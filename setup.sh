@@ -46,8 +46,14 @@ build() {
 }
 
 run_tests() {
+  local exclude=()
+  if [ ! -d "$here/../shared/data" ]; then
+    # CI has shared/ beside the checkout and runs these; say so when they cannot run.
+    echo "setup: $here/../shared/data is not here: leaving out the tests on real recordings (label shared_data)"
+    exclude=(-LE shared_data)
+  fi
   cd "$build_dir"
-  ctest --output-on-failure -j "$jobs" --timeout 600
+  ctest --output-on-failure -j "$jobs" --timeout 600 "${exclude[@]}"
 }
 
 run_demo() {

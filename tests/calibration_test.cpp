@@ -3,8 +3,8 @@
 // the estimate recovers the parameters within the bars with honest standard
 // deviations over several seeds, and the odometry-only drift drops at least
 // 10-fold; a straight-line-only recording says the axle distance is not
-// observable; bad input files give clear errors; and on the real tricycle
-// dataset calibration cuts the dead-reckoning error against the tracker.
+// observable; bad input files give clear errors. (The real tricycle dataset
+// is calibrated in real_data_test.cpp.)
 #include <gtest/gtest.h>
 
 #include "test_paths.hpp"
@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include "child_process.hpp"
 #include "odometry_calibration.hpp"
 #include "recorder.hpp"
 #include "replay.hpp"
@@ -135,33 +134,6 @@ TEST(Calibration, BadInputFilesGiveClearErrors) {
   // Counter wrap-around: tick deltas across the 32-bit wrap are positive.
   kinematics::RobotParameters p;
   EXPECT_EQ(p.TickDelta(4294967000u, 200u), 496);
-}
-
-TEST(Calibration, RealTricycleDatasetImprovesDeadReckoningAgainstTheTracker) {
-  const std::string data =
-      std::string(STRUCTLOC_SOURCE_DIR) + "/../shared/data/tricycle-calibration-dataset.txt";
-  if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is not here";
-  const std::string dir = "/tmp/structloc_tricycle_" + std::to_string(getpid());
-  process::ChildProcess convert(
-      "/bin/bash",
-      {testing::SourcePath("components/calibration_core/convert_tricycle_dataset.sh"), data, dir});
-  ASSERT_EQ(convert.WaitExit(30s), 0) << convert.CapturedOutput();
-  const auto nominal = kinematics::LoadRobotParameters(dir + "/nominal.xml");
-  const auto encoders = calibration::ReadEncodersCsv(dir + "/encoders.csv");
-  const auto fixes = calibration::ReadFixesCsv(dir + "/fixes.csv");
-  calibration::CalibrationOptions o;
-  o.estimate.fill(true);  // steering gain and sensor mounting included
-  const auto r = calibration::Calibrate(encoders, fixes.fixes, nominal, o);
-  ASSERT_TRUE(r.success);
-  const double before = calibration::DeadReckoningRms(encoders, fixes.fixes, nominal);
-  const double after = calibration::DeadReckoningRms(encoders, fixes.fixes, r.parameters);
-  std::printf(
-      "real tricycle: sensor dead-reckoning RMS vs tracker %.2f m nominal -> %.3f m calibrated "
-      "(%.0fx); residual RMS %.2f -> %.2f\n",
-      before, after, before / after, r.residual_rms_before, r.residual_rms_after);
-  EXPECT_GT(before / after, 20.0);  // measured ~50x
-  EXPECT_LT(r.residual_rms_after, r.residual_rms_before / 3);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
