@@ -16,6 +16,7 @@
 #include "odometry_calibration.hpp"
 #include "recorder.hpp"
 #include "replay.hpp"
+#include "temp_dir.hpp"
 #include "tum_reader.hpp"
 
 namespace structloc {
@@ -23,8 +24,9 @@ namespace {
 
 using namespace std::chrono_literals;
 // Simulate, localise offline (fixes with covariances), return the folder.
-std::string Record(simulation::Scenario scenario, const std::string& tag) {
-  const std::string dir = "/tmp/structloc_cal_" + tag + "_" + std::to_string(getpid());
+std::string Record(simulation::Scenario scenario, const testing::TempDir& temp,
+                   const std::string& tag) {
+  const std::string dir = temp / tag;
   simulation::RecordScenario(scenario, dir);
   std::ifstream initial(dir + "/initial_pose");
   geometry::Pose2D p;
@@ -46,7 +48,8 @@ TEST(Calibration, RecoversKnownErrorsWithHonestDeviationsOverSeeds) {
   const auto truth = scenario.TrueParameters();
   for (uint32_t seed : {21u, 22u, 23u}) {
     scenario.seed = seed;
-    const std::string dir = Record(scenario, std::to_string(seed));
+    const testing::TempDir temp;
+    const std::string dir = Record(scenario, temp, std::to_string(seed));
     const auto encoders = calibration::ReadEncodersCsv(dir + "/encoders.csv");
     const auto fixes = calibration::ReadFixesCsv(dir + "/fixes.csv");
     const auto r = calibration::Calibrate(encoders, fixes.fixes, scenario.nominal, {});
@@ -75,7 +78,6 @@ TEST(Calibration, RecoversKnownErrorsWithHonestDeviationsOverSeeds) {
     std::printf("  odometry-only drift RMS: %.3f m nominal, %.3f m calibrated (%.0fx)\n", before,
                 after, before / after);
     EXPECT_GT(before / after, 10.0);
-    std::filesystem::remove_all(dir);
   }
 }
 
@@ -85,7 +87,8 @@ TEST(Calibration, AStraightLineOnlySaysTheAxleDistanceIsNotObservable) {
   scenario.initial_pose = {17.0, 6.5, geometry::kPi};
   scenario.path.waypoints = {{4.0, 6.5}};
   scenario.duration_s = 25.0;
-  const std::string dir = Record(scenario, "straight");
+  const testing::TempDir temp;
+  const std::string dir = Record(scenario, temp, "straight");
   const auto encoders = calibration::ReadEncodersCsv(dir + "/encoders.csv");
   const auto fixes = calibration::ReadFixesCsv(dir + "/fixes.csv");
   const auto r = calibration::Calibrate(encoders, fixes.fixes, scenario.nominal, {});
@@ -96,16 +99,13 @@ TEST(Calibration, AStraightLineOnlySaysTheAxleDistanceIsNotObservable) {
     warned = warned || w.find("axle_distance is not observable") != std::string::npos;
   EXPECT_TRUE(warned);
   EXPECT_TRUE(r.estimated[calibration::kWheelRadius]);
-  std::filesystem::remove_all(dir);
-}
-
-std::string Write(const std::string& name, const std::string& text) {
-  const std::string path = "/tmp/structloc_cal_bad_" + std::to_string(getpid()) + "_" + name;
-  std::ofstream(path) << text;
-  return path;
 }
 
 TEST(Calibration, BadInputFilesGiveClearErrors) {
+  const testing::TempDir temp;
+  auto Write = [&temp](const std::string& name, const std::string& text) {
+    return temp.Write(name, text);
+  };
   auto expect_error = [](auto&& read, const std::string& path, const std::string& problem) {
     try {
       read(path);
@@ -113,7 +113,6 @@ TEST(Calibration, BadInputFilesGiveClearErrors) {
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
     }
-    std::remove(path.c_str());
   };
   auto enc = [](const std::string& p) { return calibration::ReadEncodersCsv(p); };
   auto fix = [](const std::string& p) { return calibration::ReadFixesCsv(p); };
@@ -130,7 +129,6 @@ TEST(Calibration, BadInputFilesGiveClearErrors) {
   const auto f = calibration::ReadFixesCsv(path);
   EXPECT_EQ(f.dropped_non_finite, 1u);
   EXPECT_EQ(f.fixes.size(), 3u);
-  std::remove(path.c_str());
   // Counter wrap-around: tick deltas across the 32-bit wrap are positive.
   kinematics::RobotParameters p;
   EXPECT_EQ(p.TickDelta(4294967000u, 200u), 496);

@@ -31,8 +31,8 @@
 #include "structloc_msgs/msg/StepTimingsPubSubTypes.h"
 #include "structloc_msgs/msg/WallFeaturePubSubTypes.h"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
-#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 #include "test_domains.hpp"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 namespace structloc {
 namespace {

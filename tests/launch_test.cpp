@@ -99,7 +99,8 @@ TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
     EXPECT_NE(out.find(std::string("[launch] ") + name + " exited with code 0"), std::string::npos)
         << out;
   }
-  EXPECT_NE(out.find("on domain " + std::to_string(testing::domains::kLaunch)), std::string::npos) << out;
+  EXPECT_NE(out.find("on domain " + std::to_string(testing::domains::kLaunch)), std::string::npos)
+      << out;
 }
 
 }  // namespace

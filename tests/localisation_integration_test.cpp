@@ -15,6 +15,7 @@
 #include "recorder.hpp"
 #include "replay.hpp"
 #include "scenario.hpp"
+#include "temp_dir.hpp"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -29,7 +30,8 @@ TEST(LocalisationIntegration, OfficeOverDdsMeetsTheAccuracyBarAndIsNeverLost) {
       simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
   dds::Node observer(testing::TestNodeOptions("evaluator", kDomain));
   evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
-  const std::string state = "/tmp/structloc_integration_pose_" + std::to_string(getpid());
+  const testing::TempDir temp;
+  const std::string state = temp / "pose_state";
   process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                {"launch", testing::SourcePath("launch_xml/demo.launch.xml"),
                                 "domain:=" + std::to_string(kDomain), "time_scale:=4",
@@ -52,13 +54,13 @@ TEST(LocalisationIntegration, OfficeOverDdsMeetsTheAccuracyBarAndIsNeverLost) {
   EXPECT_LE(est.heading_rmse_rad * kDeg, 0.3);
   EXPECT_EQ(evaluator.LostCount(), 0u);
   EXPECT_GT(odo.position_max_m, 1.0);  // odometry alone drifts by metres
-  std::filesystem::remove(state);
 }
 
 TEST(LocalisationIntegration, TheSameScenarioReplayedOfflineGivesTheSameAccuracy) {
   const auto scenario =
       simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
-  const std::string dir = "/tmp/structloc_replay_it_" + std::to_string(getpid());
+  const testing::TempDir temp;
+  const std::string dir = temp / "office";
   simulation::RecordScenario(scenario, dir);
   replay::ReplayOptions o;
   o.map_path = testing::SourcePath("maps/office_floor.xml");
@@ -81,7 +83,6 @@ TEST(LocalisationIntegration, TheSameScenarioReplayedOfflineGivesTheSameAccuracy
   EXPECT_LE(e.heading_rmse_rad * kDeg, 0.3);
   EXPECT_EQ(report.scans_lost, 0u);
   EXPECT_GT(report.odometry_error->position_max_m, 1.0);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

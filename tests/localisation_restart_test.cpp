@@ -10,6 +10,7 @@
 #include "dds_test_support.hpp"
 #include "live_evaluator.hpp"
 #include "scenario.hpp"
+#include "temp_dir.hpp"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -21,8 +22,8 @@ constexpr int kDomain = testing::domains::kLocalisationRestart;
 TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto scenario =
       simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
-  const std::string state = "/tmp/structloc_restart_pose_" + std::to_string(getpid());
-  std::filesystem::remove(state);
+  const testing::TempDir temp;
+  const std::string state = temp / "pose_state";
   dds::Node observer(testing::TestNodeOptions("restart_observer", kDomain));
   evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
   const std::vector<std::string> common = {
@@ -77,7 +78,6 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   simulator.Signal(SIGTERM);
   second.Signal(SIGTERM);
   EXPECT_EQ(second.WaitExit(5s), 0);
-  std::filesystem::remove(state);
 }
 
 }  // namespace

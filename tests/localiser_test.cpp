@@ -9,6 +9,7 @@
 
 #include "localiser.hpp"
 #include "synthetic_scans.hpp"
+#include "temp_dir.hpp"
 #include "world_model_xml.hpp"
 
 namespace structloc::localisation {
@@ -44,7 +45,8 @@ TEST(LocaliserOptions, DefaultsAreTheThesisTable6Values) {
   EXPECT_NO_THROW(o.Validate());
 }
 
-std::string EditedCopy(const std::string& from, const std::string& to) {
+std::string EditedCopy(const testing::TempDir& temp, const std::string& from,
+                       const std::string& to) {
   std::ifstream in(testing::SourcePath("maps/params/thesis_table6.xml"));
   std::stringstream ss;
   ss << in.rdbuf();
@@ -52,9 +54,7 @@ std::string EditedCopy(const std::string& from, const std::string& to) {
   const auto pos = text.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
   text.replace(pos, from.size(), to);
-  const std::string path = "/tmp/structloc_params_" + std::to_string(getpid()) + ".xml";
-  std::ofstream(path) << text;
-  return path;
+  return temp.Write("params.xml", text);
 }
 
 TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
@@ -67,7 +67,8 @@ TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
       {{"window_points=\"7\"", "window_points=\"seven\""}, "is not an integer"},
   };
   for (const auto& [edit, problem] : cases) {
-    const std::string path = EditedCopy(edit.first, edit.second);
+    const testing::TempDir temp;
+    const std::string path = EditedCopy(temp, edit.first, edit.second);
     try {
       LoadLocaliserOptions(path);
       ADD_FAILURE() << "accepted " << edit.second;
@@ -75,7 +76,6 @@ TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
       EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find(path + ":"), std::string::npos) << e.what();
     }
-    std::remove(path.c_str());
   }
 }
 

@@ -8,10 +8,11 @@
 
 #include "dds_test_support.hpp"
 #include "qos_profiles.hpp"
+#include "temp_dir.hpp"
 #include "test_domains.hpp"
 
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 namespace structloc {
 namespace {
@@ -77,7 +78,8 @@ TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
 }
 
 // Writes a copy of the shipped file with one substitution applied.
-std::string BrokenCopy(const std::string& tag, const std::string& from, const std::string& to) {
+std::string BrokenCopy(const testing::TempDir& temp, const std::string& tag,
+                       const std::string& from, const std::string& to) {
   std::ifstream in(testing::ShippedQos());
   std::stringstream ss;
   ss << in.rdbuf();
@@ -85,10 +87,7 @@ std::string BrokenCopy(const std::string& tag, const std::string& from, const st
   const auto pos = text.find(from);
   if (pos == std::string::npos) throw std::runtime_error("pattern not in shipped file: " + from);
   text.replace(pos, from.size(), to);
-  const std::string path =
-      "/tmp/structloc_qos_broken_" + tag + "_" + std::to_string(getpid()) + ".xml";
-  std::ofstream(path) << text;
-  return path;
+  return temp.Write("broken_" + tag + ".xml", text);
 }
 
 struct BrokenCase {
@@ -102,7 +101,8 @@ class BrokenQos : public ::testing::TestWithParam<BrokenCase> {};
 
 TEST_P(BrokenQos, IsRejectedNamingFileLineAndProblem) {
   const auto& c = GetParam();
-  const std::string path = BrokenCopy(c.tag, c.from, c.to);
+  const testing::TempDir temp;
+  const std::string path = BrokenCopy(temp, c.tag, c.from, c.to);
   try {
     dds::QosProfiles::Load(path);
     ADD_FAILURE() << "a broken profile file was accepted: " << c.tag;
@@ -112,7 +112,6 @@ TEST_P(BrokenQos, IsRejectedNamingFileLineAndProblem) {
     EXPECT_NE(what.find(c.expected_problem), std::string::npos) << what;
     EXPECT_TRUE(std::regex_search(what, std::regex(":[0-9]+:"))) << "no line number: " << what;
   }
-  std::remove(path.c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -12,6 +12,7 @@
 #include "recorder.hpp"
 #include "simulation.hpp"
 #include "strict_xml.hpp"
+#include "temp_dir.hpp"
 #include "tricycle.hpp"
 
 namespace structloc {
@@ -149,9 +150,8 @@ TEST(Simulation, TheSkewOfAScanTakenAt1MetrePerSecondMatchesTheAnalyticDisplacem
 TEST(Simulation, SameScenarioAndSeedGiveBitForBitTheSameRecording) {
   auto scenario = Office();
   scenario.duration_s = 3.0;
-  const std::string a = "/tmp/structloc_sim_a_" + std::to_string(getpid());
-  const std::string b = "/tmp/structloc_sim_b_" + std::to_string(getpid());
-  const std::string c = "/tmp/structloc_sim_c_" + std::to_string(getpid());
+  const testing::TempDir temp;
+  const std::string a = temp / "a", b = temp / "b", c = temp / "c";
   simulation::RecordScenario(scenario, a);
   simulation::RecordScenario(scenario, b);
   scenario.seed += 1;
@@ -167,13 +167,13 @@ TEST(Simulation, SameScenarioAndSeedGiveBitForBitTheSameRecording) {
     EXPECT_FALSE(read(a + f).empty()) << f;
   }
   EXPECT_NE(read(a + "/run.clf"), read(c + "/run.clf"));
-  for (const auto& d : {a, b, c}) std::filesystem::remove_all(d);
 }
 
 TEST(Simulation, RecordingHasTheDocumentedFormats) {
   auto scenario = Office();
   scenario.duration_s = 2.0;
-  const std::string dir = "/tmp/structloc_sim_fmt_" + std::to_string(getpid());
+  const testing::TempDir temp;
+  const std::string dir = temp / "office";
   const auto summary = simulation::RecordScenario(scenario, dir);
   EXPECT_EQ(summary.scans, 20);  // 10 Hz
   std::ifstream clf(dir + "/run.clf");
@@ -206,7 +206,6 @@ TEST(Simulation, RecordingHasTheDocumentedFormats) {
   double x, y, th;
   ASSERT_TRUE(initial >> x >> y >> th);
   EXPECT_NEAR(x, 2.0, 0.01);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Scenarios, EveryShippedScenarioAndRobotFileLoads) {
@@ -224,7 +223,8 @@ TEST(Scenarios, EveryShippedScenarioAndRobotFileLoads) {
 }
 
 TEST(Scenarios, BrokenScenarioNamesFileLineAndProblem) {
-  const std::string path = "/tmp/structloc_test_broken_" + std::to_string(getpid()) + ".xml";
+  const testing::TempDir temp;
+  const std::string path = temp / "broken.xml";
   std::ifstream in(testing::SourcePath("maps/scenarios/office_people.xml"));
   std::stringstream ss;
   ss << in.rdbuf();
@@ -241,7 +241,6 @@ TEST(Scenarios, BrokenScenarioNamesFileLineAndProblem) {
     EXPECT_NE(std::string(e.what()).find(path + ":"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("beams must be"), std::string::npos) << e.what();
   }
-  std::filesystem::remove(path);
 }
 
 }  // namespace
