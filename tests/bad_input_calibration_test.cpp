@@ -426,6 +426,10 @@ TEST(BadInputCalibration, L4_HugeValuesAreNotPrintedWithHundredsOfDigits) {
   const auto run = RunCalibrate(dir, recording, RobotXml());
   EXPECT_NE(run.cli.exit_code, 0) << run.cli.output;
   EXPECT_FALSE(std::regex_search(run.cli.output, std::regex("[0-9]{30}"))) << run.cli.output;
+  // ... and the message names the line with the impossible position.
+  EXPECT_TRUE(std::regex_search(run.cli.output,
+                                std::regex(":[0-9]+: position \\(1e150, .*more than 100 km")))
+      << run.cli.output;
 }
 
 TEST(BadInputCalibration, L8_RobotFileCommentStaysWellFormedWithDoubleHyphenPaths) {

@@ -12,6 +12,8 @@
 namespace structloc::calibration {
 namespace {
 
+constexpr double kMaxFixCoordinate_m = 1e5;  // as the world model's bound
+
 std::vector<std::string> SplitCsv(const std::string& line) {
   std::vector<std::string> out;
   std::stringstream ss(line);
@@ -161,6 +163,11 @@ FixesFile ReadFixesCsv(const std::string& path) {
       if (finite) ++file.dropped_negative_variance;
       if (file.first_dropped_line == 0) file.first_dropped_line = n;
       continue;
+    }
+    // Positions a building cannot have are a broken file, not noise to drop.
+    if (std::abs(fix.pose.x) > kMaxFixCoordinate_m || std::abs(fix.pose.y) > kMaxFixCoordinate_m) {
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": position (" + f[1] + ", " +
+                               f[2] + ") is more than 100 km from the map origin");
     }
     file.fixes.push_back(fix);
   }
