@@ -172,6 +172,17 @@ TEST(BadInputConfig, M4_WallsPerMapLimitIsVisibleAndChangeable) {
   EXPECT_NE(refused.output.find("walls-per-map limit"), std::string::npos) << refused.output;
 }
 
+TEST(BadInputConfig, M5_OverLongAttributeIsRefusedBeforeItIsMatched) {
+  TempDir dir;
+  // std::regex would recurse once per character of this.
+  const std::string path =
+      dir.Write("long.launch.xml",
+                "<launch>\n<node pkg=\"structloc\" exec=\"structloc_localisation\">"
+                "<param name=\"x\" value=\"$(" +
+                    std::string(200000, 'a') + "\"/></node>\n</launch>\n");
+  ExpectRejected(path, LoadLaunch, {path + ":2:", "longer than 65536 bytes"});
+}
+
 TEST(BadInputConfig, M5_LaunchSubstitutionIsBoundedPerValue) {
   TempDir dir;
   std::ostringstream xml;

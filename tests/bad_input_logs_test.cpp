@@ -3,6 +3,7 @@
 // Recordings are simulated here from the repository's robustness room
 // scenario; hostile variants of them are written into a per-test folder.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -356,6 +357,17 @@ TEST(BadInputLogs, H5_FailedReplayLeavesAnExistingOutUntouched) {
 
 // ---------------------------------------------------------------- M6
 
+TEST(BadInputLogs, H5_OutputsGetTheModeOfANewFile) {
+  const TempDir dir;
+  const mode_t mask = umask(0);
+  umask(mask);
+  const auto r = RunCli(ReplayArgs(RoomLog(), dir / "t.tum"));
+  ASSERT_EQ(r.exit_code, 0) << Describe(r);
+  struct stat status {};
+  ASSERT_EQ(stat((dir / "t.tum").c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 0777, 0666 & ~mask);
+}
+
 TEST(BadInputLogs, M6_ReplayOutputsToAFullDeviceFail) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
   const TempDir dir;
@@ -462,6 +474,15 @@ TEST(BadInputLogs, L4_BeamLimitIsNamedAndChangeable) {
   const auto usage = RunCli({"replay", "--no-such-option"});
   EXPECT_NE(usage.output.find("--max-beams"), std::string::npos) << usage.output;
   EXPECT_NE(usage.output.find("--max-lines"), std::string::npos) << usage.output;
+}
+
+TEST(BadInputLogs, L4_EndlessMadeUpTagsAreCountedInBoundedMemory) {
+  const TempDir dir;
+  std::string log;
+  for (int i = 0; i < 500; ++i) log += "TAG" + std::to_string(i) + " 1 2 3\n";
+  const auto read = Read(dir.Write("tags.clf", log));
+  EXPECT_LE(read.stats.skipped.size(), 33u);
+  EXPECT_GT(read.stats.skipped.count("(other kinds)"), 0u);
 }
 
 TEST(BadInputLogs, L4_RandomBytesAsALogPrintNoBinary) {

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "calibration_conversions.hpp"
@@ -193,17 +194,23 @@ std::string CalibrationComponent::WriteResults(const std::vector<EncoderSample>&
     logs::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
     for (const auto& s : encoders)
       enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
-    enc.Close();
     logs::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
     for (const auto& f : fixes)
       fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
-    fix.Close();
+    std::optional<config::OutputFile> robot;
     if (report.success) {
-      config::OutputFile robot(options_.out_dir + "/calibrated.xml", {options_.robot_path});
-      kinematics::WriteRobotParameters(report.parameters, robot.Stream(),
+      robot.emplace(options_.out_dir + "/calibrated.xml",
+                    std::vector<std::string>{options_.robot_path});
+      kinematics::WriteRobotParameters(report.parameters, robot->Stream(),
                                        "calibrated live by structloc_calibration");
-      robot.Commit();
     }
+    // Every file reaches the disk before any replaces an earlier one.
+    enc.Flush();
+    fix.Flush();
+    if (robot) robot->Flush();
+    enc.Close();
+    fix.Close();
+    if (robot) robot->Commit();
   } catch (const std::exception& e) {
     return e.what();
   }

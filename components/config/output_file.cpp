@@ -2,19 +2,36 @@
 #include "output_file.hpp"
 
 #include <fcntl.h>
-#include <stdlib.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <stdexcept>
 
 #include "strict_xml.hpp"
 
 namespace structloc::config {
+namespace {
+
+// A new file beside `target` under a random name, created with mode 0666 so
+// that the kernel applies the umask, as for any new file (mkstemp makes it
+// 0600, and reading the umask would race the process's other threads).
+int CreateTemporary(const std::string& target, std::string* path) {
+  std::random_device random;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    char suffix[24];
+    std::snprintf(suffix, sizeof(suffix), ".tmp.%08x", static_cast<unsigned>(random()));
+    *path = target + suffix;
+    const int fd = ::open(path->c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST) return fd;
+  }
+  return -1;
+}
+
+}  // namespace
 
 void RefuseOverwritingInput(const std::string& output, const std::vector<std::string>& inputs) {
   for (const auto& input : inputs) {
@@ -45,17 +62,11 @@ OutputFile::OutputFile(std::string path, const std::vector<std::string>& inputs)
     if (!stream_) throw ConfigError(path_ + ": cannot open it for writing");
     return;
   }
-  temp_path_ = path_ + ".tmp.XXXXXX";
-  const int fd = mkstemp(temp_path_.data());
+  const int fd = CreateTemporary(path_, &temp_path_);
   if (fd < 0) {
     throw ConfigError(path_ + ": cannot create an output file there (" +
                       std::string(std::strerror(errno)) + ")");
   }
-  // mkstemp makes the file private (0600); give it the mode a new file gets.
-  const mode_t mask = umask(0);
-  umask(mask);
-  const int chmod_result = fchmod(fd, 0666 & ~mask);
-  static_cast<void>(chmod_result);
   ::close(fd);
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!stream_) {

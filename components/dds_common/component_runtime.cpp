@@ -55,10 +55,12 @@ int RunComponent(int argc, char** argv, const std::string& name,
     options.qos_file = cli.GetOr("qos", STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml");
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);
+    node.HoldCallbacks();  // none may reach a component still being built
     auto component = factory(node, cli);
     // Declared after the component, so destroyed before it, also when an
     // exception leaves: no DDS callback can reach a destroyed component.
     const CallbacksDetachedAtExit detach(node);
+    node.ReleaseCallbacks();
     std::cout << node.EndpointReport() << std::flush;
     std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;
     while (!component->Done() && !shutdown.WaitFor(component->Period())) component->Step();

@@ -37,6 +37,10 @@ Node::Node(const NodeOptions& options)
   publisher_ = participant_->create_publisher(eprosima::fastdds::dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(eprosima::fastdds::dds::SUBSCRIBER_QOS_DEFAULT);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
+    // The participant calls monitor_, which goes with this failed constructor.
+    participant_->delete_contained_entities();
+    eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(
+        participant_);
     throw std::runtime_error("cannot create publisher/subscriber");
   }
 }

@@ -84,8 +84,8 @@ class Node {
   void Subscribe(const TopicSpec& topic,
                  std::function<void(const typename PubSubType::type&)> callback) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
-    auto listener = std::make_unique<CallbackListener<PubSubType>>(options_.name, topic.name,
-                                                                   *monitor_, std::move(callback));
+    auto listener = std::make_unique<CallbackListener<PubSubType>>(
+        options_.name, topic.name, *monitor_, callbacks_held_, std::move(callback));
     auto* reader = subscriber_->create_datareader(
         dds_topic, qos_.Reader(*subscriber_, topic.qos_profile), listener.get());
     if (reader == nullptr) throw std::runtime_error("cannot create reader for " + topic.name);
@@ -96,6 +96,11 @@ class Node {
   // After this returns no subscription callback runs, now or later: called
   // before the object the callbacks point into is destroyed.
   void DetachCallbacks();
+  // While held, arriving samples wait in their readers and no callback runs:
+  // a component is built with callbacks held, so that one that throws from
+  // its constructor after subscribing is never called back half-destroyed.
+  void HoldCallbacks() { callbacks_held_ = true; }
+  void ReleaseCallbacks() { callbacks_held_ = false; }
 
   // One line per endpoint: direction, topic, DDS type name, QoS profile.
   std::string EndpointReport() const;
@@ -114,10 +119,12 @@ class Node {
   class CallbackListener : public DetachableListener {
    public:
     CallbackListener(std::string node, std::string topic, PeerMonitor& monitor,
+                     const std::atomic<bool>& held,
                      std::function<void(const typename PubSubType::type&)> callback)
         : node_(std::move(node)),
           topic_(std::move(topic)),
           monitor_(monitor),
+          held_(held),
           callback_(std::move(callback)) {}
     void on_requested_incompatible_qos(
         eprosima::fastdds::dds::DataReader*,
@@ -129,6 +136,7 @@ class Node {
       callback_ = nullptr;
     }
     void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+      if (held_) return;  // taken with the next sample after ReleaseCallbacks()
       typename PubSubType::type sample;
       eprosima::fastdds::dds::SampleInfo info;
       std::lock_guard<std::mutex> lock(mutex_);  // Detach() waits for a running callback
@@ -148,6 +156,7 @@ class Node {
     std::string node_;
     std::string topic_;
     PeerMonitor& monitor_;
+    const std::atomic<bool>& held_;
     std::mutex mutex_;
     std::function<void(const typename PubSubType::type&)> callback_;
   };
@@ -185,6 +194,7 @@ class Node {
   NodeOptions options_;
   QosProfiles qos_;
   std::unique_ptr<PeerMonitor> monitor_;  // outlives the participant that calls it
+  std::atomic<bool> callbacks_held_{false};
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

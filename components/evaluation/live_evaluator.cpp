@@ -17,8 +17,12 @@ logs::StampedPose Stamped(const builtin_interfaces::msg::Time& t,
 }
 }  // namespace
 
+LiveEvaluator::~LiveEvaluator() {
+  node_.DetachCallbacks();
+}
+
 LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_pose)
-    : initial_pose_(initial_pose) {
+    : node_(node), initial_pose_(initial_pose) {
   node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kGroundTruth, [this](const nav_msgs::msg::Odometry& m) {
         std::lock_guard<std::mutex> lock(mutex_);

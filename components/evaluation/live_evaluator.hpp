@@ -28,6 +28,10 @@ class LiveEvaluator {
  public:
   // `initial_pose`: the robot's map pose at odometry's origin (for odometry-only paths).
   LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_pose);
+  // Detaches the node's callbacks, which point into this object.
+  ~LiveEvaluator();
+  LiveEvaluator(const LiveEvaluator&) = delete;
+  LiveEvaluator& operator=(const LiveEvaluator&) = delete;
 
   LiveSnapshot Snapshot();
   std::vector<logs::StampedPose> Truth();
@@ -41,6 +45,7 @@ class LiveEvaluator {
                     const std::string& title);
 
  private:
+  dds::Node& node_;
   std::mutex mutex_;
   geometry::Pose2D initial_pose_;
   std::vector<logs::StampedPose> truth_, estimate_, odometry_;

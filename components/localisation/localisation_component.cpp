@@ -82,6 +82,7 @@ void LocalisationComponent::OnScan(const sensor_msgs::msg::LaserScan& scan) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (pending_scan_) ++dropped_;  // overload: the newest scan wins
     pending_scan_ = scan;
+    new_input_ = true;
     pending_since_ = dds::WallClockSeconds();
     last_scan_wall_s_ = pending_since_;
   }
@@ -110,6 +111,7 @@ void LocalisationComponent::OnOdometry(const nav_msgs::msg::Odometry& msg) {
       pending_correction_.reset();
     }
     if (rejected) NoteProblem(std::string("initial pose rejected: ") + ToString(*rejected));
+    new_input_ = true;
   }
   wake_.notify_one();  // a waiting scan may now be covered
 }
@@ -135,7 +137,9 @@ void LocalisationComponent::OnInitialPose(
 void LocalisationComponent::Worker() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stopping_) {
-    wake_.wait_for(lock, std::chrono::milliseconds(20));
+    // The flag keeps a notification sent while this thread was publishing.
+    wake_.wait_for(lock, std::chrono::milliseconds(20), [this] { return stopping_ || new_input_; });
+    new_input_ = false;
     if (stopping_ || !pending_scan_) continue;
     const double waited = dds::WallClockSeconds() - pending_since_;
     const auto outcome = tracker_.ProcessScan(FromLaserScan(*pending_scan_), waited);

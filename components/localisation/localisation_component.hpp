@@ -70,6 +70,7 @@ class LocalisationComponent : public dds::Component {
   std::condition_variable wake_;
   PoseTracker tracker_;
   std::optional<sensor_msgs::msg::LaserScan> pending_scan_;
+  bool new_input_ = false;  // a scan or odometry arrived since the worker last looked
   double pending_since_ = 0.0;
   std::optional<std::pair<geometry::Pose2D, Eigen::Matrix3d>> pending_initial_pose_;
   // A saved map -> odom correction to resume from at the first odometry sample.

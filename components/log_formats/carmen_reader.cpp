@@ -285,7 +285,14 @@ CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRec
     ++stats_.skipped["PARAM"];
     return kSkipped;
   }
-  ++stats_.skipped[r.tag];
+  // Counted by name for the first few kinds only: a log of endless made-up
+  // tags must not grow this map without bound.
+  constexpr size_t kMaxSkippedKinds = 32;
+  if (stats_.skipped.count(r.tag) != 0 || stats_.skipped.size() < kMaxSkippedKinds) {
+    ++stats_.skipped[r.tag];
+  } else {
+    ++stats_.skipped["(other kinds)"];
+  }
   return kSkipped;
 }
 

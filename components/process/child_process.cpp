@@ -34,7 +34,13 @@ namespace {
   }
   // Nothing else of the parent's may reach the child: its DDS sockets would
   // stay bound, and its shared-memory ports stay open, as long as the child runs.
-  if (error == 0 && close_range(3, ~0U, CLOSE_RANGE_CLOEXEC) != 0) error = errno;
+  if (error == 0 && close_range(3, ~0U, CLOSE_RANGE_CLOEXEC) != 0) {
+    // Kernels before 5.11: mark them one by one.
+    const long max_fd = sysconf(_SC_OPEN_MAX);
+    for (int fd = 3; fd < (max_fd > 0 && max_fd < 65536 ? max_fd : 65536); ++fd) {
+      fcntl(fd, F_SETFD, FD_CLOEXEC);
+    }
+  }
   if (error == 0) {
     execve(path, argv, environ);
     error = errno;

@@ -53,6 +53,11 @@ class ValueBuilder {
 std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
                        const std::string& text, const std::map<std::string, std::string>& vars,
                        const LaunchContext& context, size_t* total_bytes) {
+  // std::regex recurses per character: refuse over-long text before matching.
+  if (text.size() > context.max_value_bytes) {
+    file.Fail(where, "attribute text longer than " + std::to_string(context.max_value_bytes) +
+                         " bytes (--max-value-bytes)");
+  }
   static const std::regex pattern(R"(\$\(([a-z-]+)(?: ([A-Za-z0-9_]+))?\))");
   ValueBuilder out(file, where, context, total_bytes);
   auto begin = std::sregex_iterator(text.begin(), text.end(), pattern);

@@ -114,14 +114,19 @@ class Replayer {
     if (tracker_) tracker_->AddOdometry(stamp, pose);
   }
 
-  // Processes waiting scans once odometry covers them (or at the end of the log).
+  // Processes waiting scans once odometry covers them (or at the end of the
+  // log). A log whose odometry never comes (RAWLASER lines without ODOM)
+  // must not keep every scan in memory: beyond kMaxPendingScans the oldest is
+  // processed with what there is (and rejected if no odometry covers it).
   void Drain(bool end) {
+    constexpr size_t kMaxPendingScans = 1000;
     while (!pending_.empty()) {
       const auto& rec = pending_.front().record;
       const double last_beam =
           rec.stamp +
           time_increment_ * static_cast<double>(rec.ranges.size() ? rec.ranges.size() - 1 : 0);
-      if (!end && (odometry_.empty() || odometry_.back().stamp < last_beam)) return;
+      const bool overdue = pending_.size() > kMaxPendingScans;
+      if (!end && !overdue && (odometry_.empty() || odometry_.back().stamp < last_beam)) return;
       Process(rec);
       pending_.pop_front();
     }

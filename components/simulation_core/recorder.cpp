@@ -53,6 +53,10 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
       ++summary.scans;
     }
   }
+  // All three reach the disk before any replaces an earlier recording.
+  clf.Flush();
+  truth.Flush();
+  encoders.Flush();
   clf.Close();
   truth.Close();
   encoders.Close();
