@@ -334,18 +334,27 @@ void Publish(dds::Node& node, const Inputs& inputs) {
   }
 }
 
+constexpr int kComponentDomain = testing::domains::kBadInputCalibration;
+
+// The live calibration component recording for 90 s into `out_dir`.
+process::ChildProcess StartRecordingComponent(const std::string& out_dir) {
+  return process::ChildProcess(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
+      {"--domain", std::to_string(kComponentDomain), "--qos", testing::ShippedQos(), "--record-s",
+       "90", "--out-dir", out_dir, "--exit-when-done"});
+}
+
+bool WaitForRunning(process::ChildProcess& component) {
+  return testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
+                            std::chrono::seconds(10));
+}
+
 TEST(BadInputCalibration, M2_ComponentExitsNonZeroWhenTheCalibrationFails) {
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({0, 32, true}));
-  constexpr int kDomain = testing::domains::kBadInputCalibration;
-  process::ChildProcess component(
-      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
-      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",
-       "--out-dir", dir / "out", "--exit-when-done"});
-  ASSERT_TRUE(testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
-                                 std::chrono::seconds(10)))
-      << component.CapturedOutput();
-  dds::Node node(testing::TestNodeOptions("recording_player", kDomain));
+  auto component = StartRecordingComponent(dir / "out");
+  ASSERT_TRUE(WaitForRunning(component)) << component.CapturedOutput();
+  dds::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
   Publish(node, inputs);
   const auto code = component.WaitExit(std::chrono::seconds(30));
   ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
@@ -359,18 +368,12 @@ TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) 
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({}));
   const std::string out = dir / "out";
-  constexpr int kDomain = testing::domains::kBadInputCalibration;
-  process::ChildProcess component(
-      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
-      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--record-s", "90",
-       "--out-dir", out, "--exit-when-done"});
-  ASSERT_TRUE(testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
-                                 std::chrono::seconds(10)))
-      << component.CapturedOutput();
+  auto component = StartRecordingComponent(out);
+  ASSERT_TRUE(WaitForRunning(component)) << component.CapturedOutput();
   // The folder checked at start-up turns into a file before the result is written.
   std::filesystem::remove_all(out);
   dir.Write("out", "not a folder");
-  dds::Node node(testing::TestNodeOptions("recording_player", kDomain));
+  dds::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
   Publish(node, inputs);
   const auto code = component.WaitExit(std::chrono::seconds(30));
   ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
