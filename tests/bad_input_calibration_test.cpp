@@ -310,8 +310,7 @@ void Publish(dds::Node& node, const Inputs& inputs) {
   auto fixes = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds::topics::kPose);
   ASSERT_TRUE(testing::WaitUntil(
-      [&] { return encoders.MatchedReaders() > 0 && fixes.MatchedReaders() > 0; },
-      std::chrono::seconds(10)));
+      [&] { return encoders.MatchedReaders() > 0 && fixes.MatchedReaders() > 0; }));
   size_t f = 0;
   for (size_t k = 0; k < inputs.encoders.size(); k += 5) {
     const auto& e = inputs.encoders[k];
@@ -330,7 +329,7 @@ void Publish(dds::Node& node, const Inputs& inputs) {
     m.traction_ticks(e.traction_ticks);
     m.steering_ticks(static_cast<int32_t>(e.steering_ticks));
     encoders.Write(m);
-    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    std::this_thread::sleep_for(std::chrono::microseconds(500));  // paces the publisher
   }
 }
 
@@ -345,8 +344,7 @@ process::ChildProcess StartRecordingComponent(const std::string& out_dir) {
 }
 
 bool WaitForRunning(process::ChildProcess& component) {
-  return testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); },
-                            std::chrono::seconds(10));
+  return testing::WaitUntil([&] { return Contains(component.CapturedOutput(), "running"); });
 }
 
 TEST(BadInputCalibration, M2_ComponentExitsNonZeroWhenTheCalibrationFails) {

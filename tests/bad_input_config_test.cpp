@@ -5,10 +5,10 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <sstream>
-#include <thread>
 
 #include "child_process.hpp"
 #include "cli_runner.hpp"
@@ -20,6 +20,7 @@
 #include "test_domains.hpp"
 #include "test_paths.hpp"
 #include "visibility.hpp"
+#include "wait_until.hpp"
 #include "world_model_xml.hpp"
 
 namespace structloc {
@@ -97,7 +98,7 @@ std::string GridWorld(int side) {
   return xml.str();
 }
 
-TEST(BadInputConfig, M4_WorldOf100000WallsLoadsInWellUnderAFewSeconds) {
+TEST(BadInputConfig, M4_WorldOf100000WallsLoadsWithoutBlowingUp) {
   TempDir dir;
   const std::string path = dir.Write("grid.xml", GridWorld(224));  // 100 800 walls
   const auto start = std::chrono::steady_clock::now();
@@ -106,7 +107,10 @@ TEST(BadInputConfig, M4_WorldOf100000WallsLoadsInWellUnderAFewSeconds) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(world.Walls().size(), 100800u);
   EXPECT_EQ(world.Corners().size(), 225u * 225u);  // every lattice point, each once
-  EXPECT_LT(seconds, 3.0);
+  // The time is printed; the bound only catches a blow-up (the quadratic
+  // corner search took minutes), never a merely slow machine.
+  std::printf("100 800 walls loaded in %.2f s\n", seconds);
+  EXPECT_LT(seconds, testing::kGenerousTimeout.count());
 }
 
 TEST(BadInputConfig, M4_CornersFromTheIndexMatchTryingEveryPair) {
@@ -197,7 +201,8 @@ TEST(BadInputConfig, M5_LaunchSubstitutionIsBoundedPerValue) {
   const auto start = std::chrono::steady_clock::now();
   // 3 * 2^15 bytes is the first value above 64 KiB: <arg name="a15"> on line 17.
   ExpectRejected(path, LoadLaunch, {path + ":17:", "longer than 65536 bytes"});
-  EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
+  // A guard against an exponential blow-up, not a speed test.
+  EXPECT_LT(std::chrono::steady_clock::now() - start, testing::kGenerousTimeout);
 
   process::LaunchContext wider{SourcePath(""), STRUCTLOC_BIN_DIR, {}};
   wider.max_value_bytes = 1 << 20;
@@ -248,7 +253,8 @@ TEST(BadInputConfig, M9_VisibilityOfAVeryLongWallHasNoIntegerOverflow) {
   world::Visibility seen;
   const auto start = std::chrono::steady_clock::now();
   world::ComputeVisibility(world, scene, {1.0, 1.5, 0.0}, world::VisibilityOptions{}, seen);
-  EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
+  // A guard against sampling the whole wall (4e9 samples), not a speed test.
+  EXPECT_LT(std::chrono::steady_clock::now() - start, testing::kGenerousTimeout);
   ASSERT_EQ(seen.walls.size(), 2u);
   EXPECT_EQ(seen.walls[0].index, 0);
   EXPECT_GT(seen.walls[0].visible_length_m, 2.0);
@@ -390,7 +396,6 @@ TEST(BadInputConfig, L5_MalformedDurationsAndInitialPosesAreRefused) {
 }
 
 TEST(BadInputConfig, L5_DemoValidatesItsOptionsBeforeStartingAnything) {
-  const auto start = std::chrono::steady_clock::now();
   const auto demo = testing::RunCli(
       {"demo", "--time-scale", "-1", "--domain", std::to_string(testing::domains::kBadInputConfig)},
       30s);
@@ -398,7 +403,6 @@ TEST(BadInputConfig, L5_DemoValidatesItsOptionsBeforeStartingAnything) {
   EXPECT_NE(demo.output.find("--time-scale"), std::string::npos) << demo.output;
   EXPECT_EQ(demo.output.find("components failed"), std::string::npos) << demo.output;
   EXPECT_EQ(demo.output.find("simulated driving"), std::string::npos) << demo.output;
-  EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
 }
 
 TEST(BadInputConfig, L6_CheckQosAppliesTheComponentsRules) {
@@ -461,20 +465,18 @@ TEST(BadInputConfig, L7_KillingTheLauncherStopsItsNodes) {
                                  {"launch", path, "--duration", "60"});
   pid_t node = -1;
   const std::string marker = "[launch] loc has pid ";
-  for (int i = 0; i < 200 && node < 0; ++i) {
+  // The node's pid, and the node up and running (its output is the launcher's).
+  ASSERT_TRUE(testing::WaitUntil([&] {
     const auto out = launcher.CapturedOutput();
     const auto at = out.find(marker);
-    if (at != std::string::npos && out.find('\n', at) != std::string::npos) {
-      node = static_cast<pid_t>(std::stol(out.substr(at + marker.size())));
-    }
-    std::this_thread::sleep_for(25ms);
-  }
-  ASSERT_GT(node, 0) << launcher.CapturedOutput();
-  std::this_thread::sleep_for(500ms);
+    if (at == std::string::npos || out.find('\n', at) == std::string::npos) return false;
+    node = static_cast<pid_t>(std::stol(out.substr(at + marker.size())));
+    return out.find(": running (SIGINT or SIGTERM stops)", at) != std::string::npos;
+  })) << launcher.CapturedOutput();
   ASSERT_TRUE(Running(node));
   launcher.Signal(SIGKILL);
-  launcher.WaitExit(5s);
-  for (int i = 0; i < 200 && Running(node); ++i) std::this_thread::sleep_for(50ms);
+  launcher.WaitExit(testing::kGenerousTimeout);
+  testing::WaitUntil([&] { return !Running(node); });
   const bool still_running = Running(node);
   if (still_running) kill(node, SIGKILL);
   EXPECT_FALSE(still_running) << "node " << node << " outlived its launcher";

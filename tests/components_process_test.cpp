@@ -1,6 +1,7 @@
 // The three component executables as real processes on a loopback DDS domain:
 // they start, report their endpoints, exchange samples, stop cleanly on
-// SIGINT/SIGTERM, and exit non-zero fast on bad configuration.
+// SIGINT/SIGTERM, and exit non-zero on bad configuration. Waits are on
+// conditions (a diagnostic value, an exit); their timeouts only guard hangs.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
+#include "wait_until.hpp"
 
 namespace structloc {
 namespace {
@@ -62,23 +64,20 @@ TEST(Components, ExchangeSamplesAndStopCleanly) {
   ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
   ChildProcess calibration(BinPath("structloc_calibration"), Args(kDomain));
 
-  EXPECT_TRUE(testing::WaitUntil(
-      [&] {
-        return diagnostics.Value("structloc/localisation", "scans_rejected") > 0 ||
-               diagnostics.Value("structloc/localisation", "scans_processed") > 0;
-      },
-      15s))
-      << localisation.CapturedOutput();
-  EXPECT_TRUE(testing::WaitUntil(
-      [&] { return diagnostics.Value("structloc/calibration", "encoder_samples") > 0; }, 15s))
-      << calibration.CapturedOutput();
+  EXPECT_TRUE(testing::WaitUntil([&] {
+    return diagnostics.Value("structloc/localisation", "scans_rejected") > 0 ||
+           diagnostics.Value("structloc/localisation", "scans_processed") > 0;
+  })) << localisation.CapturedOutput();
+  EXPECT_TRUE(testing::WaitUntil([&] {
+    return diagnostics.Value("structloc/calibration", "encoder_samples") > 0;
+  })) << calibration.CapturedOutput();
 
   simulator.Signal(SIGINT);
   localisation.Signal(SIGTERM);
   calibration.Signal(SIGTERM);
-  EXPECT_EQ(simulator.WaitExit(5s), 0) << simulator.CapturedOutput();
-  EXPECT_EQ(localisation.WaitExit(5s), 0) << localisation.CapturedOutput();
-  EXPECT_EQ(calibration.WaitExit(5s), 0) << calibration.CapturedOutput();
+  EXPECT_EQ(simulator.WaitExit(testing::kGenerousTimeout), 0) << simulator.CapturedOutput();
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << localisation.CapturedOutput();
+  EXPECT_EQ(calibration.WaitExit(testing::kGenerousTimeout), 0) << calibration.CapturedOutput();
   const auto report = localisation.CapturedOutput();
   EXPECT_NE(report.find("subscribes rt/scan  [sensor_msgs::msg::dds_::LaserScan_]"),
             std::string::npos)
@@ -97,7 +96,7 @@ TEST(Components, BrokenProfileExitsNonZeroNamingFileAndProblem) {
        {"structloc_simulator", "structloc_localisation", "structloc_calibration"}) {
     const auto start = std::chrono::steady_clock::now();
     ChildProcess child(BinPath(exe), Args(testing::domains::kComponentsBrokenProfile, path));
-    const auto code = child.WaitExit(5s);
+    const auto code = child.WaitExit(testing::kGenerousTimeout);
     const auto elapsed = std::chrono::steady_clock::now() - start;
     ASSERT_TRUE(code.has_value()) << exe << " did not exit";
     EXPECT_NE(*code, 0) << exe;
@@ -112,11 +111,11 @@ TEST(Components, BrokenProfileExitsNonZeroNamingFileAndProblem) {
 TEST(Components, MissingQosFileAndUnknownOptionAreConfigurationErrors) {
   ChildProcess missing(BinPath("structloc_localisation"),
                        Args(testing::domains::kComponentsBrokenProfile, "/nonexistent.xml"));
-  EXPECT_EQ(missing.WaitExit(5s), 2);
+  EXPECT_EQ(missing.WaitExit(testing::kGenerousTimeout), 2);
   EXPECT_NE(missing.CapturedOutput().find("/nonexistent.xml: cannot open file"), std::string::npos)
       << missing.CapturedOutput();
   ChildProcess unknown(BinPath("structloc_simulator"), {"--no-such-option", "1"});
-  EXPECT_EQ(unknown.WaitExit(5s), 2);
+  EXPECT_EQ(unknown.WaitExit(testing::kGenerousTimeout), 2);
   EXPECT_NE(unknown.CapturedOutput().find("unknown option '--no-such-option'"), std::string::npos);
 }
 

@@ -12,20 +12,12 @@
 
 #include "node.hpp"
 #include "test_paths.hpp"
+#include "wait_until.hpp"
 
 namespace structloc::testing {
 
 inline std::string ShippedQos() {
   return SourcePath("qos/structloc_qos.xml");
-}
-
-inline bool WaitUntil(const std::function<bool()>& predicate, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (predicate()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return predicate();
 }
 
 inline dds::NodeOptions TestNodeOptions(const std::string& name, int domain) {

@@ -11,6 +11,7 @@
 #include "launch_file.hpp"
 #include "strict_xml.hpp"
 #include "test_domains.hpp"
+#include "wait_until.hpp"
 
 namespace structloc {
 namespace {
@@ -91,7 +92,7 @@ TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
       std::string(STRUCTLOC_BIN_DIR) + "/structloc",
       {"launch", std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/structloc.launch.xml",
        "domain:=" + std::to_string(testing::domains::kLaunch), "--duration", "2"});
-  const auto code = launch.WaitExit(20s);
+  const auto code = launch.WaitExit(testing::kGenerousTimeout);
   const auto out = launch.CapturedOutput();
   ASSERT_TRUE(code.has_value()) << out;
   EXPECT_EQ(*code, 0) << out;

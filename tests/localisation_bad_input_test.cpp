@@ -6,6 +6,10 @@
 // publish a NaN, and keep localising on the good data.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "child_process.hpp"
 #include "localisation_feed.hpp"
 #include "test_domains.hpp"
@@ -26,7 +30,7 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
        std::to_string(p0.x) + " " + std::to_string(p0.y) + " " + std::to_string(p0.theta)});
-  ASSERT_TRUE(feed.WaitForLocalisation(10s)) << localisation.CapturedOutput();
+  ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   int bad_sent = 0;
   size_t good_sent = 0;
   feed.Play(scenario, [&](int k, const simulation::SimState& s, sensor_msgs::msg::LaserScan& scan) {
@@ -77,23 +81,29 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
       }
     }
   });
-  std::this_thread::sleep_for(1500ms);
+  // Rejections are reported with their reasons (in the diagnostics, which
+  // the component publishes about once a second: wait for them).
+  const std::vector<std::string> reasons = {
+      "rejected: empty scan",
+      "rejected: beam count does not match the scan angles",
+      "rejected: angle_increment zero or non-finite, or bad limits",
+      "rejected: scan stamp not after the previous scan",
+      "rejected: scan stamp too far ahead of the odometry",
+      "rejected: odometry jump faster than max_odometry_speed_m_s or "
+      "max_odometry_turn_rate_rad_s",
+      "rejected: odometry pose or stamp not finite, or its orientation not a unit quaternion"};
+  const auto counted = [&](const std::string& reason) {
+    const auto count = feed.Value(reason);
+    return !count.empty() && std::stol(count) > 0;
+  };
+  EXPECT_TRUE(testing::WaitUntil([&] {
+    return std::all_of(reasons.begin(), reasons.end(), counted) && feed.Poses() > good_sent / 2;
+  })) << localisation.CapturedOutput();
   EXPECT_FALSE(localisation.Poll().has_value()) << "the component died:\n"
                                                 << localisation.CapturedOutput();
   EXPECT_FALSE(feed.NonFinitePoseSeen());
   EXPECT_GT(bad_sent, 20);
-  // Rejections are reported with their reasons.
-  for (const auto* reason :
-       {"rejected: empty scan", "rejected: beam count does not match the scan angles",
-        "rejected: angle_increment zero or non-finite, or bad limits",
-        "rejected: scan stamp not after the previous scan",
-        "rejected: scan stamp too far ahead of the odometry",
-        "rejected: odometry jump faster than max_odometry_speed_m_s or "
-        "max_odometry_turn_rate_rad_s",
-        "rejected: odometry pose or stamp not finite, or its orientation not a unit quaternion"}) {
-    const auto count = feed.Value(reason);
-    EXPECT_TRUE(!count.empty() && std::stol(count) > 0) << reason;
-  }
+  for (const auto& reason : reasons) EXPECT_TRUE(counted(reason)) << reason;
   // And it kept localising on the good scans.
   EXPECT_GT(feed.Poses(), good_sent / 2);
   EXPECT_LT(feed.WorstError(), 0.03);

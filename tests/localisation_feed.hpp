@@ -72,7 +72,7 @@ class LocalisationFeed {
     for (int k = 100; k > 0; --k) {
       auto standing = simulator::ToOdometry(sim.State(), 0.0, kClockOffset - 0.01 * k);
       odometry_.Write(standing);
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));  // paces the publisher
     }
     long steps = 0;
     int k = 0;
@@ -84,7 +84,7 @@ class LocalisationFeed {
       }
       auto scan = sim.TakeScan();
       if (!scan) continue;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // paces the publisher
       auto message = simulator::ToLaserScan(*scan, kClockOffset);
       if (hook && !hook(++k, s, message)) continue;
       {

@@ -46,7 +46,7 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Snapshot().sim_time_s > 12.0; }, 30s));
   ASSERT_TRUE(std::filesystem::exists(state)) << first->CapturedOutput();
   first->Signal(SIGKILL);
-  first->WaitExit(5s);
+  first->WaitExit(testing::kGenerousTimeout);
   first.reset();
   const double killed_at = evaluator.Snapshot().sim_time_s;
   const size_t poses_before = evaluator.Estimate().size();
@@ -77,7 +77,7 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   EXPECT_LE(e.position_rmse_m, 0.01);
   simulator.Signal(SIGTERM);
   second.Signal(SIGTERM);
-  EXPECT_EQ(second.WaitExit(5s), 0);
+  EXPECT_EQ(second.WaitExit(testing::kGenerousTimeout), 0);
 }
 
 }  // namespace

@@ -1,19 +1,24 @@
-// The simulator component over real DDS: it runs a scenario faster than real
-// time and a plain subscriber receives scans, encoders, odometry and ground
-// truth at the scenario's rates with consistent stamps. Plus the message
+// The simulator component over real DDS: it runs a scenario at a time scale
+// (the wall time it took is printed, not asserted) and a plain subscriber
+// receives scans, encoders, odometry and ground truth at the scenario's rates
+// with consistent stamps. Plus the message
 // conversions, tested without a participant.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <mutex>
 
 #include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "ros_conversions.hpp"
+#include "scenario.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "sim_conversions.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "test_domains.hpp"
+#include "wait_until.hpp"
 
 namespace structloc {
 namespace {
@@ -80,7 +85,7 @@ bool Increasing(const std::vector<double>& s) {
   return true;
 }
 
-TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsistentStamps) {
+TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) {
   dds::Node observer(testing::TestNodeOptions("observer", kDomain));
   StampLog scans, odom, truth, encoders;
   std::mutex scan_mutex;
@@ -109,17 +114,32 @@ TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsisten
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
        testing::SourcePath("maps/scenarios/dead_end_corridor.xml"), "--time-scale", "8",
        "--wait-for-subscribers", "1", "--exit-when-done"});
-  const auto code = sim.WaitExit(30s);
+  const auto code = sim.WaitExit(testing::kGenerousTimeout);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_TRUE(code.has_value()) << sim.CapturedOutput();
   EXPECT_EQ(*code, 0) << sim.CapturedOutput();
-  std::this_thread::sleep_for(200ms);
+  // Printed, not asserted: a loaded machine runs the 40 s scenario slower.
+  std::printf("40 s of scenario at time scale 8 took %.1f s of wall time\n", wall);
+  // The last samples may still be in flight: wait until every stream reached
+  // the scenario's end. The clock offset is a whole second taken when the
+  // clock started, so it is the first odometry stamp rounded down.
+  const double duration_s =
+      simulation::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"))
+          .duration_s;
+  const auto reached_end = [&](StampLog& log, double before_end_s) {
+    const auto first = odom.Get(), stamps = log.Get();
+    return !first.empty() && !stamps.empty() &&
+           stamps.back() >= std::floor(first.front()) + duration_s - before_end_s;
+  };
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return reached_end(odom, 0.05) && reached_end(truth, 0.05) && reached_end(encoders, 0.05) &&
+           reached_end(scans, 0.5);
+  })) << "the last samples did not arrive\n"
+      << sim.CapturedOutput();
   const auto s = scans.Get(), o = odom.Get(), t = truth.Get(), e = encoders.Get();
   ASSERT_GT(s.size(), 100u);
   ASSERT_GT(o.size(), 1000u);
-  // 40 s of scenario took well under 40 s of wall time.
-  EXPECT_LT(wall, 40.0 / 3);
   // Rates in simulation time: the scenario's laser 5 Hz, odometry/encoders 50 Hz.
   EXPECT_NEAR(Rate(s), 5.0, 0.1);
   EXPECT_NEAR(Rate(o), 50.0, 1.0);
