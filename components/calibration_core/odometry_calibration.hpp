@@ -7,7 +7,9 @@
 // distance, steering offset, optionally the steering gain (rad per tick) and
 // the fix sensor's mounting pose. Reports standard deviations, correlations,
 // residual RMS before and after, and refuses to give a number for a parameter
-// the trajectory cannot determine. DDS-free.
+// the trajectory cannot determine. DDS-free. Its parts: calibration_problem
+// (intervals and residuals), levenberg_marquardt (the solver),
+// observability_pruning and calibration_report_builder.
 #pragma once
 
 #include <Eigen/Core>
