@@ -39,9 +39,9 @@ for program in structloc structloc_localisation structloc_simulator structloc_ca
 done
 
 share="$prefix/share/structloc"
-"$prefix/bin/structloc" simulate --scenario "$share/maps/scenarios/dead_end_corridor.xml" \
+"$prefix/bin/structloc" simulate --scenario "$share/maps/scenarios/office_people.xml" \
   --out "$work/run" >/dev/null
-"$prefix/bin/structloc" replay --map "$share/maps/dead_end_corridor.xml" --log "$work/run/run.clf" \
+"$prefix/bin/structloc" replay --map "$share/maps/office_floor.xml" --log "$work/run/run.clf" \
   --initial-pose "$(cat "$work/run/initial_pose")" --truth "$work/run/truth.tum" \
   --params "$share/maps/params/office_sick.xml" --out "$work/replayed.tum" | tee "$work/replay.txt"
 [[ -s "$work/replayed.tum" ]] || { echo "install_test: replay wrote no trajectory" >&2; exit 1; }
