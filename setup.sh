@@ -57,7 +57,7 @@ run_tests() {
 }
 
 run_demo() {
-  "$build_dir/bin/structloc" demo
+  "$build_dir/bin/structloc" demo --out "$build_dir/demo/fig44_office.png"
 }
 
 case "${1:-}" in

@@ -1,16 +1,12 @@
 // structloc_calibration: entry point of the odometry-calibration component.
 #include "calibration_component.hpp"
 
-#ifndef STRUCTLOC_SHARE_DIR
-#error "STRUCTLOC_SHARE_DIR must be defined by the build"
-#endif
-
 int main(int argc, char** argv) {
   namespace cal = structloc::calibration;
   return structloc::dds::RunComponent(
       argc, argv, "calibration",
       {{"robot", true,
-        "nominal robot parameters (default " STRUCTLOC_SHARE_DIR "/maps/robots/tricycle.xml)"},
+        "nominal robot parameters (default: maps/robots/tricycle.xml in structloc's data folder)"},
        {"record-s", true,
         "recording length in seconds of stamp time, 0 = until stopped (default 60)"},
        {"fix-topic", true,
@@ -26,7 +22,7 @@ int main(int argc, char** argv) {
         "be written)"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         cal::CalibrationComponentOptions o;
-        o.robot_path = cli.GetOr("robot", STRUCTLOC_SHARE_DIR "/maps/robots/tricycle.xml");
+        o.robot_path = cli.PathOr("robot", "maps/robots/tricycle.xml");
         o.nominal = structloc::kinematics::LoadRobotParameters(o.robot_path);
         o.record_s = cli.Number("record-s", o.record_s);
         o.fix_topic = cli.GetOr("fix-topic", o.fix_topic);

@@ -10,6 +10,7 @@
 
 #include "child_process.hpp"
 #include "command_line.hpp"
+#include "install_layout.hpp"
 #include "live_evaluator.hpp"
 #include "map_canvas.hpp"
 #include "scenario.hpp"
@@ -32,16 +33,16 @@ int DemoCommand(const Invocation& inv) {
       {"domain", true,
        "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"time-scale", true, "simulated seconds per wall second, 0.01..1000 (default 2)"},
-      {"out", true, "PNG to write (default build/demo/fig44_office.png)"},
+      {"out", true, "PNG to write (default structloc_demo/fig44_office.png in the current folder)"},
   };
   try {
     // Every option is checked here, before anything starts.
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     const int domain = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
     const double time_scale = cli.NumberIn("time-scale", 2.0, 0.01, 1000.0);
-    const std::string share = STRUCTLOC_SHARE_DIR;
+    const std::string share = config::ShareDirectory();
     const auto scenario = simulation::LoadScenario(share + "/maps/scenarios/office_people.xml");
-    const std::string png = cli.GetOr("out", inv.bin_dir + "/../demo/fig44_office.png");
+    const std::string png = cli.GetOr("out", "structloc_demo/fig44_office.png");
     rendering::MapCanvas::CheckPictureName(png);
     std::filesystem::create_directories(std::filesystem::path(png).parent_path());
 

@@ -3,14 +3,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "install_layout.hpp"
 #include "launch_runner.hpp"
 #include "strict_number.hpp"
 #include "strict_xml.hpp"
 #include "subcommands.hpp"
-
-#ifndef STRUCTLOC_SHARE_DIR
-#error "STRUCTLOC_SHARE_DIR must be defined by the build"
-#endif
 
 namespace structloc::cli {
 namespace {
@@ -58,7 +55,7 @@ int LaunchCommand(const Invocation& inv) {
     std::cerr << "structloc launch: the first argument must be the launch file\n" << Usage();
     return 2;
   }
-  process::LaunchContext context{STRUCTLOC_SHARE_DIR, inv.bin_dir, {}};
+  process::LaunchContext context{config::ShareDirectory(), inv.bin_dir, {}};
   process::LaunchRunOptions options;
   try {
     for (int i = 3; i < inv.argc; ++i) {

@@ -1,26 +1,15 @@
 // structloc: the command-line front end (launch, demo and, as they land,
 // simulate, replay, calibrate, render). Each subcommand calls the same core
 // libraries as the components.
-#include <unistd.h>
-
-#include <climits>
 #include <cstring>
 #include <iostream>
 #include <string>
 
 #include "command_line.hpp"
+#include "install_layout.hpp"
 #include "subcommands.hpp"
 
 namespace {
-
-std::string ExecutableDir() {
-  char path[PATH_MAX];
-  const ssize_t n = readlink("/proc/self/exe", path, sizeof(path) - 1);
-  if (n <= 0) return ".";
-  path[n] = '\0';
-  std::string p(path);
-  return p.substr(0, p.find_last_of('/'));
-}
 
 struct Subcommand {
   const char* name;
@@ -65,7 +54,7 @@ int main(int argc, char** argv) {
   for (const auto& s : kSubcommands) {
     if (std::strcmp(argv[1], s.name) != 0) continue;
     try {
-      return s.run({argc, argv, ExecutableDir()});
+      return s.run({argc, argv, structloc::config::ExecutableDirectory()});
     } catch (const structloc::config::HelpRequested& help) {
       std::cout << help.usage;
       return 0;

@@ -1,5 +1,6 @@
 // Implementation of the strict command-line parser.
 #include "command_line.hpp"
+#include "install_layout.hpp"
 
 #include <sstream>
 
@@ -58,6 +59,11 @@ std::optional<std::string> CommandLine::Get(const std::string& name) const {
 
 std::string CommandLine::GetOr(const std::string& name, const std::string& fallback) const {
   return Get(name).value_or(fallback);
+}
+
+std::string CommandLine::PathOr(const std::string& name, const std::string& share_relative) const {
+  const auto value = Get(name);
+  return value ? *value : SharePath(share_relative);
 }
 
 std::string CommandLine::Required(const std::string& name) const {

@@ -36,6 +36,9 @@ class CommandLine {
   bool Has(const std::string& name) const { return values_.count(name) != 0; }
   std::optional<std::string> Get(const std::string& name) const;
   std::string GetOr(const std::string& name, const std::string& fallback) const;
+  // The option's value, else the shipped file `share_relative` in structloc's
+  // data folder (see install_layout.hpp), looked up only when needed.
+  std::string PathOr(const std::string& name, const std::string& share_relative) const;
   std::string Required(const std::string& name) const;
   double Number(const std::string& name, double fallback) const;
   // A number in [min, max]; the message names the bounds.

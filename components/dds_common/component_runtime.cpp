@@ -5,10 +5,6 @@
 
 #include "shutdown_signal.hpp"
 
-#ifndef STRUCTLOC_SHARE_DIR
-#error "STRUCTLOC_SHARE_DIR must be defined by the build"
-#endif
-
 namespace structloc::dds {
 namespace {
 
@@ -27,7 +23,7 @@ std::vector<config::OptionSpec> StandardOptions() {
       {"domain", true,
        "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
       {"qos", true,
-       "Fast DDS QoS profiles file (default " STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml)"},
+       "Fast DDS QoS profiles file (default: qos/structloc_qos.xml in structloc's data folder)"},
       {"participant-profile", true,
        "participant profile in the QoS file (default structloc_localhost)"},
       {"help", false, "print the options and exit"},
@@ -52,7 +48,7 @@ int RunComponent(int argc, char** argv, const std::string& name,
     NodeOptions options;
     options.name = name;
     options.domain_id = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
-    options.qos_file = cli.GetOr("qos", STRUCTLOC_SHARE_DIR "/qos/structloc_qos.xml");
+    options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);
     node.HoldCallbacks();  // none may reach a component still being built

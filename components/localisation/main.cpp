@@ -7,18 +7,15 @@
 #include "strict_number.hpp"
 #include "world_model_xml.hpp"
 
-#ifndef STRUCTLOC_SHARE_DIR
-#error "STRUCTLOC_SHARE_DIR must be defined by the build"
-#endif
-
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
   namespace loc = structloc::localisation;
   return structloc::dds::RunComponent(
       argc, argv, "localisation",
-      {{"map", true, "world model XML (default " STRUCTLOC_SHARE_DIR "/maps/office_floor.xml)"},
+      {{"map", true, "world model XML (default: maps/office_floor.xml in structloc's data folder)"},
        {"params", true,
-        "localisation parameters (default " STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml)"},
+        "localisation parameters (default: maps/params/office_sick.xml in structloc's data "
+        "folder)"},
        {"initial-pose", true,
         "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
         "it stands, or publish rt/initialpose with a stamp)"},
@@ -30,7 +27,7 @@ int main(int argc, char** argv) {
         structloc::world::WorldLimits limits;
         limits.max_walls = static_cast<size_t>(
             cli.IntegerIn("max-walls", static_cast<long long>(limits.max_walls), 1, 100000000));
-        const std::string map = cli.GetOr("map", STRUCTLOC_SHARE_DIR "/maps/office_floor.xml");
+        const std::string map = cli.PathOr("map", "maps/office_floor.xml");
         std::cout << "localisation: loading map " << map << std::endl;
         const auto started = std::chrono::steady_clock::now();
         auto world = std::make_unique<structloc::world::WorldModel>(
@@ -41,8 +38,8 @@ int main(int argc, char** argv) {
             << " cylinders (loaded in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
             << " s)" << std::endl;
-        const auto params = loc::LoadLocaliserOptions(
-            cli.GetOr("params", STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml"));
+        const auto params =
+            loc::LoadLocaliserOptions(cli.PathOr("params", "maps/params/office_sick.xml"));
         loc::LocalisationComponentOptions options;
         options.state_file = cli.GetOr("state-file", "");
         if (auto text = cli.Get("initial-pose")) {

@@ -1,16 +1,12 @@
 // structloc_simulator: entry point of the simulator component.
 #include "simulator_component.hpp"
 
-#ifndef STRUCTLOC_SHARE_DIR
-#error "STRUCTLOC_SHARE_DIR must be defined by the build"
-#endif
-
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
   return structloc::dds::RunComponent(
       argc, argv, "simulator",
       {{"scenario", true,
-        "scenario XML (default " STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml)"},
+        "scenario XML (default: maps/scenarios/office_people.xml in structloc's data folder)"},
        {"time-scale", true,
         "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
        {"seed", true, "override the scenario's seed"},
@@ -20,7 +16,7 @@ int main(int argc, char** argv) {
         "0)"}},
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         auto scenario = structloc::simulation::LoadScenario(
-            cli.GetOr("scenario", STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml"));
+            cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
         if (cli.Has("seed")) {
           const long long seed = cli.Integer("seed", 0);
           if (seed < 0 || seed > 0xffffffffLL) throw ConfigError("--seed must be 0..4294967295");
