@@ -34,6 +34,10 @@ TEST(FeatureKinds, TheParameterFileDecidesWhichExtractorsRunAndInWhichOrder) {
 
 TEST(FeatureKinds, EveryKindIsNamedLikeItsBlockInTheParameterFile) {
   const auto file = LocaliserOptionFile();
+  const auto kinds = FeatureKinds();
+  const auto extractors = MakeFeatureExtractors(LocaliserOptions{}, {300, 4, 4, 2});
+  ASSERT_EQ(kinds.size(), extractors.size());
+  for (size_t i = 0; i < kinds.size(); ++i) EXPECT_STREQ(kinds[i].name, extractors[i]->Kind());
   for (const auto& e : MakeFeatureExtractors(LocaliserOptions{}, {300, 4, 4, 2})) {
     bool found = false;
     for (const auto& section : file.Sections()) found = found || section.Section() == e->Kind();

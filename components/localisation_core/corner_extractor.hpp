@@ -5,6 +5,7 @@
 
 #include "corner_extraction.hpp"
 #include "feature_extractor.hpp"
+#include "feature_kinds.hpp"
 
 namespace structloc::localisation {
 
@@ -30,5 +31,8 @@ class CornerExtractor : public FeatureExtractor {
   std::vector<PointSums> work_;
   std::vector<PointCluster> clusters_;
 };
+
+// The kind "corners": its options blocks, when it is enabled, how it is built.
+FeatureKind CornerKind();
 
 }  // namespace structloc::localisation

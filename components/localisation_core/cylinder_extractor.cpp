@@ -1,7 +1,40 @@
-// Feature kind "cylinders" (see header).
+// Feature kind "cylinders" (see header): the extractor and the kind's options block.
 #include "cylinder_extractor.hpp"
 
 namespace structloc::localisation {
+namespace {
+
+using config::OptionTable;
+using config::Range;
+using O = LocaliserOptions;
+
+std::vector<OptionTable<O>> CylinderSections() {
+  OptionTable<O> t("cylinders", "feature kind cylinders, thesis 3.5.6 EQ 36-40: circle fits");
+  t.Flag("enabled", &O::use_cylinders, "extract and use cylinders");
+  t.Number("candidate_gate_m", &O::cylinders, &CylinderOptions::candidate_gate_m, Range::Positive(),
+           "m", "window centroid to expected surface");
+  t.Number("radius_tolerance_m", &O::cylinders, &CylinderOptions::radius_tolerance_m,
+           Range::Positive(), "m", "|fitted radius - model radius|");
+  t.Number("min_quality", &O::cylinders, &CylinderOptions::min_quality, Range::NonNegative(),
+           "1/m^4", "EQ 40 threshold on Q = 1 / sum(residual^2)");
+  t.Number("gate_m", &O::cylinders, &CylinderOptions::gate_m, Range::Positive(), "m",
+           "fitted centre to expected centre");
+  t.Number("min_cluster_size", &O::cylinders, &CylinderOptions::min_cluster_size, Range::AtLeast(1),
+           "", "minimum number of circle fits in a cluster");
+  t.Number("min_point_sigma_m", &O::cylinders, &CylinderOptions::min_point_sigma_m,
+           Range::Positive(), "m", "floor of the per-point noise for the covariance");
+  return {t};
+}
+
+}  // namespace
+
+FeatureKind CylinderKind() {
+  return {"cylinders", CylinderSections, [](const LocaliserOptions& o) { return o.use_cylinders; },
+          [](const LocaliserOptions& o, const ExtractorCapacity& c) {
+            return std::unique_ptr<FeatureExtractor>(
+                std::make_unique<CylinderExtractor>(o.cylinders, c.beams, c.cylinders));
+          }};
+}
 
 CylinderExtractor::CylinderExtractor(const CylinderOptions& options, size_t max_beams,
                                      size_t cylinders)

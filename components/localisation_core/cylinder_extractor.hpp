@@ -5,6 +5,7 @@
 
 #include "cylinder_extraction.hpp"
 #include "feature_extractor.hpp"
+#include "feature_kinds.hpp"
 
 namespace structloc::localisation {
 
@@ -25,5 +26,8 @@ class CylinderExtractor : public FeatureExtractor {
   CylinderWork work_;
   std::vector<PointCluster> clusters_;
 };
+
+// The kind "cylinders": its options blocks, when it is enabled, how it is built.
+FeatureKind CylinderKind();
 
 }  // namespace structloc::localisation

@@ -1,9 +1,11 @@
 // Localiser options declared once (key, range, unit, description; the struct
-// members hold the defaults), and the checks that span several options.
+// members hold the defaults), and the checks that span several options. Each
+// feature kind declares its own blocks in its own file (feature_kinds.hpp).
 #include "localiser_options.hpp"
 
 #include <stdexcept>
 
+#include "feature_kinds.hpp"
 #include "strict_xml.hpp"
 
 namespace structloc::localisation {
@@ -36,74 +38,6 @@ OptionTable<O> LineFitSection() {
            "", "Table 6: number of points in one line fit");
   t.Number("max_rms_m", &O::line_fit, &LineFitOptions::max_rms_m, Range::Positive(), "m",
            "windows scattering more than this about their line are not used");
-  return t;
-}
-
-OptionTable<O> WallsSection() {
-  OptionTable<O> t("walls", "feature kind walls, thesis 3.5.3: window lines clustered per wall");
-  t.Choice("strategy", &O::wall_strategy,
-           {{"expectation", WallStrategy::kExpectation}, {"kohonen", WallStrategy::kKohonen}},
-           "nearest expected wall within the gates, or the thesis' Kohonen map (see <kohonen>)");
-  t.Number("gate_r_m", &O::walls, &WallClusterOptions::gate_r_m, Range::Positive(), "m",
-           "Table 6: size of cluster (r)");
-  t.Number("gate_alpha_rad", &O::walls, &WallClusterOptions::gate_alpha_rad,
-           Range::Open(0, kHalfPi), "rad", "Table 6: size of cluster (alpha)");
-  t.Number("min_cluster_size", &O::walls, &WallClusterOptions::min_cluster_size, Range::AtLeast(1),
-           "", "Table 6: minimum number of window lines in a cluster");
-  t.Number("extent_margin_m", &O::walls, &WallClusterOptions::extent_margin_m, Range::Any(), "m",
-           "a window must lie within the visible wall plus this (<= 0 disables the check)");
-  t.Number("min_point_sigma_m", &O::walls, &WallClusterOptions::min_point_sigma_m,
-           Range::Positive(), "m", "floor of the per-point noise used for covariances");
-  return t;
-}
-
-OptionTable<O> KohonenSection() {
-  OptionTable<O> t("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
-  t.Number("iterations", &O::kohonen, &KohonenOptions::iterations,
-           Range::Closed(1, LocaliserLimits::kMaxKohonenIterations), "", "training steps per scan");
-  t.Number("initial_learning_rate", &O::kohonen, &KohonenOptions::initial_learning_rate,
-           Range::LeftOpen(0, 1), "", "eta(0), decreasing linearly to 0");
-  t.Number("initial_neighbourhood", &O::kohonen, &KohonenOptions::initial_neighbourhood,
-           Range::NonNegative(), "", "sigma(0) in neuron-index units, shrinking to 0");
-  t.Number("seed", &O::kohonen_seed, Range::Any(), "", "seeds the Kohonen strategy's generator");
-  return t;
-}
-
-OptionTable<O> CornersSection() {
-  OptionTable<O> t("corners", "feature kind corners, thesis 3.5.4 EQ 31: window-line crossings");
-  t.Flag("enabled", &O::use_corners, "extract and use corners");
-  t.Number("next_windows", &O::corners, &CornerOptions::next_windows, Range::AtLeast(1), "",
-           "k: windows after window i intersected with it");
-  t.Number("angle_tolerance_rad", &O::corners, &CornerOptions::angle_tolerance_rad,
-           Range::Open(0, kHalfPi), "rad", "lines must meet at pi/2 within this");
-  t.Number("gate_m", &O::corners, &CornerOptions::gate_m, Range::Positive(), "m",
-           "distance gate around an expected corner");
-  t.Number("min_cluster_size", &O::corners, &CornerOptions::min_cluster_size, Range::AtLeast(1), "",
-           "minimum number of crossings in a cluster");
-  t.Number("min_point_sigma_m", &O::corners, &CornerOptions::min_point_sigma_m, Range::Positive(),
-           "m", "floor of a corner's standard deviation");
-  t.Number("redundant_wall_distance_m", &O::corners, &CornerOptions::redundant_wall_distance_m,
-           Range::Positive(), "m", "a matched wall passes through a corner within this");
-  t.Number("redundant_min_sin", &O::corners, &CornerOptions::redundant_min_sin, Range::Closed(0, 1),
-           "", "two such walls at an angle with a larger sine make the corner redundant");
-  return t;
-}
-
-OptionTable<O> CylindersSection() {
-  OptionTable<O> t("cylinders", "feature kind cylinders, thesis 3.5.6 EQ 36-40: circle fits");
-  t.Flag("enabled", &O::use_cylinders, "extract and use cylinders");
-  t.Number("candidate_gate_m", &O::cylinders, &CylinderOptions::candidate_gate_m, Range::Positive(),
-           "m", "window centroid to expected surface");
-  t.Number("radius_tolerance_m", &O::cylinders, &CylinderOptions::radius_tolerance_m,
-           Range::Positive(), "m", "|fitted radius - model radius|");
-  t.Number("min_quality", &O::cylinders, &CylinderOptions::min_quality, Range::NonNegative(),
-           "1/m^4", "EQ 40 threshold on Q = 1 / sum(residual^2)");
-  t.Number("gate_m", &O::cylinders, &CylinderOptions::gate_m, Range::Positive(), "m",
-           "fitted centre to expected centre");
-  t.Number("min_cluster_size", &O::cylinders, &CylinderOptions::min_cluster_size, Range::AtLeast(1),
-           "", "minimum number of circle fits in a cluster");
-  t.Number("min_point_sigma_m", &O::cylinders, &CylinderOptions::min_point_sigma_m,
-           Range::Positive(), "m", "floor of the per-point noise for the covariance");
   return t;
 }
 
@@ -170,11 +104,14 @@ OptionTable<O> GatesSection() {
 }  // namespace
 
 config::OptionFile<LocaliserOptions> LocaliserOptionFile() {
-  return config::OptionFile<LocaliserOptions>(
-      "localisation_params",
-      {PrefilterSection(), LineFitSection(), WallsSection(), KohonenSection(), CornersSection(),
-       CylindersSection(), SolverSection(), VisibilitySection(), SensorMountSection(),
-       GatesSection()});
+  std::vector<OptionTable<O>> sections = {PrefilterSection(), LineFitSection()};
+  for (const auto& kind : FeatureKinds()) {
+    for (auto& section : kind.sections()) sections.push_back(std::move(section));
+  }
+  for (auto* section : {SolverSection, VisibilitySection, SensorMountSection, GatesSection}) {
+    sections.push_back(section());
+  }
+  return config::OptionFile<LocaliserOptions>("localisation_params", std::move(sections));
 }
 
 void PrintLocaliserOptions(std::ostream& out) {

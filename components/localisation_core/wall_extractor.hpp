@@ -6,6 +6,7 @@
 #include <random>
 
 #include "feature_extractor.hpp"
+#include "feature_kinds.hpp"
 #include "kohonen_clustering.hpp"
 #include "localiser_options.hpp"
 #include "wall_clustering.hpp"
@@ -33,5 +34,8 @@ class WallExtractor : public FeatureExtractor {
   WallClusterWork work_;
   std::vector<WallCluster> clusters_;
 };
+
+// The kind "walls": its options blocks, when it is enabled, how it is built.
+FeatureKind WallKind();
 
 }  // namespace structloc::localisation
