@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "feature_kinds.hpp"
 
@@ -118,6 +119,7 @@ Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& opt
   measurements_.points.reserve(nc + ny);
   solve_.Reserve(lines_.size(), nc + ny);
   for (const auto& e : extractors_) {
+    if (e == nullptr) throw std::invalid_argument("Localiser: a feature extractor is missing");
     FeatureKindResult k;
     k.kind = e->Kind();
     k.shape = e->Shape();
