@@ -277,6 +277,27 @@ TEST(BadInputConfig, L1_IntegersOutOfTheirTypesRangeAreRefusedNotTruncated) {
                  {"id=\"2.0\"", "not an integer"});
 }
 
+TEST(BadInputConfig, L1b_ParamsCommandListsEveryKeyAndChecksAFile) {
+  const auto listing = testing::RunCli({"params"});
+  EXPECT_EQ(listing.exit_code, 0) << listing.output;
+  for (const char* text :
+       {"<corners>", "redundant_min_sin", "quality_chi2_per_dof", "max_beams", "in [1, 60]"}) {
+    EXPECT_NE(listing.output.find(text), std::string::npos) << text << "\n" << listing.output;
+  }
+  TempDir dir;
+  const auto good =
+      testing::RunCli({"params", "--check", SourcePath("maps/params/office_sick.xml")});
+  EXPECT_EQ(good.exit_code, 0) << good.output;
+  const auto bad_path = Mutated(dir, "maps/params/office_sick.xml", "redundant_min_sin=\"0.5\"",
+                                "redundant_min_sin=\"2\"");
+  const auto bad = testing::RunCli({"params", "--check", bad_path});
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find(bad_path + ":"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("corners: redundant_min_sin must be in [0, 1], not 2"),
+            std::string::npos)
+      << bad.output;
+}
+
 TEST(BadInputConfig, L2_AbsurdIterationCountsRatesAndDurationsAreRefused) {
   TempDir dir;
   ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", "bisection_iterations=\"10\"",

@@ -24,6 +24,9 @@
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "std_msgs/msg/HeaderPubSubTypes.h"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
+#include "structloc_msgs/msg/FeatureCountPubSubTypes.h"
+#include "structloc_msgs/msg/FeatureSetPubSubTypes.h"
+#include "structloc_msgs/msg/FeatureTimingPubSubTypes.h"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "structloc_msgs/msg/PointFeaturePubSubTypes.h"
 #include "structloc_msgs/msg/RobotParametersPubSubTypes.h"
@@ -210,19 +213,28 @@ class Filler {
   structloc_msgs::msg::ScanFeatures ScanFeatures() {
     structloc_msgs::msg::ScanFeatures f;
     f.header(Header());
-    f.walls().push_back(WallFeature());
-    f.walls().push_back(WallFeature());
-    f.corners().push_back(PointFeature());
-    f.cylinders().push_back(PointFeature());
+    structloc_msgs::msg::FeatureSet walls;
+    walls.kind(S());
+    walls.lines().push_back(WallFeature());
+    walls.lines().push_back(WallFeature());
+    f.kinds().push_back(walls);
+    structloc_msgs::msg::FeatureSet points;
+    points.kind(S());
+    points.points().push_back(PointFeature());
+    points.points().push_back(PointFeature());
+    f.kinds().push_back(points);
     return f;
   }
   structloc_msgs::msg::StepTimings StepTimings() {
     structloc_msgs::msg::StepTimings t;
     t.prefilter_us(D());
     t.line_fit_us(D());
-    t.wall_clustering_us(D());
-    t.corners_us(D());
-    t.cylinders_us(D());
+    for (int i = 0; i < 3; ++i) {
+      structloc_msgs::msg::FeatureTiming k;
+      k.kind(S());
+      k.extract_us(D());
+      t.features().push_back(k);
+    }
     t.solve_us(D());
     t.total_us(D());
     return t;
@@ -233,12 +245,13 @@ class Filler {
     s.quality(D());
     s.lost(true);
     s.lost_reason(S());
-    s.matched_walls(U());
-    s.expected_walls(U());
-    s.matched_corners(U());
-    s.expected_corners(U());
-    s.matched_cylinders(U());
-    s.expected_cylinders(U());
+    for (int i = 0; i < 3; ++i) {
+      structloc_msgs::msg::FeatureCount c;
+      c.kind(S());
+      c.matched(U());
+      c.expected(U());
+      s.features().push_back(c);
+    }
     s.scans_processed(U() + 0x100000000ull);
     s.scans_dropped(U());
     s.scans_rejected(U());
@@ -393,6 +406,15 @@ TEST_F(IdlRoundTrip, StructlocMessages) {
       TestTopic("point_feature"), "structloc_msgs::msg::dds_::PointFeature_", fill_.PointFeature());
   ExpectRoundTrip<structloc_msgs::msg::StepTimingsPubSubType>(
       TestTopic("timings"), "structloc_msgs::msg::dds_::StepTimings_", fill_.StepTimings());
+  ExpectRoundTrip<structloc_msgs::msg::FeatureSetPubSubType>(
+      TestTopic("feature_set"), "structloc_msgs::msg::dds_::FeatureSet_",
+      fill_.ScanFeatures().kinds()[1]);
+  ExpectRoundTrip<structloc_msgs::msg::FeatureCountPubSubType>(
+      TestTopic("feature_count"), "structloc_msgs::msg::dds_::FeatureCount_",
+      fill_.LocalisationStatus().features()[2]);
+  ExpectRoundTrip<structloc_msgs::msg::FeatureTimingPubSubType>(
+      TestTopic("feature_timing"), "structloc_msgs::msg::dds_::FeatureTiming_",
+      fill_.StepTimings().features()[0]);
   ExpectRoundTrip<structloc_msgs::msg::RobotParametersPubSubType>(
       TestTopic("robot_parameters"), "structloc_msgs::msg::dds_::RobotParameters_",
       fill_.RobotParameters());

@@ -46,11 +46,12 @@ TEST(LocaliserAllocation, SteadyStateUpdateDoesNotAllocate) {
     const long before = g_allocations.load();
     for (size_t i = 2; i < scans.size(); ++i) {
       const auto& r = localiser.Update(office.Input(scans[i]));
-      cylinders[i - 2] = r.matched_cylinders;
-      features[i - 2] = r.matched_walls + r.matched_corners + r.matched_cylinders;
+      cylinders[i - 2] = r.features[2].Matched();  // walls, corners, cylinders
+      features[i - 2] = r.Matched();
     }
     const long allocations = g_allocations.load() - before;
     EXPECT_EQ(allocations, 0) << beams << " beams";
+    ASSERT_NE(localiser.Update(office.Input(scans[0])).Kind("cylinders"), nullptr);
     EXPECT_GT(*std::max_element(cylinders.begin(), cylinders.end()), 0) << beams;
     EXPECT_GT(*std::min_element(features.begin(), features.end()), 3) << beams;
   }

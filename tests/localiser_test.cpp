@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "localiser.hpp"
 #include "synthetic_scans.hpp"
@@ -55,6 +56,34 @@ std::string EditedCopy(const testing::TempDir& temp, const std::string& from,
   EXPECT_NE(pos, std::string::npos) << from;
   text.replace(pos, from.size(), to);
   return temp.Write("params.xml", text);
+}
+
+TEST(LocaliserOptions, ListingCoversEveryKeyOfTheShippedFilesWithItsDefault) {
+  std::ostringstream listing;
+  PrintLocaliserOptions(listing);
+  const std::string text = listing.str();
+  // The thresholds of the pose update that used to be hard-coded are options now.
+  for (const char* key : {"redundant_wall_distance_m", "redundant_min_sin", "quality_chi2_per_dof",
+                          "max_beams", "refresh_angle_rad", "theta_rad"}) {
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  }
+  const LocaliserOptions defaults;
+  EXPECT_DOUBLE_EQ(defaults.corners.redundant_wall_distance_m, 0.05);
+  EXPECT_DOUBLE_EQ(defaults.corners.redundant_min_sin, 0.5);
+  EXPECT_DOUBLE_EQ(defaults.solver.quality_chi2_per_dof, 2.0);
+  const auto thesis = LoadLocaliserOptions(testing::SourcePath("maps/params/thesis_table6.xml"));
+  EXPECT_DOUBLE_EQ(thesis.corners.redundant_min_sin, defaults.corners.redundant_min_sin);
+}
+
+TEST(LocaliserOptions, ValidateNamesSectionAndKeyOfAnOptionSetInCode) {
+  LocaliserOptions o;
+  o.corners.redundant_min_sin = 1.5;
+  try {
+    o.Validate();
+    ADD_FAILURE() << "accepted redundant_min_sin = 1.5";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "corners: redundant_min_sin must be in [0, 1], not 1.5");
+  }
 }
 
 TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
@@ -214,7 +243,7 @@ TEST_F(LocaliserFixture, KohonenStrategyMatchesTheSameWallsDeterministically) {
   Localiser a(world_, o), b(world_, o);
   const auto ra = a.Update(in);
   const auto rb = b.Update(in);
-  EXPECT_EQ(ra.matched_walls, 3);
+  EXPECT_EQ(ra.Kind("walls")->Matched(), 3);
   EXPECT_DOUBLE_EQ(ra.pose.x, rb.pose.x);
   EXPECT_DOUBLE_EQ(ra.pose.y, rb.pose.y);
   EXPECT_NEAR(ra.pose.x, truth_.x, 0.01);

@@ -56,7 +56,7 @@ Stats Repeatability(const std::string& params) {
     in.odometry_covariance = Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.05 * 0.05).asDiagonal();
     const auto& r = localiser.Update(in);
     EXPECT_FALSE(r.lost) << ToString(r.lost_reason);
-    EXPECT_EQ(r.matched_walls, 3);
+    EXPECT_EQ(r.Kind("walls")->Matched(), 3);
     estimate = r.pose;
     poses.push_back(r.pose);
   }

@@ -1,5 +1,5 @@
 // structloc: the command-line front end (launch, demo and, as they land,
-// simulate, replay, calibrate, render). Each subcommand calls the same core
+// simulate, replay, calibrate, render, params). Each subcommand calls the same core
 // libraries as the components.
 #include <cstring>
 #include <iostream>
@@ -33,6 +33,8 @@ const Subcommand kSubcommands[] = {
      "[--advice]  estimate wheel radius, axle distance, steering offset"},
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
+    {"params", structloc::cli::ParamsCommand,
+     "[--check P.xml]  list every localiser parameter, or check a parameter file"},
 };
 
 void Usage(std::ostream& out) {

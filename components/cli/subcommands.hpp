@@ -18,5 +18,6 @@ int SimulateCommand(const Invocation& invocation);
 int RenderCommand(const Invocation& invocation);
 int ReplayCommand(const Invocation& invocation);
 int CalibrateCommand(const Invocation& invocation);
+int ParamsCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

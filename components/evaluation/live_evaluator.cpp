@@ -58,10 +58,12 @@ LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_po
   node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
       dds::topics::kStatus, [this](const structloc_msgs::msg::LocalisationStatus& s) {
         std::lock_guard<std::mutex> lock(mutex_);
-        snapshot_.matched_features =
-            static_cast<int>(s.matched_walls() + s.matched_corners() + s.matched_cylinders());
-        snapshot_.expected_features =
-            static_cast<int>(s.expected_walls() + s.expected_corners() + s.expected_cylinders());
+        snapshot_.matched_features = 0;
+        snapshot_.expected_features = 0;
+        for (const auto& kind : s.features()) {
+          snapshot_.matched_features += static_cast<int>(kind.matched());
+          snapshot_.expected_features += static_cast<int>(kind.expected());
+        }
         snapshot_.quality = s.quality();
         snapshot_.lost = s.lost();
         if (s.lost()) ++lost_;

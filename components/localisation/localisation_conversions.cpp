@@ -71,29 +71,31 @@ structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, do
   structloc_msgs::msg::ScanFeatures msg;
   msg.header().stamp(dds::ToRosTime(stamp));
   msg.header().frame_id("laser");
-  for (const auto& w : r.walls) {
-    structloc_msgs::msg::WallFeature f;
-    f.r_m(w.a);
-    f.alpha_rad(w.b);
-    f.member_count(static_cast<uint32_t>(w.members));
-    f.model_id(w.model_id);
-    f.residual_m(w.residual_m);
-    msg.walls().push_back(f);
-  }
-  auto points = [](const std::vector<FeatureMatch>& in,
-                   std::vector<structloc_msgs::msg::PointFeature>& out) {
-    for (const auto& m : in) {
-      structloc_msgs::msg::PointFeature f;
-      f.x_m(m.a);
-      f.y_m(m.b);
-      f.member_count(static_cast<uint32_t>(m.members));
-      f.model_id(m.model_id);
-      f.residual_m(m.residual_m);
-      out.push_back(f);
+  for (const auto& kind : r.features) {
+    structloc_msgs::msg::FeatureSet set;
+    set.kind(kind.kind);
+    for (const auto& m : kind.matches) {
+      if (kind.shape == FeatureShape::kLine) {
+        structloc_msgs::msg::WallFeature f;
+        f.r_m(m.r_m);
+        f.alpha_rad(m.alpha_rad);
+        f.member_count(static_cast<uint32_t>(m.members));
+        f.model_id(m.model_id);
+        f.residual_m(m.residual_m);
+        set.lines().push_back(f);
+      } else {
+        structloc_msgs::msg::PointFeature f;
+        f.x_m(m.x_m);
+        f.y_m(m.y_m);
+        f.radius_m(m.radius_m);
+        f.member_count(static_cast<uint32_t>(m.members));
+        f.model_id(m.model_id);
+        f.residual_m(m.residual_m);
+        set.points().push_back(f);
+      }
     }
-  };
-  points(r.corners, msg.corners());
-  points(r.cylinders, msg.cylinders());
+    msg.kinds().push_back(std::move(set));
+  }
   return msg;
 }
 
@@ -106,21 +108,25 @@ structloc_msgs::msg::LocalisationStatus ToStatus(const LocalisationResult& r,
   s.quality(r.quality);
   s.lost(r.lost);
   s.lost_reason(r.lost ? ToString(r.lost_reason) : "");
-  s.matched_walls(static_cast<uint32_t>(r.matched_walls));
-  s.expected_walls(static_cast<uint32_t>(r.expected_walls));
-  s.matched_corners(static_cast<uint32_t>(r.matched_corners));
-  s.expected_corners(static_cast<uint32_t>(r.expected_corners));
-  s.matched_cylinders(static_cast<uint32_t>(r.matched_cylinders));
-  s.expected_cylinders(static_cast<uint32_t>(r.expected_cylinders));
+  for (const auto& kind : r.features) {
+    structloc_msgs::msg::FeatureCount c;
+    c.kind(kind.kind);
+    c.matched(static_cast<uint32_t>(kind.Matched()));
+    c.expected(static_cast<uint32_t>(kind.expected));
+    s.features().push_back(c);
+  }
   s.scans_processed(stats.scans_processed);
   s.scans_dropped(dropped);
   s.scans_rejected(stats.Rejected());
   auto& t = s.timings();
   t.prefilter_us(r.times.prefilter_us);
   t.line_fit_us(r.times.line_fit_us);
-  t.wall_clustering_us(r.times.wall_clustering_us);
-  t.corners_us(r.times.corners_us);
-  t.cylinders_us(r.times.cylinders_us);
+  for (const auto& kind : r.features) {
+    structloc_msgs::msg::FeatureTiming k;
+    k.kind(kind.kind);
+    k.extract_us(kind.extract_us);
+    t.features().push_back(k);
+  }
   t.solve_us(r.times.solve_us);
   t.total_us(r.times.total_us);
   return s;

@@ -3,7 +3,6 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <stdexcept>
 
 namespace structloc::localisation {
 
@@ -26,18 +25,6 @@ Eigen::Matrix2d PointSums::Scatter() const {
   c(1, 1) = std::max(0.0, (syy - n * m.y() * m.y()) * k);
   c(0, 1) = c(1, 0) = (sxy - n * m.x() * m.y()) * k;
   return c;
-}
-
-void CornerOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("corners: ") + what);
-  };
-  require(next_windows >= 1, "next_windows must be >= 1");
-  require(angle_tolerance_rad > 0.0 && angle_tolerance_rad < geometry::kPi / 2,
-          "angle_tolerance_rad must be in (0, pi/2)");
-  require(gate_m > 0.0, "gate_m must be > 0");
-  require(min_cluster_size >= 1, "min_cluster_size must be >= 1");
-  require(min_point_sigma_m > 0.0, "min_point_sigma_m must be > 0");
 }
 
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,

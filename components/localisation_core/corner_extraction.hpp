@@ -17,7 +17,12 @@ struct CornerOptions {
   double gate_m = 0.2;                             // distance gate around an expected corner
   int min_cluster_size = 1;
   double min_point_sigma_m = 0.005;  // floor of a corner's standard deviation
-  void Validate() const;
+  // A corner where two matched walls meet at an angle whose sine exceeds
+  // redundant_min_sin adds nothing they do not already say (a wall passes
+  // through the corner when within redundant_wall_distance_m of it); the
+  // weighted solver leaves such a corner out so that its covariance does not lie.
+  double redundant_wall_distance_m = 0.05;
+  double redundant_min_sin = 0.5;  // sin of 30 deg
 };
 
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,

@@ -3,21 +3,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <stdexcept>
 
 namespace structloc::localisation {
-
-void CylinderOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("cylinders: ") + what);
-  };
-  require(candidate_gate_m > 0.0, "candidate_gate_m must be > 0");
-  require(radius_tolerance_m > 0.0, "radius_tolerance_m must be > 0");
-  require(min_quality >= 0.0, "min_quality must be >= 0");
-  require(gate_m > 0.0, "gate_m must be > 0");
-  require(min_cluster_size >= 1, "min_cluster_size must be >= 1");
-  require(min_point_sigma_m > 0.0, "min_point_sigma_m must be > 0");
-}
 
 void CylinderWork::Reserve(size_t points, size_t expected) {
   sums.reserve(expected);

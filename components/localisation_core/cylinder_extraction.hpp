@@ -21,7 +21,6 @@ struct CylinderOptions {
   double gate_m = 0.2;               // fitted centre to expected centre
   int min_cluster_size = 1;
   double min_point_sigma_m = 0.002;  // floor of the per-point noise for the covariance
-  void Validate() const;
 };
 
 struct CircleFit {

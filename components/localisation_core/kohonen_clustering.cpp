@@ -2,19 +2,8 @@
 #include "kohonen_clustering.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 namespace structloc::localisation {
-
-void KohonenOptions::Validate() const {
-  if (iterations < 1) throw std::invalid_argument("kohonen: iterations must be >= 1");
-  if (!(initial_learning_rate > 0.0 && initial_learning_rate <= 1.0)) {
-    throw std::invalid_argument("kohonen: initial_learning_rate must be in (0, 1]");
-  }
-  if (!(initial_neighbourhood >= 0.0)) {
-    throw std::invalid_argument("kohonen: initial_neighbourhood must be >= 0");
-  }
-}
 
 namespace {
 struct Neuron {

@@ -21,7 +21,6 @@ struct KohonenOptions {
   // sigma(0) in neuron-index units, shrinking to 0; wider neighbourhoods drag
   // the neurons of different walls onto one wall.
   double initial_neighbourhood = 0.3;
-  void Validate() const;
 };
 
 // Window i -> expected wall index, or -1: nearest trained neuron within the

@@ -1,14 +1,7 @@
 // Sliding least-squares line fit (see header).
 #include "line_fit.hpp"
 
-#include <stdexcept>
-
 namespace structloc::localisation {
-
-void LineFitOptions::Validate() const {
-  if (window_points < 3) throw std::invalid_argument("line_fit: window_points must be >= 3");
-  if (!(max_rms_m > 0.0)) throw std::invalid_argument("line_fit: max_rms_m must be > 0");
-}
 
 LineEstimate FitLine(const LineSums& s, double ox, double oy) {
   LineEstimate e;

@@ -17,7 +17,6 @@ struct LineFitOptions {
   int window_points = 7;    // Table 6: number of elements in line fitting
   double max_rms_m = 0.03;  // windows whose points scatter more than this about their
                             // line (corners, depth jumps, clutter) are not used
-  void Validate() const;
 };
 
 // Running sums of a point set, relative to an origin (ox, oy) chosen near the

@@ -3,9 +3,13 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
+#include <cstring>
+#include <stdexcept>
+
+#include "feature_kinds.hpp"
 
 namespace structloc::localisation {
 namespace {
@@ -53,12 +57,48 @@ const char* ToString(LostReason reason) {
   return "unknown";
 }
 
+const FeatureKindResult* LocalisationResult::Kind(const char* name) const {
+  for (const auto& k : features) {
+    if (std::strcmp(k.kind, name) == 0) return &k;
+  }
+  return nullptr;
+}
+
+int LocalisationResult::Expected() const {
+  int n = 0;
+  for (const auto& k : features) n += k.expected;
+  return n;
+}
+
+int LocalisationResult::Matched() const {
+  int n = 0;
+  for (const auto& k : features) n += k.Matched();
+  return n;
+}
+
+namespace {
+
+std::vector<std::unique_ptr<FeatureExtractor>> ValidatedExtractors(
+    const world::WorldModel& world, const LocaliserOptions& options) {
+  options.Validate();  // before any buffer is sized by the options
+  // Walls bound the collinear wall lines from above.
+  return MakeFeatureExtractors(options,
+                               {static_cast<size_t>(options.max_beams), world.Walls().size(),
+                                world.Corners().size(), world.Cylinders().size()});
+}
+
+}  // namespace
+
 Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& options)
+    : Localiser(world, options, ValidatedExtractors(world, options)) {}
+
+Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& options,
+                     std::vector<std::unique_ptr<FeatureExtractor>> extractors)
     : world_(world),
       options_(options),
       scene_(world::Scene::FromWorld(world)),
       lines_(GroupCollinearWalls(world)),
-      kohonen_rng_(options.kohonen_seed) {
+      extractors_(std::move(extractors)) {
   options_.Validate();
   wall_line_of_.assign(world.Walls().size(), 0);
   for (size_t l = 0; l < lines_.size(); ++l) {
@@ -75,19 +115,17 @@ Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& opt
   keep_.reserve(beams);
   windows_.reserve(beams);
   expected_.Reserve(lines_.size(), nc, ny);
-  assignment_.reserve(beams);
-  wall_work_.Reserve(beams, lines_.size());
-  wall_clusters_.reserve(lines_.size());
-  corner_work_.reserve(nc);
-  corner_clusters_.reserve(nc);
-  cylinder_work_.Reserve(beams, ny);
-  cylinder_clusters_.reserve(ny);
-  wall_measurements_.reserve(lines_.size());
-  point_measurements_.reserve(nc + ny);
+  measurements_.lines.reserve(lines_.size());
+  measurements_.points.reserve(nc + ny);
   solve_.Reserve(lines_.size(), nc + ny);
-  result_.walls.reserve(lines_.size());
-  result_.corners.reserve(nc);
-  result_.cylinders.reserve(ny);
+  for (const auto& e : extractors_) {
+    if (e == nullptr) throw std::invalid_argument("Localiser: a feature extractor is missing");
+    FeatureKindResult k;
+    k.kind = e->Kind();
+    k.shape = e->Shape();
+    k.matches.reserve(std::max(lines_.size(), nc + ny));
+    result_.features.push_back(std::move(k));
+  }
 }
 
 void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose) {
@@ -111,7 +149,15 @@ void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose) {
 }
 
 void Localiser::Reject(const UpdateInput& input, const char* why) {
+  // Field by field, so that the per-kind buffers stay allocated.
+  auto features = std::move(result_.features);
   result_ = LocalisationResult{};
+  for (auto& k : features) {
+    k.expected = 0;
+    k.matches.clear();
+    k.extract_us = 0.0;
+  }
+  result_.features = std::move(features);
   result_.rejection = why;
   result_.lost = true;
   result_.lost_reason = LostReason::kRejectedInput;
@@ -168,171 +214,114 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   // 2. Sliding line fits.
   FitWindowLines(points_, options_.line_fit, windows_);
   const auto t2 = Clock::now();
-  // 3. Walls.
-  if (options_.wall_strategy == WallStrategy::kKohonen) {
-    AssignWindowsByKohonen(windows_, expected_, options_.walls, options_.kohonen, kohonen_rng_,
-                           assignment_);
-  } else {
-    AssignWindowsByExpectation(windows_, expected_, sensor_prior, options_.walls, assignment_);
-  }
-  BuildWallClusters(windows_, assignment_, points_, options_.line_fit.window_points, expected_,
-                    options_.walls, wall_work_, wall_clusters_);
+  // 3. The feature kinds (walls, corners, cylinders, ...), each timed.
+  ExtractFeatures(sensor_prior);
   const auto t3 = Clock::now();
-  // 4. Corners.
-  corner_clusters_.clear();
-  if (options_.use_corners) {
-    ExtractCorners(windows_, points_.wraps, expected_, options_.corners,
-                   options_.line_fit.window_points, corner_work_, corner_clusters_);
-  }
+  // 4. Pose.
+  geometry::Pose2D sensor_pose = sensor_prior;
+  Eigen::Matrix3d sensor_cov = sensor_prior_cov;
+  SolveAndGate(sensor_prior, sensor_prior_cov, sensor_pose, sensor_cov);
+  PackMatches();
+  FinishResult(input, sensor_pose, sensor_cov);
   const auto t4 = Clock::now();
-  // 5. Cylinders.
-  cylinder_clusters_.clear();
-  if (options_.use_cylinders) {
-    ExtractCylinders(windows_, points_, expected_, options_.cylinders,
-                     options_.line_fit.window_points, cylinder_work_, cylinder_clusters_);
-  }
-  const auto t5 = Clock::now();
-  // 6. Pose.
-  Finish(input, sensor_prior, sensor_prior_cov);
-  const auto t6 = Clock::now();
   last_pose_ = result_.pose;
   last_covariance_ = result_.covariance;
   auto& times = result_.times;
   times.prefilter_us = Us(t0, t1);
   times.line_fit_us = Us(t1, t2);
-  times.wall_clustering_us = Us(t2, t3);
-  times.corners_us = Us(t3, t4);
-  times.cylinders_us = Us(t4, t5);
-  times.solve_us = Us(t5, t6);
-  times.total_us = Us(t0, t6);
+  times.solve_us = Us(t3, t4);
+  times.total_us = Us(t0, t4);
   return result_;
 }
 
-void Localiser::Finish(const UpdateInput& input, const geometry::Pose2D& sensor_prior,
-                       const Eigen::Matrix3d& sensor_prior_cov) {
-  const bool thesis_values = options_.solver.mode != SolverMode::kWeighted;
-  wall_measurements_.clear();
-  for (const auto& c : wall_clusters_) {
-    const auto& e = expected_.walls[static_cast<size_t>(c.expected_index)];
-    WallMeasurement m;
-    m.r = thesis_values ? c.mean_r : c.refined_r;
-    m.alpha = thesis_values ? c.mean_alpha : c.refined_alpha;
-    m.covariance = c.covariance;
-    m.world_r = e.world.r;
-    m.world_alpha = e.world.alpha;
-    wall_measurements_.push_back(m);
+void Localiser::ExtractFeatures(const geometry::Pose2D& sensor_prior) {
+  ExtractionInput in;
+  in.expected = &expected_;
+  in.windows = &windows_;
+  in.points = &points_;
+  in.sensor_prior = sensor_prior;
+  in.window_points = options_.line_fit.window_points;
+  in.thesis_values = options_.solver.mode != SolverMode::kWeighted;
+  measurements_.Clear();
+  for (size_t i = 0; i < extractors_.size(); ++i) {
+    const auto start = Clock::now();
+    auto& kind = result_.features[i];
+    kind.matches.clear();
+    kind.expected = extractors_[i]->Expected(expected_);
+    extractors_[i]->Extract(in, measurements_, kind.matches);
+    kind.extract_us = Us(start, Clock::now());
   }
-  point_measurements_.clear();
-  for (const auto& c : corner_clusters_) {
-    const auto& e = expected_.corners[static_cast<size_t>(c.expected_index)];
-    PointMeasurement m;
-    m.sensor = thesis_values ? c.mean : c.refined;
-    m.covariance = c.covariance;
-    m.world = e.world;
-    // A corner where two matched, non-parallel walls meet adds nothing they
-    // do not already say; counting it twice would make the covariance lie.
-    std::optional<double> first_alpha;  // of the first matched wall through the corner
-    bool redundant = false;
-    for (const auto& w : wall_measurements_) {
-      const bool through_corner =
-          std::abs(e.world.x() * std::cos(w.world_alpha) + e.world.y() * std::sin(w.world_alpha) -
-                   w.world_r) < 0.05;
-      if (!through_corner) continue;
-      if (!first_alpha) {
-        first_alpha = w.world_alpha;
-      } else if (std::abs(std::sin(w.world_alpha - *first_alpha)) > 0.5) {
-        redundant = true;
-        break;
-      }
-    }
-    m.use_in_weighted = !redundant;
-    point_measurements_.push_back(m);
-  }
-  for (const auto& c : cylinder_clusters_) {
-    const auto& e = expected_.cylinders[static_cast<size_t>(c.expected_index)];
-    PointMeasurement m;
-    m.sensor = thesis_values ? c.mean : c.refined;
-    m.covariance = c.covariance;
-    m.world = e.world;
-    m.cylinder = true;
-    point_measurements_.push_back(m);
-  }
+}
 
+void Localiser::SolveAndGate(const geometry::Pose2D& sensor_prior,
+                             const Eigen::Matrix3d& sensor_prior_cov, geometry::Pose2D& sensor_pose,
+                             Eigen::Matrix3d& sensor_cov) {
   auto& r = result_;
-  r.expected_walls = static_cast<int>(expected_.walls.size());
-  r.expected_corners = static_cast<int>(expected_.corners.size());
-  r.expected_cylinders = static_cast<int>(expected_.cylinders.size());
-  r.matched_walls = static_cast<int>(wall_clusters_.size());
-  r.matched_corners = static_cast<int>(corner_clusters_.size());
-  r.matched_cylinders = static_cast<int>(cylinder_clusters_.size());
-  r.walls.clear();
-  r.corners.clear();
-  r.cylinders.clear();
   r.weak_direction.setZero();
   r.lost = false;
   r.lost_reason = LostReason::kNone;
-
-  SolveInput in;
-  in.walls = &wall_measurements_;
-  in.points = &point_measurements_;
-  in.prior = sensor_prior;
-  in.prior_covariance = sensor_prior_cov;
-  geometry::Pose2D sensor_pose = sensor_prior;
-  Eigen::Matrix3d sensor_cov = sensor_prior_cov;
-  const size_t features = wall_measurements_.size() + point_measurements_.size();
-  if (features == 0) {
+  if (measurements_.lines.empty() && measurements_.points.empty()) {
     r.lost = true;
     r.lost_reason = LostReason::kNoFeatures;
+    return;
+  }
+  SolveInput in;
+  in.walls = &measurements_.lines;
+  in.points = &measurements_.points;
+  in.prior = sensor_prior;
+  in.prior_covariance = sensor_prior_cov;
+  Solve(in, options_.solver, solve_);
+  r.chi2 = solve_.chi2;
+  r.dof = solve_.dof;
+  const Eigen::Vector3d correction(solve_.pose.x - sensor_prior.x, solve_.pose.y - sensor_prior.y,
+                                   geometry::WrapAngle(solve_.pose.theta - sensor_prior.theta));
+  if (!geometry::IsFinite(solve_.pose) || !solve_.covariance.allFinite()) {
+    r.lost = true;
+    r.lost_reason = LostReason::kSolverFailed;
+  } else if (correction.head<2>().norm() > options_.max_correction_m ||
+             std::abs(correction.z()) > options_.max_correction_rad) {
+    r.lost = true;
+    r.lost_reason = LostReason::kCorrectionTooLarge;
   } else {
-    Solve(in, options_.solver, solve_);
-    r.chi2 = solve_.chi2;
-    r.dof = solve_.dof;
-    const Eigen::Vector3d correction(solve_.pose.x - sensor_prior.x, solve_.pose.y - sensor_prior.y,
-                                     geometry::WrapAngle(solve_.pose.theta - sensor_prior.theta));
-    if (!geometry::IsFinite(solve_.pose) || !solve_.covariance.allFinite()) {
-      r.lost = true;
-      r.lost_reason = LostReason::kSolverFailed;
-    } else if (correction.head<2>().norm() > options_.max_correction_m ||
-               std::abs(correction.z()) > options_.max_correction_rad) {
-      r.lost = true;
-      r.lost_reason = LostReason::kCorrectionTooLarge;
-    } else {
-      sensor_pose = solve_.pose;
-      sensor_cov = solve_.covariance;
-      // Observability from the features alone: each eigen-direction of their
-      // information must be pinned to within the configured standard deviation.
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(solve_.feature_information);
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d v = eig.eigenvectors().col(k);
-        const double limit = v.head<2>().norm() * options_.solver.max_feature_std_m +
-                             std::abs(v.z()) * options_.solver.max_feature_std_rad;
-        const double lambda = eig.eigenvalues()(k);
-        if (!(lambda > 0.0) || 1.0 / std::sqrt(lambda) > limit) {
-          r.lost = true;
-          r.lost_reason = LostReason::kUnderdetermined;
-          r.weak_direction = v;
-          break;
-        }
-      }
-    }
-    for (size_t i = 0; i < wall_clusters_.size(); ++i) {
-      const auto& c = wall_clusters_[i];
-      r.walls.push_back({expected_.walls[static_cast<size_t>(c.expected_index)].model_id, c.members,
-                         wall_measurements_[i].r, wall_measurements_[i].alpha,
-                         solve_.wall_residual[i], solve_.wall_used[i] != 0});
-    }
-    for (size_t i = 0; i < point_measurements_.size(); ++i) {
-      const bool corner = i < corner_clusters_.size();
-      const auto& c =
-          corner ? corner_clusters_[i] : cylinder_clusters_[i - corner_clusters_.size()];
-      const auto& e = corner ? expected_.corners[static_cast<size_t>(c.expected_index)]
-                             : expected_.cylinders[static_cast<size_t>(c.expected_index)];
-      (corner ? r.corners : r.cylinders)
-          .push_back({e.model_id, c.members, point_measurements_[i].sensor.x(),
-                      point_measurements_[i].sensor.y(), solve_.point_residual[i],
-                      solve_.point_used[i] != 0});
+    sensor_pose = solve_.pose;
+    sensor_cov = solve_.covariance;
+    CheckObservability();
+  }
+}
+
+void Localiser::CheckObservability() {
+  // From the features alone: each eigen-direction of their information must be
+  // pinned to within the configured standard deviation.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(solve_.feature_information);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d v = eig.eigenvectors().col(k);
+    const double limit = v.head<2>().norm() * options_.solver.max_feature_std_m +
+                         std::abs(v.z()) * options_.solver.max_feature_std_rad;
+    const double lambda = eig.eigenvalues()(k);
+    if (!(lambda > 0.0) || 1.0 / std::sqrt(lambda) > limit) {
+      result_.lost = true;
+      result_.lost_reason = LostReason::kUnderdetermined;
+      result_.weak_direction = v;
+      return;
     }
   }
+}
+
+void Localiser::PackMatches() {
+  if (result_.lost_reason == LostReason::kNoFeatures) return;
+  for (auto& kind : result_.features) {
+    const bool line = kind.shape == FeatureShape::kLine;
+    for (auto& m : kind.matches) {
+      const auto row = static_cast<size_t>(m.row);
+      m.residual_m = line ? solve_.wall_residual[row] : solve_.point_residual[row];
+      m.used = (line ? solve_.wall_used[row] : solve_.point_used[row]) != 0;
+    }
+  }
+}
+
+void Localiser::FinishResult(const UpdateInput& input, const geometry::Pose2D& sensor_pose,
+                             const Eigen::Matrix3d& sensor_cov) {
+  auto& r = result_;
   // Back from the sensor to the robot base.
   const geometry::Pose2D unmount = geometry::Inverse(options_.sensor_mount);
   r.pose = geometry::Compose(sensor_pose, unmount);
@@ -343,10 +332,10 @@ void Localiser::Finish(const UpdateInput& input, const geometry::Pose2D& sensor_
     r.pose = input.odometry_pose;
     r.covariance = input.odometry_covariance;
   }
-  const int expected = r.expected_walls + r.expected_corners + r.expected_cylinders;
-  const int matched = r.matched_walls + r.matched_corners + r.matched_cylinders;
-  double q = expected > 0 ? std::min(1.0, static_cast<double>(matched) / expected) : 0.0;
-  if (r.dof > 0 && r.chi2 / r.dof > 2.0) q *= 2.0 / (r.chi2 / r.dof);
+  const int expected = r.Expected();
+  double q = expected > 0 ? std::min(1.0, static_cast<double>(r.Matched()) / expected) : 0.0;
+  const double chi2_limit = options_.solver.quality_chi2_per_dof;
+  if (r.dof > 0 && r.chi2 / r.dof > chi2_limit) q *= chi2_limit / (r.chi2 / r.dof);
   r.quality = r.lost ? 0.0 : q;
 }
 

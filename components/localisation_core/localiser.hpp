@@ -5,11 +5,12 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <random>
+#include <memory>
 #include <vector>
 
 #include "deskew.hpp"
 #include "expected_features.hpp"
+#include "feature_extractor.hpp"
 #include "localiser_options.hpp"
 #include "ray_cast.hpp"
 #include "visibility.hpp"
@@ -34,18 +35,18 @@ enum class LostReason {
 };
 const char* ToString(LostReason reason);
 
-struct FeatureMatch {
-  int model_id = 0;
-  int members = 0;
-  double a = 0.0;  // walls: r (m); points: x (m), sensor frame
-  double b = 0.0;  // walls: alpha (rad); points: y (m)
-  double residual_m = 0.0;
-  bool used = false;  // taken into the pose solve
-};
-
 struct StepTimes {
-  double prefilter_us = 0, line_fit_us = 0, wall_clustering_us = 0, corners_us = 0,
-         cylinders_us = 0, solve_us = 0, total_us = 0;
+  double prefilter_us = 0, line_fit_us = 0, solve_us = 0, total_us = 0;
+};  // each feature kind's own time is in FeatureKindResult::extract_us
+
+// What one feature kind found in one scan.
+struct FeatureKindResult {
+  const char* kind = "";  // FeatureExtractor::Kind(), e.g. "walls"
+  FeatureShape shape = FeatureShape::kPoint;
+  int expected = 0;  // visible in the model at the odometric pose
+  std::vector<FeatureMatch> matches;
+  double extract_us = 0.0;
+  int Matched() const { return static_cast<int>(matches.size()); }
 };
 
 struct LocalisationResult {
@@ -56,23 +57,31 @@ struct LocalisationResult {
   LostReason lost_reason = LostReason::kNone;
   Eigen::Vector3d weak_direction = Eigen::Vector3d::Zero();  // least determined (x, y, theta)
   double quality = 0.0;                                      // 0 .. 1, see Localiser::Update
-  int expected_walls = 0, matched_walls = 0;
-  int expected_corners = 0, matched_corners = 0;
-  int expected_cylinders = 0, matched_cylinders = 0;
-  std::vector<FeatureMatch> walls, corners, cylinders;
+  // One entry per enabled kind, in the order of the parameter file.
+  std::vector<FeatureKindResult> features;
   PrefilterStats prefilter;
   StepTimes times;
   double chi2 = 0.0;
   int dof = 0;
+
+  // The entry of kind `name`, or nullptr when that kind is not enabled.
+  const FeatureKindResult* Kind(const char* name) const;
+  int Expected() const;  // over all kinds
+  int Matched() const;
 };
 
 class Localiser {
  public:
-  // Throws std::invalid_argument when the options are invalid.
+  // With the feature kinds the options enable (feature_kinds.hpp). Throws
+  // std::invalid_argument when the options are invalid.
   Localiser(const world::WorldModel& world, const LocaliserOptions& options);
+  // With the given extractors instead, run in this order (tests of a new kind).
+  Localiser(const world::WorldModel& world, const LocaliserOptions& options,
+            std::vector<std::unique_ptr<FeatureExtractor>> extractors);
 
-  // Quality = matched / expected features, reduced when chi2/dof exceeds 2;
-  // 0 when lost. The returned reference stays valid until the next Update.
+  // Quality = matched / expected features, reduced when chi2/dof exceeds
+  // solver.quality_chi2_per_dof; 0 when lost. The returned reference stays valid until the next
+  // Update.
   const LocalisationResult& Update(const UpdateInput& input);
 
   const LocaliserOptions& Options() const { return options_; }
@@ -81,8 +90,15 @@ class Localiser {
  private:
   void RefreshVisibility(const geometry::Pose2D& sensor_pose);
   void Reject(const UpdateInput& input, const char* why);
-  void Finish(const UpdateInput& input, const geometry::Pose2D& sensor_prior,
-              const Eigen::Matrix3d& sensor_prior_cov);
+  // Steps of the pose update after the line fits, in order.
+  void ExtractFeatures(const geometry::Pose2D& sensor_prior);
+  // Returns the solved sensor pose, or the prior when lost.
+  void SolveAndGate(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov,
+                    geometry::Pose2D& sensor_pose, Eigen::Matrix3d& sensor_cov);
+  void CheckObservability();
+  void PackMatches();
+  void FinishResult(const UpdateInput& input, const geometry::Pose2D& sensor_pose,
+                    const Eigen::Matrix3d& sensor_cov);
 
   const world::WorldModel& world_;
   LocaliserOptions options_;
@@ -92,22 +108,14 @@ class Localiser {
   world::Visibility visibility_;
   bool visibility_valid_ = false;
   geometry::Pose2D visibility_pose_;
-  std::mt19937 kohonen_rng_;
 
   BeamDirections directions_;
   ScanPoints points_;
   std::vector<unsigned char> keep_;
   std::vector<WindowLine> windows_;
   ExpectedFeatures expected_;
-  std::vector<int> assignment_;
-  WallClusterWork wall_work_;
-  std::vector<WallCluster> wall_clusters_;
-  std::vector<PointSums> corner_work_;
-  std::vector<PointCluster> corner_clusters_;
-  CylinderWork cylinder_work_;
-  std::vector<PointCluster> cylinder_clusters_;
-  std::vector<WallMeasurement> wall_measurements_;
-  std::vector<PointMeasurement> point_measurements_;
+  std::vector<std::unique_ptr<FeatureExtractor>> extractors_;  // from the parameter file
+  Measurements measurements_;
   SolveOutput solve_;
   LocalisationResult result_;
   // Last output, the fallback when an input's own prior is unusable.

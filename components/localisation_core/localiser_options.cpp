@@ -1,177 +1,140 @@
-// Localiser options: validation and XML loading.
+// Localiser options declared once (key, range, unit, description; the struct
+// members hold the defaults), and the checks that span several options. Each
+// feature kind declares its own blocks in its own file (feature_kinds.hpp).
 #include "localiser_options.hpp"
 
 #include <stdexcept>
 
+#include "feature_kinds.hpp"
 #include "strict_xml.hpp"
 
 namespace structloc::localisation {
 
-void LocaliserOptions::Validate() const {
-  prefilter.Validate();
-  line_fit.Validate();
-  walls.Validate();
-  kohonen.Validate();
-  corners.Validate();
-  cylinders.Validate();
-  solver.Validate();
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(what);
-  };
-  require(visibility.field_of_view_rad > 0.0 &&
-              visibility.field_of_view_rad <= 2 * geometry::kPi + 1e-9,
-          "visibility: field_of_view_rad must be in (0, 2 pi]");
-  require(visibility.min_visible_length_m >= 0.0, "visibility: min_visible_length_m must be >= 0");
-  require(visibility.max_incidence_rad > 0.0 && visibility.max_incidence_rad <= geometry::kPi / 2,
-          "visibility: max_incidence_rad must be in (0, pi/2]");
-  require(visibility.refresh_distance_m > 0.0, "visibility: refresh_distance_m must be > 0");
-  require(visibility.refresh_angle_rad > 0.0, "visibility: refresh_angle_rad must be > 0");
-  require(geometry::IsFinite(sensor_mount), "sensor_mount: must be finite");
-  require(max_correction_m > 0.0, "gates: max_correction_m must be > 0");
-  require(max_correction_rad > 0.0, "gates: max_correction_rad must be > 0");
-  require(max_beams >= line_fit.window_points, "gates: max_beams must be >= window_points");
-  require(max_beams <= LocaliserLimits::kMaxBeams, "gates: max_beams must be <= 1000000");
-  require(solver.bisection_iterations <= LocaliserLimits::kMaxBisectionIterations,
-          "solver: bisection_iterations must be <= 60");
-  require(solver.max_iterations <= LocaliserLimits::kMaxSolverIterations,
-          "solver: max_iterations must be <= 1000");
-  require(kohonen.iterations <= LocaliserLimits::kMaxKohonenIterations,
-          "kohonen: iterations must be <= 100000");
-}
-
 namespace {
 
-using config::AttributeReader;
-using config::XmlFile;
+using config::OptionTable;
+using config::Range;
+using O = LocaliserOptions;
 
-const tinyxml2::XMLElement& Section(const XmlFile& file, const tinyxml2::XMLElement& root,
-                                    const char* name) {
-  const auto* e = root.FirstChildElement(name);
-  if (e == nullptr) file.Fail(root, std::string("missing section <") + name + ">");
-  if (const auto* second = e->NextSiblingElement(name)) {
-    file.Fail(*second, std::string("a second <") + name + "> section; write each section once");
-  }
-  return *e;
+constexpr double kHalfPi = geometry::kPi / 2;
+
+OptionTable<O> PrefilterSection() {
+  OptionTable<O> t("prefilter", "step 1, thesis 3.4: range gate, unsupported points, thinning");
+  t.Number("min_range_m", &O::prefilter, &PrefilterOptions::min_range_m, Range::NonNegative(), "m",
+           "Table 6: readings nearer than this are dropped");
+  t.Number("max_range_m", &O::prefilter, &PrefilterOptions::max_range_m, Range::Positive(), "m",
+           "Table 6: readings farther than this are dropped");
+  t.Number("max_neighbour_distance_m", &O::prefilter, &PrefilterOptions::max_neighbour_distance_m,
+           Range::Positive(), "m",
+           "Table 6: a point farther than this from both neighbours is unsupported");
+  t.Number("min_neighbour_distance_m", &O::prefilter, &PrefilterOptions::min_neighbour_distance_m,
+           Range::NonNegative(), "m", "Table 6: thinning distance");
+  return t;
+}
+
+OptionTable<O> LineFitSection() {
+  OptionTable<O> t("line_fit", "step 2, thesis 3.5.2: sliding line fits");
+  t.Number("window_points", &O::line_fit, &LineFitOptions::window_points, Range::Closed(3, 100000),
+           "", "Table 6: number of points in one line fit");
+  t.Number("max_rms_m", &O::line_fit, &LineFitOptions::max_rms_m, Range::Positive(), "m",
+           "windows scattering more than this about their line are not used");
+  return t;
+}
+
+OptionTable<O> SolverSection() {
+  OptionTable<O> t("solver", "step 6, thesis 3.5.1/3.5.8: the pose from the matched features");
+  t.Choice("mode", &O::solver, &SolverOptions::mode,
+           {{"weighted", SolverMode::kWeighted},
+            {"thesis_linear", SolverMode::kThesisLinear},
+            {"bisection", SolverMode::kBisection}},
+           "weighted Gauss-Newton, the thesis' linear system, or its bisection");
+  t.Number("max_iterations", &O::solver, &SolverOptions::max_iterations,
+           Range::Closed(1, LocaliserLimits::kMaxSolverIterations), "", "Gauss-Newton iterations");
+  t.Number("outlier_chi2", &O::solver, &SolverOptions::outlier_chi2, Range::Positive(), "",
+           "2-dof chi-square gate for a feature (13.8: 99.9 %)");
+  t.Number("search_half_width_m", &O::solver, &SolverOptions::search_half_width_m,
+           Range::Positive(), "m", "bisection window around odometry");
+  t.Number("bisection_iterations", &O::solver, &SolverOptions::bisection_iterations,
+           Range::Closed(1, LocaliserLimits::kMaxBisectionIterations), "",
+           "per coordinate and sweep");
+  t.Number("max_feature_std_m", &O::solver, &SolverOptions::max_feature_std_m, Range::Positive(),
+           "m", "features alone must pin every direction this well, else lost");
+  t.Number("max_feature_std_rad", &O::solver, &SolverOptions::max_feature_std_rad,
+           Range::Positive(), "rad", "... and the heading this well");
+  t.Number("quality_chi2_per_dof", &O::solver, &SolverOptions::quality_chi2_per_dof,
+           Range::Positive(), "", "quality is scaled down when chi2 / dof exceeds this");
+  return t;
+}
+
+OptionTable<O> VisibilitySection() {
+  OptionTable<O> t("visibility", "which model features are expected in the scan");
+  t.Number("field_of_view_rad", &O::visibility, &VisibilitySettings::field_of_view_rad,
+           Range::LeftOpen(0, 2 * geometry::kPi + 1e-9), "rad", "the scanner's field of view");
+  t.Number("min_visible_length_m", &O::visibility, &VisibilitySettings::min_visible_length_m,
+           Range::NonNegative(), "m", "shorter visible wall parts are not expected");
+  t.Number("max_incidence_rad", &O::visibility, &VisibilitySettings::max_incidence_rad,
+           Range::LeftOpen(0, kHalfPi), "rad", "more oblique views are not expected");
+  t.Number("refresh_distance_m", &O::visibility, &VisibilitySettings::refresh_distance_m,
+           Range::Positive(), "m", "recompute visibility after this much travel");
+  t.Number("refresh_angle_rad", &O::visibility, &VisibilitySettings::refresh_angle_rad,
+           Range::Positive(), "rad", "... or rotation (limited fields of view only)");
+  return t;
+}
+
+OptionTable<O> SensorMountSection() {
+  OptionTable<O> t("sensor_mount", "laser pose on the robot (base_link -> laser)");
+  t.Number("x_m", &O::sensor_mount, &geometry::Pose2D::x, Range::Any(), "m", "ahead of the base");
+  t.Number("y_m", &O::sensor_mount, &geometry::Pose2D::y, Range::Any(), "m", "left of the base");
+  t.Number("theta_rad", &O::sensor_mount, &geometry::Pose2D::theta, Range::Any(), "rad",
+           "counter-clockwise from the base's heading");
+  return t;
+}
+
+OptionTable<O> GatesSection() {
+  OptionTable<O> t("gates", "limits on one update");
+  t.Number("max_correction_m", &O::max_correction_m, Range::Positive(), "m",
+           "larger corrections of the odometry are refused (lost)");
+  t.Number("max_correction_rad", &O::max_correction_rad, Range::Positive(), "rad",
+           "... and larger heading corrections");
+  t.Number("max_beams", &O::max_beams, Range::Closed(1, LocaliserLimits::kMaxBeams), "",
+           "buffers are sized for this many beams; longer scans are refused");
+  return t;
 }
 
 }  // namespace
 
+config::OptionFile<LocaliserOptions> LocaliserOptionFile() {
+  std::vector<OptionTable<O>> sections = {PrefilterSection(), LineFitSection()};
+  for (const auto& kind : FeatureKinds()) {
+    for (auto& section : kind.sections()) sections.push_back(std::move(section));
+  }
+  for (auto* section : {SolverSection, VisibilitySection, SensorMountSection, GatesSection}) {
+    sections.push_back(section());
+  }
+  return config::OptionFile<LocaliserOptions>("localisation_params", std::move(sections));
+}
+
+void PrintLocaliserOptions(std::ostream& out) {
+  LocaliserOptionFile().Print(out, LocaliserOptions{});
+}
+
+void LocaliserOptions::Validate() const {
+  LocaliserOptionFile().Validate(*this);
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  require(prefilter.max_range_m > prefilter.min_range_m,
+          "prefilter: max_range_m must be > min_range_m");
+  require(max_beams >= line_fit.window_points, "gates: max_beams must be >= window_points");
+}
+
 LocaliserOptions LoadLocaliserOptions(const std::string& path) {
-  const auto file = XmlFile::Load(path);
-  const auto& root = file.Root("localisation_params");
-  config::RequireChildNames(file, root,
-                            {"prefilter", "line_fit", "walls", "kohonen", "corners", "cylinders",
-                             "solver", "visibility", "sensor_mount", "gates"});
-  LocaliserOptions o;
-  {
-    AttributeReader a(file, Section(file, root, "prefilter"));
-    o.prefilter.min_range_m = a.Double("min_range_m");
-    o.prefilter.max_range_m = a.Double("max_range_m");
-    o.prefilter.max_neighbour_distance_m = a.Double("max_neighbour_distance_m");
-    o.prefilter.min_neighbour_distance_m = a.Double("min_neighbour_distance_m");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "line_fit"));
-    o.line_fit.window_points = a.IntegerIn<int>("window_points", 3, 100000);
-    o.line_fit.max_rms_m = a.Double("max_rms_m");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "walls"));
-    const std::string strategy = a.String("strategy");
-    if (strategy == "expectation") {
-      o.wall_strategy = WallStrategy::kExpectation;
-    } else if (strategy == "kohonen") {
-      o.wall_strategy = WallStrategy::kKohonen;
-    } else {
-      a.Fail("strategy must be expectation or kohonen, not '" + strategy + "'");
-    }
-    o.walls.gate_r_m = a.Double("gate_r_m");
-    o.walls.gate_alpha_rad = a.Double("gate_alpha_rad");
-    o.walls.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
-    o.walls.extent_margin_m = a.Double("extent_margin_m");
-    o.walls.min_point_sigma_m = a.Double("min_point_sigma_m");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "kohonen"));
-    o.kohonen.iterations =
-        a.IntegerIn<int>("iterations", 1, LocaliserLimits::kMaxKohonenIterations);
-    o.kohonen.initial_learning_rate = a.Double("initial_learning_rate");
-    o.kohonen.initial_neighbourhood = a.Double("initial_neighbourhood");
-    o.kohonen_seed = a.IntegerIn<uint32_t>("seed");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "corners"));
-    o.use_corners = a.Bool("enabled");
-    o.corners.next_windows = a.IntegerIn<int>("next_windows");
-    o.corners.angle_tolerance_rad = a.Double("angle_tolerance_rad");
-    o.corners.gate_m = a.Double("gate_m");
-    o.corners.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
-    o.corners.min_point_sigma_m = a.Double("min_point_sigma_m");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "cylinders"));
-    o.use_cylinders = a.Bool("enabled");
-    o.cylinders.candidate_gate_m = a.Double("candidate_gate_m");
-    o.cylinders.radius_tolerance_m = a.Double("radius_tolerance_m");
-    o.cylinders.min_quality = a.Double("min_quality");
-    o.cylinders.gate_m = a.Double("gate_m");
-    o.cylinders.min_cluster_size = a.IntegerIn<int>("min_cluster_size");
-    o.cylinders.min_point_sigma_m = a.Double("min_point_sigma_m");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "solver"));
-    const std::string mode = a.String("mode");
-    if (mode == "weighted") {
-      o.solver.mode = SolverMode::kWeighted;
-    } else if (mode == "thesis_linear") {
-      o.solver.mode = SolverMode::kThesisLinear;
-    } else if (mode == "bisection") {
-      o.solver.mode = SolverMode::kBisection;
-    } else {
-      a.Fail("mode must be weighted, thesis_linear or bisection, not '" + mode + "'");
-    }
-    o.solver.max_iterations =
-        a.IntegerIn<int>("max_iterations", 1, LocaliserLimits::kMaxSolverIterations);
-    o.solver.outlier_chi2 = a.Double("outlier_chi2");
-    o.solver.search_half_width_m = a.Double("search_half_width_m");
-    o.solver.bisection_iterations =
-        a.IntegerIn<int>("bisection_iterations", 1, LocaliserLimits::kMaxBisectionIterations);
-    o.solver.max_feature_std_m = a.Double("max_feature_std_m");
-    o.solver.max_feature_std_rad = a.Double("max_feature_std_rad");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "visibility"));
-    o.visibility.field_of_view_rad = a.Double("field_of_view_rad");
-    o.visibility.min_visible_length_m = a.Double("min_visible_length_m");
-    o.visibility.max_incidence_rad = a.Double("max_incidence_rad");
-    o.visibility.refresh_distance_m = a.Double("refresh_distance_m");
-    o.visibility.refresh_angle_rad = a.Double("refresh_angle_rad");
-    a.Finish();
-  }
-  {
-    AttributeReader a(file, Section(file, root, "sensor_mount"));
-    o.sensor_mount = {a.Double("x_m"), a.Double("y_m"), a.Double("theta_rad")};
-    a.Finish();
-  }
-  {
-    const auto& gates = Section(file, root, "gates");
-    AttributeReader a(file, gates);
-    o.max_correction_m = a.Double("max_correction_m");
-    o.max_correction_rad = a.Double("max_correction_rad");
-    o.max_beams = a.IntegerIn<int>("max_beams", 1, LocaliserLimits::kMaxBeams);
-    a.Finish();
-  }
+  const auto file = config::XmlFile::Load(path);
+  const auto o = LocaliserOptionFile().Load(file);
   try {
     o.Validate();
   } catch (const std::invalid_argument& e) {
-    file.Fail(root, e.what());
+    file.Fail(file.Root(), e.what());
   }
   return o;
 }

@@ -1,16 +1,20 @@
 // All parameters of the localisation pipeline: one options struct per step
 // with the thesis' Table 6 values as defaults (other defaults documented where
-// they are declared), validated as a whole, and loadable from an XML
-// parameter file in which every key must be present and none may be unknown.
+// they are declared). Every option is declared once, in LocaliserOptionFile()
+// (XML key with unit, range, description); loading an XML parameter file (every
+// key present, none unknown), validation and the `structloc params` listing
+// derive from that declaration.
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 
 #include "corner_extraction.hpp"
 #include "cylinder_extraction.hpp"
 #include "kohonen_clustering.hpp"
 #include "line_fit.hpp"
+#include "option_table.hpp"
 #include "pose_solver.hpp"
 #include "prefilter.hpp"
 #include "wall_clustering.hpp"
@@ -59,6 +63,13 @@ struct LocaliserOptions {
   // Throws std::invalid_argument naming the broken option ("walls: gate_r_m ...").
   void Validate() const;
 };
+
+// The declaration of every option: one <section> per pipeline step and feature
+// kind, each key with its range, unit and description.
+config::OptionFile<LocaliserOptions> LocaliserOptionFile();
+
+// Lists every key with its default, unit, valid values and meaning.
+void PrintLocaliserOptions(std::ostream& out);
 
 // Reads a <localisation_params> file (see maps/params/*.xml). Throws
 // config::ConfigError naming file, line and problem, including invalid values.

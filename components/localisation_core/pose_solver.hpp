@@ -28,7 +28,9 @@ struct SolverOptions {
   int bisection_iterations = 10;     // per coordinate and sweep (thesis example: 10)
   double max_feature_std_m = 0.05;   // features alone must pin every direction this well
   double max_feature_std_rad = 0.05;
-  void Validate() const;
+  // Quality = matched / expected features, scaled down by quality_chi2_per_dof /
+  // (chi2 / dof) when the fit's chi2 per degree of freedom exceeds this.
+  double quality_chi2_per_dof = 2.0;
 };
 
 // A matched wall in the sensor frame, oriented like its world line's normal.

@@ -1,23 +1,10 @@
 // Weighted Gauss-Newton pose solver (see pose_solver.hpp).
 #include <Eigen/Dense>
 #include <cmath>
-#include <stdexcept>
 
 #include "pose_solver.hpp"
 
 namespace structloc::localisation {
-
-void SolverOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("solver: ") + what);
-  };
-  require(max_iterations >= 1, "max_iterations must be >= 1");
-  require(outlier_chi2 > 0.0, "outlier_chi2 must be > 0");
-  require(search_half_width_m > 0.0, "search_half_width_m must be > 0");
-  require(bisection_iterations >= 1, "bisection_iterations must be >= 1");
-  require(max_feature_std_m > 0.0, "max_feature_std_m must be > 0");
-  require(max_feature_std_rad > 0.0, "max_feature_std_rad must be > 0");
-}
 
 void SolveOutput::Reserve(size_t walls, size_t points) {
   wall_residual.reserve(walls);

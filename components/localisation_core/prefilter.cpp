@@ -1,8 +1,6 @@
 // Prefilter steps (see header) and beam direction tables.
 #include "prefilter.hpp"
 
-#include <stdexcept>
-
 namespace structloc::localisation {
 
 void BeamDirections::Update(const ScanView& scan) {
@@ -30,19 +28,6 @@ inline void MovePoint(ScanPoints& points, size_t i, size_t w) {
   points.beam[w] = points.beam[i];
 }
 }  // namespace
-
-void PrefilterOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("prefilter: ") + what);
-  };
-  require(std::isfinite(min_range_m) && min_range_m >= 0.0, "min_range_m must be >= 0");
-  require(std::isfinite(max_range_m) && max_range_m > min_range_m,
-          "max_range_m must be finite and > min_range_m");
-  require(std::isfinite(max_neighbour_distance_m) && max_neighbour_distance_m > 0.0,
-          "max_neighbour_distance_m must be > 0");
-  require(std::isfinite(min_neighbour_distance_m) && min_neighbour_distance_m >= 0.0,
-          "min_neighbour_distance_m must be >= 0");
-}
 
 void RangeGate(const ScanView& scan, const BeamDirections& directions,
                const PrefilterOptions& options, ScanPoints& out, PrefilterStats& stats) {

@@ -16,8 +16,6 @@ struct PrefilterOptions {
   double max_neighbour_distance_m = 0.3;   // Table 6: a point farther than this from both
                                            // neighbours is unsupported
   double min_neighbour_distance_m = 0.06;  // Table 6: thinning distance
-  // Throws std::invalid_argument naming the broken option.
-  void Validate() const;
 };
 
 struct PrefilterStats {

@@ -3,21 +3,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <stdexcept>
 
 namespace structloc::localisation {
-
-void WallClusterOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("walls: ") + what);
-  };
-  require(gate_r_m > 0.0, "gate_r_m must be > 0");
-  require(gate_alpha_rad > 0.0 && gate_alpha_rad < geometry::kPi / 2,
-          "gate_alpha_rad must be in (0, pi/2)");
-  require(min_cluster_size >= 1, "min_cluster_size must be >= 1");
-  require(std::isfinite(extent_margin_m), "extent_margin_m must be finite");
-  require(min_point_sigma_m > 0.0, "min_point_sigma_m must be > 0");
-}
 
 void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
                                 const ExpectedFeatures& expected, const geometry::Pose2D& pose,

@@ -20,7 +20,6 @@ struct WallClusterOptions {
   double extent_margin_m = 0.5;      // a window must lie within the visible wall extent
                                      // plus this margin (0 or less disables the check)
   double min_point_sigma_m = 0.002;  // floor of the per-point noise used for covariances
-  void Validate() const;
 };
 
 // A matched wall: the measurement in the sensor frame, oriented like its

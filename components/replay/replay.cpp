@@ -196,7 +196,7 @@ class Replayer {
     }
     const auto& r = *outcome.result;
     ++report_.scans_used;
-    features_ += r.matched_walls + r.matched_corners + r.matched_cylinders;
+    features_ += r.Matched();
     if (r.lost) {
       ++report_.scans_lost;
       if (!lost_) ++report_.lost_periods;

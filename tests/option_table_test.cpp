@@ -1,0 +1,135 @@
+// Options declared once (config/option_table.hpp): loading, validation and the
+// listing all follow the one declaration, and every error names the section,
+// the key and, when read from a file, file:line.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "option_table.hpp"
+#include "temp_dir.hpp"
+
+namespace structloc::config {
+namespace {
+
+enum class Colour { kRed, kBlue };
+
+struct Inner {
+  double gate_m = 0.2;
+};
+
+struct Example {
+  int count = 3;
+  bool enabled = true;
+  Colour colour = Colour::kBlue;
+  Inner inner;
+};
+
+OptionFile<Example> ExampleFile() {
+  OptionTable<Example> t("things", "an example section");
+  t.Number("count", &Example::count, Range::Closed(1, 10), "", "how many");
+  t.Flag("enabled", &Example::enabled, "whether at all");
+  t.Choice("colour", &Example::colour, {{"red", Colour::kRed}, {"blue", Colour::kBlue}},
+           "which colour");
+  t.Number("gate_m", &Example::inner, &Inner::gate_m, Range::Positive(), "m", "a nested gate");
+  return OptionFile<Example>("example", {t});
+}
+
+std::string Problem(const std::string& text) {
+  const testing::TempDir dir;
+  const std::string path = dir.Write("example.xml", text);
+  try {
+    ExampleFile().Load(XmlFile::Load(path));
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind(path + ":", 0), 0u) << what;  // starts with file:line
+    return what;
+  }
+  return "accepted";
+}
+
+const char* kGood =
+    "<example>\n<things count=\"4\" enabled=\"false\" colour=\"red\" gate_m=\"0.5\"/>\n"
+    "</example>\n";
+
+TEST(OptionTable, LoadsEveryDeclaredKeyIntoItsMember) {
+  const testing::TempDir dir;
+  const auto o = ExampleFile().Load(XmlFile::Load(dir.Write("example.xml", kGood)));
+  EXPECT_EQ(o.count, 4);
+  EXPECT_FALSE(o.enabled);
+  EXPECT_EQ(o.colour, Colour::kRed);
+  EXPECT_DOUBLE_EQ(o.inner.gate_m, 0.5);
+}
+
+TEST(OptionTable, UnknownKeyIsAnErrorNamingIt) {
+  const auto what = Problem(
+      "<example>\n<things count=\"4\" enabled=\"false\" colour=\"red\" gate_m=\"0.5\" "
+      "gate_x=\"1\"/>\n</example>\n");
+  EXPECT_NE(what.find(":2: <things>: unknown attribute(s): gate_x"), std::string::npos) << what;
+}
+
+TEST(OptionTable, MissingKeyAndMissingSectionAreErrors) {
+  auto what = Problem(
+      "<example>\n<things count=\"4\" enabled=\"false\" colour=\"red\"/>\n"
+      "</example>\n");
+  EXPECT_NE(what.find("missing attribute gate_m"), std::string::npos) << what;
+  what = Problem("<example>\n</example>\n");
+  EXPECT_NE(what.find("missing section <things>"), std::string::npos) << what;
+  what = Problem(std::string(kGood).insert(10, "<other/>\n"));
+  EXPECT_NE(what.find("unknown element"), std::string::npos) << what;
+}
+
+TEST(OptionTable, OutOfRangeValuesNameSectionAndKey) {
+  auto what = Problem(
+      "<example>\n<things count=\"4\" enabled=\"false\" colour=\"red\" gate_m=\"-1\"/>\n"
+      "</example>\n");
+  EXPECT_NE(what.find(":2: <things>: things: gate_m must be > 0, not -1"), std::string::npos)
+      << what;
+  what = Problem(
+      "<example>\n<things count=\"11\" enabled=\"false\" colour=\"red\" gate_m=\"1\"/>\n"
+      "</example>\n");
+  EXPECT_NE(what.find("count must be an integer from 1 to 10"), std::string::npos) << what;
+  what = Problem(
+      "<example>\n<things count=\"1\" enabled=\"false\" colour=\"green\" gate_m=\"1\"/>\n"
+      "</example>\n");
+  EXPECT_NE(what.find("colour must be red or blue, not 'green'"), std::string::npos) << what;
+}
+
+TEST(OptionTable, ValidateNamesTheBrokenOptionOfAStructBuiltInCode) {
+  Example e;
+  EXPECT_NO_THROW(ExampleFile().Validate(e));
+  e.inner.gate_m = 0.0;
+  try {
+    ExampleFile().Validate(e);
+    ADD_FAILURE() << "accepted gate_m = 0";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "things: gate_m must be > 0, not 0");
+  }
+  e.inner.gate_m = 1.0;
+  e.count = 0;
+  EXPECT_THROW(ExampleFile().Validate(e), std::invalid_argument);
+}
+
+TEST(OptionTable, ListingShowsKeyDefaultUnitRangeAndDescription) {
+  std::ostringstream out;
+  ExampleFile().Print(out, Example{});
+  const std::string text = out.str();
+  EXPECT_NE(text.find("<things>  an example section"), std::string::npos) << text;
+  for (const char* line : {"count", "in [1, 10]", "how many", "blue", "red or blue", "gate_m",
+                           "0.2", "> 0", "a nested gate", "true or false"}) {
+    EXPECT_NE(text.find(line), std::string::npos) << line << "\n" << text;
+  }
+}
+
+TEST(Range, DescribesAndChecksItsEnds) {
+  EXPECT_TRUE(Range::Positive().Contains(1e-9));
+  EXPECT_FALSE(Range::Positive().Contains(0.0));
+  EXPECT_FALSE(Range::Any().Contains(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_TRUE(Range::LeftOpen(0, 1).Contains(1.0));
+  EXPECT_FALSE(Range::Open(0, 1).Contains(1.0));
+  EXPECT_EQ(Range::Open(0, 1).Describe(), "in (0, 1)");
+  EXPECT_EQ(Range::AtLeast(1).Describe(), ">= 1");
+  EXPECT_EQ(Range::Any().Describe(), "finite");
+}
+
+}  // namespace
+}  // namespace structloc::config
