@@ -8,6 +8,7 @@
 namespace structloc::geometry {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kHalfPi = kPi / 2;
 
 // Wraps any finite angle to (-pi, pi].
 inline double WrapAngle(double a) {

@@ -7,19 +7,17 @@
 namespace structloc::localisation {
 namespace {
 
-using config::OptionTable;
 using config::Range;
 using O = LocaliserOptions;
 
-constexpr double kHalfPi = geometry::kPi / 2;
-
-std::vector<OptionTable<O>> CornerSections() {
-  OptionTable<O> t("corners", "feature kind corners, thesis 3.5.4 EQ 31: window-line crossings");
+std::vector<LocaliserOptionTable> CornerSections() {
+  LocaliserOptionTable t("corners",
+                         "feature kind corners, thesis 3.5.4 EQ 31: window-line crossings");
   t.Flag("enabled", &O::use_corners, "extract and use corners");
   t.Number("next_windows", &O::corners, &CornerOptions::next_windows, Range::AtLeast(1), "",
            "k: windows after window i intersected with it");
   t.Number("angle_tolerance_rad", &O::corners, &CornerOptions::angle_tolerance_rad,
-           Range::Open(0, kHalfPi), "rad", "lines must meet at pi/2 within this");
+           Range::Open(0, geometry::kHalfPi), "rad", "lines must meet at pi/2 within this");
   t.Number("gate_m", &O::corners, &CornerOptions::gate_m, Range::Positive(), "m",
            "distance gate around an expected corner");
   t.Number("min_cluster_size", &O::corners, &CornerOptions::min_cluster_size, Range::AtLeast(1), "",

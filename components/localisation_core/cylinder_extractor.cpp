@@ -4,12 +4,11 @@
 namespace structloc::localisation {
 namespace {
 
-using config::OptionTable;
 using config::Range;
 using O = LocaliserOptions;
 
-std::vector<OptionTable<O>> CylinderSections() {
-  OptionTable<O> t("cylinders", "feature kind cylinders, thesis 3.5.6 EQ 36-40: circle fits");
+std::vector<LocaliserOptionTable> CylinderSections() {
+  LocaliserOptionTable t("cylinders", "feature kind cylinders, thesis 3.5.6 EQ 36-40: circle fits");
   t.Flag("enabled", &O::use_cylinders, "extract and use cylinders");
   t.Number("candidate_gate_m", &O::cylinders, &CylinderOptions::candidate_gate_m, Range::Positive(),
            "m", "window centroid to expected surface");

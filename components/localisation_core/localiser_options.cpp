@@ -12,14 +12,12 @@ namespace structloc::localisation {
 
 namespace {
 
-using config::OptionTable;
 using config::Range;
 using O = LocaliserOptions;
 
-constexpr double kHalfPi = geometry::kPi / 2;
-
-OptionTable<O> PrefilterSection() {
-  OptionTable<O> t("prefilter", "step 1, thesis 3.4: range gate, unsupported points, thinning");
+LocaliserOptionTable PrefilterSection() {
+  LocaliserOptionTable t("prefilter",
+                         "step 1, thesis 3.4: range gate, unsupported points, thinning");
   t.Number("min_range_m", &O::prefilter, &PrefilterOptions::min_range_m, Range::NonNegative(), "m",
            "Table 6: readings nearer than this are dropped");
   t.Number("max_range_m", &O::prefilter, &PrefilterOptions::max_range_m, Range::Positive(), "m",
@@ -32,8 +30,8 @@ OptionTable<O> PrefilterSection() {
   return t;
 }
 
-OptionTable<O> LineFitSection() {
-  OptionTable<O> t("line_fit", "step 2, thesis 3.5.2: sliding line fits");
+LocaliserOptionTable LineFitSection() {
+  LocaliserOptionTable t("line_fit", "step 2, thesis 3.5.2: sliding line fits");
   t.Number("window_points", &O::line_fit, &LineFitOptions::window_points, Range::Closed(3, 100000),
            "", "Table 6: number of points in one line fit");
   t.Number("max_rms_m", &O::line_fit, &LineFitOptions::max_rms_m, Range::Positive(), "m",
@@ -41,8 +39,9 @@ OptionTable<O> LineFitSection() {
   return t;
 }
 
-OptionTable<O> SolverSection() {
-  OptionTable<O> t("solver", "step 6, thesis 3.5.1/3.5.8: the pose from the matched features");
+LocaliserOptionTable SolverSection() {
+  LocaliserOptionTable t("solver",
+                         "step 6, thesis 3.5.1/3.5.8: the pose from the matched features");
   t.Choice("mode", &O::solver, &SolverOptions::mode,
            {{"weighted", SolverMode::kWeighted},
             {"thesis_linear", SolverMode::kThesisLinear},
@@ -66,14 +65,14 @@ OptionTable<O> SolverSection() {
   return t;
 }
 
-OptionTable<O> VisibilitySection() {
-  OptionTable<O> t("visibility", "which model features are expected in the scan");
+LocaliserOptionTable VisibilitySection() {
+  LocaliserOptionTable t("visibility", "which model features are expected in the scan");
   t.Number("field_of_view_rad", &O::visibility, &VisibilitySettings::field_of_view_rad,
            Range::LeftOpen(0, 2 * geometry::kPi + 1e-9), "rad", "the scanner's field of view");
   t.Number("min_visible_length_m", &O::visibility, &VisibilitySettings::min_visible_length_m,
            Range::NonNegative(), "m", "shorter visible wall parts are not expected");
   t.Number("max_incidence_rad", &O::visibility, &VisibilitySettings::max_incidence_rad,
-           Range::LeftOpen(0, kHalfPi), "rad", "more oblique views are not expected");
+           Range::LeftOpen(0, geometry::kHalfPi), "rad", "more oblique views are not expected");
   t.Number("refresh_distance_m", &O::visibility, &VisibilitySettings::refresh_distance_m,
            Range::Positive(), "m", "recompute visibility after this much travel");
   t.Number("refresh_angle_rad", &O::visibility, &VisibilitySettings::refresh_angle_rad,
@@ -81,8 +80,8 @@ OptionTable<O> VisibilitySection() {
   return t;
 }
 
-OptionTable<O> SensorMountSection() {
-  OptionTable<O> t("sensor_mount", "laser pose on the robot (base_link -> laser)");
+LocaliserOptionTable SensorMountSection() {
+  LocaliserOptionTable t("sensor_mount", "laser pose on the robot (base_link -> laser)");
   t.Number("x_m", &O::sensor_mount, &geometry::Pose2D::x, Range::Any(), "m", "ahead of the base");
   t.Number("y_m", &O::sensor_mount, &geometry::Pose2D::y, Range::Any(), "m", "left of the base");
   t.Number("theta_rad", &O::sensor_mount, &geometry::Pose2D::theta, Range::Any(), "rad",
@@ -90,8 +89,8 @@ OptionTable<O> SensorMountSection() {
   return t;
 }
 
-OptionTable<O> GatesSection() {
-  OptionTable<O> t("gates", "limits on one update");
+LocaliserOptionTable GatesSection() {
+  LocaliserOptionTable t("gates", "limits on one update");
   t.Number("max_correction_m", &O::max_correction_m, Range::Positive(), "m",
            "larger corrections of the odometry are refused (lost)");
   t.Number("max_correction_rad", &O::max_correction_rad, Range::Positive(), "rad",
@@ -104,7 +103,7 @@ OptionTable<O> GatesSection() {
 }  // namespace
 
 config::OptionFile<LocaliserOptions> LocaliserOptionFile() {
-  std::vector<OptionTable<O>> sections = {PrefilterSection(), LineFitSection()};
+  std::vector<LocaliserOptionTable> sections = {PrefilterSection(), LineFitSection()};
   for (const auto& kind : FeatureKinds()) {
     for (auto& section : kind.sections()) sections.push_back(std::move(section));
   }

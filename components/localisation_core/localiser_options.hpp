@@ -75,4 +75,8 @@ void PrintLocaliserOptions(std::ostream& out);
 // config::ConfigError naming file, line and problem, including invalid values.
 LocaliserOptions LoadLocaliserOptions(const std::string& path);
 
+// The table the localiser's parameter file is declared in; each feature kind
+// declares its own blocks with it (see feature_kinds.hpp).
+using LocaliserOptionTable = config::OptionTable<LocaliserOptions>;
+
 }  // namespace structloc::localisation

@@ -4,28 +4,26 @@
 namespace structloc::localisation {
 namespace {
 
-using config::OptionTable;
 using config::Range;
 using O = LocaliserOptions;
 
-constexpr double kHalfPi = geometry::kPi / 2;
-
-std::vector<OptionTable<O>> WallSections() {
-  OptionTable<O> t("walls", "feature kind walls, thesis 3.5.3: window lines clustered per wall");
+std::vector<LocaliserOptionTable> WallSections() {
+  LocaliserOptionTable t("walls",
+                         "feature kind walls, thesis 3.5.3: window lines clustered per wall");
   t.Choice("strategy", &O::wall_strategy,
            {{"expectation", WallStrategy::kExpectation}, {"kohonen", WallStrategy::kKohonen}},
            "nearest expected wall within the gates, or the thesis' Kohonen map (see <kohonen>)");
   t.Number("gate_r_m", &O::walls, &WallClusterOptions::gate_r_m, Range::Positive(), "m",
            "Table 6: size of cluster (r)");
   t.Number("gate_alpha_rad", &O::walls, &WallClusterOptions::gate_alpha_rad,
-           Range::Open(0, kHalfPi), "rad", "Table 6: size of cluster (alpha)");
+           Range::Open(0, geometry::kHalfPi), "rad", "Table 6: size of cluster (alpha)");
   t.Number("min_cluster_size", &O::walls, &WallClusterOptions::min_cluster_size, Range::AtLeast(1),
            "", "Table 6: minimum number of window lines in a cluster");
   t.Number("extent_margin_m", &O::walls, &WallClusterOptions::extent_margin_m, Range::Any(), "m",
            "a window must lie within the visible wall plus this (<= 0 disables the check)");
   t.Number("min_point_sigma_m", &O::walls, &WallClusterOptions::min_point_sigma_m,
            Range::Positive(), "m", "floor of the per-point noise used for covariances");
-  OptionTable<O> k("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
+  LocaliserOptionTable k("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
   k.Number("iterations", &O::kohonen, &KohonenOptions::iterations,
            Range::Closed(1, LocaliserLimits::kMaxKohonenIterations), "", "training steps per scan");
   k.Number("initial_learning_rate", &O::kohonen, &KohonenOptions::initial_learning_rate,
