@@ -61,7 +61,7 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
   const auto& root = file.Root("localisation_params");
   config::RequireChildNames(file, root,
                             {"prefilter", "line_fit", "walls", "kohonen", "corners", "cylinders",
-                             "solver", "visibility", "sensor_mount", "gates"});
+                             "solver", "visibility", "sensor_mount", "gates", "tracking"});
   LocaliserOptions o;
   {
     AttributeReader a(file, Section(file, root, "prefilter"));

@@ -7,9 +7,8 @@
 
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
-  return structloc::dds::RunComponent(
-      argc, argv, "simulator",
-      {{"scenario", true,
+  std::vector<structloc::config::OptionSpec> specs = {
+      {"scenario", true,
         "scenario XML (default " STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml)"},
        {"time-scale", true,
         "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
@@ -17,7 +16,11 @@ int main(int argc, char** argv) {
        {"exit-when-done", false, "exit when the scenario ends"},
        {"wait-for-subscribers", true,
         "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
-        "0)"}},
+        "0)"}};
+  const auto frame_options = structloc::dds::FrameIdOptions();
+  specs.insert(specs.end(), frame_options.begin(), frame_options.end());
+  return structloc::dds::RunComponent(
+      argc, argv, "simulator", specs,
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         auto scenario = structloc::simulation::LoadScenario(
             cli.GetOr("scenario", STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml"));
@@ -32,6 +35,7 @@ int main(int argc, char** argv) {
           throw ConfigError("--time-scale must be in [0, 1000]");
         }
         options.exit_when_done = cli.Has("exit-when-done");
+        options.frames = structloc::dds::FrameIdsFrom(cli);
         options.wait_for_subscribers = static_cast<int>(cli.Integer("wait-for-subscribers", 0));
         if (options.wait_for_subscribers < 0)
           throw ConfigError("--wait-for-subscribers must be >= 0");
