@@ -44,7 +44,7 @@ std::optional<typename PubSubType::type> RoundTrip(dds::Node& writer_node, dds::
                                                    typename PubSubType::type sample) {
   std::mutex mutex;
   std::optional<typename PubSubType::type> received;
-  reader_node.Subscribe<PubSubType>(topic, [&](const typename PubSubType::type& msg) {
+  const auto subscription = reader_node.Subscribe<PubSubType>(topic, [&](const typename PubSubType::type& msg) {
     std::lock_guard<std::mutex> lock(mutex);
     received = msg;
   });

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::vector<double> latency_ms;
-  node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+  const auto pose_subscription = node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
         const auto now = Clock::now();
         std::lock_guard<std::mutex> lock(mutex);
