@@ -53,6 +53,9 @@ class Flood {
     stop_ = true;
     thread_.join();
   }
+  // Readers matched on both topics (the scan count only when scans flood).
+  size_t MatchedOdometryReaders() const { return odom_.MatchedReaders(); }
+  size_t MatchedScanReaders() const { return scan_.MatchedReaders(); }
 
  private:
   dds::Node node_;
@@ -124,7 +127,11 @@ TEST(ComponentTeardown, ALocalisationComponentDestroyedWhileScansArriveDoesNotCr
             world::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"))),
         localisation::LoadLocaliserOptions(params), localisation::LoadSessionOptions(params),
         options);
-    for (int step = 0; step < 20; ++step) {
+    ASSERT_TRUE(testing::WaitUntil(
+        [&] { return flood.MatchedOdometryReaders() > 0 && flood.MatchedScanReaders() > 0; },
+        std::chrono::seconds(20)))
+        << "round " << round << ": the component's readers never matched";
+    for (int step = 0; step < 60; ++step) {
       component->Step();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
