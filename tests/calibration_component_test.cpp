@@ -32,13 +32,14 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   dds::Node observer(testing::TestNodeOptions("cal_observer", kDomain));
   std::mutex mutex;
   std::string calibration_state;
-  const auto diagnostics_subscription = observer.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-      dds::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
-        std::lock_guard<std::mutex> lock(mutex);
-        for (const auto& s : a.status()) {
-          if (s.name() == "structloc/calibration") calibration_state = s.message();
-        }
-      });
+  const auto diagnostics_subscription =
+      observer.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+          dds::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
+            std::lock_guard<std::mutex> lock(mutex);
+            for (const auto& s : a.status()) {
+              if (s.name() == "structloc/calibration") calibration_state = s.message();
+            }
+          });
   const std::vector<std::string> common = {"--domain", std::to_string(kDomain), "--qos",
                                            testing::ShippedQos()};
   auto args = [&](std::vector<std::string> extra) {

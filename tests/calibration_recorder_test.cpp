@@ -57,7 +57,7 @@ TEST(CalibrationRecorder, IsDueOnceTheEncodersSpanTheRecordingLength) {
   const auto recording = recorder.Finish();
   EXPECT_EQ(recording.encoders.size(), 101u);
   EXPECT_TRUE(recorder.Finished());
-  EXPECT_FALSE(recorder.Due());  // estimated once
+  EXPECT_FALSE(recorder.Due());                        // estimated once
   EXPECT_FALSE(recorder.AddEncoders(Encoders(16.0)));  // the recording has ended
   EXPECT_EQ(recorder.Stats().encoders, 101u);
 }

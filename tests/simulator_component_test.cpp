@@ -99,10 +99,11 @@ TEST(SimulatorComponent, RunsFasterThanRealTimeAtTheConfiguredRatesWithConsisten
   const auto truth_subscription = observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kGroundTruth,
       [&](const nav_msgs::msg::Odometry& m) { truth.Add(dds::FromRosTime(m.header().stamp())); });
-  const auto encoder_subscription = observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
-        encoders.Add(dds::FromRosTime(m.header().stamp()));
-      });
+  const auto encoder_subscription =
+      observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
+          dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
+            encoders.Add(dds::FromRosTime(m.header().stamp()));
+          });
   const auto start = std::chrono::steady_clock::now();
   process::ChildProcess sim(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",

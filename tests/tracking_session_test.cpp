@@ -7,8 +7,8 @@
 #include <fstream>
 #include <random>
 
-#include "strict_xml.hpp"
 #include "office_scene.hpp"
+#include "strict_xml.hpp"
 #include "temp_dir.hpp"
 #include "tracking_session.hpp"
 

@@ -32,7 +32,7 @@ struct CalibrationComponentOptions {
   std::string robot_path;  // the nominal robot file: never overwritten
   CalibrationOptions calibration;
   double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
-  std::string fix_topic = "rt/pose";
+  std::string fix_topic = dds::topics::kPose.name;
   std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
   bool exit_when_done = false;
 

@@ -62,7 +62,8 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
       });
   initial_pose_subscription_ =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds::topics::kInitialPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+          dds::topics::kInitialPose,
+          [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
             InitialPoseInput in;
             const auto p = FromPoseWithCovariance(m, &in.covariance);
             in.stamp = p.stamp;
@@ -163,8 +164,7 @@ dds::HealthReport LocalisationComponent::Health(double now) {
     silence(last_odometry_s, "no odometry on " + dds::topics::kOdom.name);
   } else if (session_.Lost()) {
     // Dead reckoning for a while is normal (a corridor, a crowd); for long it is not.
-    report.level =
-        session_.LostTooLong(now) ? dds::HealthLevel::kError : dds::HealthLevel::kWarn;
+    report.level = session_.LostTooLong(now) ? dds::HealthLevel::kError : dds::HealthLevel::kWarn;
     report.message = "lost (dead reckoning) for " +
                      std::to_string(session_.LostFor(now)).substr(0, 4) +
                      " s: " + session_.LostReason();

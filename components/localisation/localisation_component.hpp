@@ -62,7 +62,7 @@ class LocalisationComponent : public dds::Component {
   const dds::Node& node_;
   const double started_s_;
 
-  SessionInbox inbox_;       // listeners -> worker; its own lock
+  SessionInbox inbox_;        // listeners -> worker; its own lock
   std::mutex session_mutex_;  // the worker (updates) and the main thread (diagnostics, saving)
   TrackingSession session_;
   double last_diagnostics_s_ = 0.0;

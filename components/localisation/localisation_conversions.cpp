@@ -47,8 +47,8 @@ StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianc
           {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
 }
 
-geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(const TrackedPose& t,
-                                                                          const dds::FrameIds& frames) {
+geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
+    const TrackedPose& t, const dds::FrameIds& frames) {
   geometry_msgs::msg::PoseWithCovarianceStamped msg;
   msg.header().stamp(dds::ToRosTime(t.stamp));
   msg.header().frame_id(frames.map);

@@ -16,15 +16,15 @@ int main(int argc, char** argv) {
   namespace loc = structloc::localisation;
   std::vector<structloc::config::OptionSpec> specs = {
       {"map", true, "world model XML (default " STRUCTLOC_SHARE_DIR "/maps/office_floor.xml)"},
-       {"params", true,
-        "localisation parameters (default " STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml)"},
-       {"initial-pose", true,
-        "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
-        "it stands, or publish rt/initialpose with a stamp)"},
-       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
-       {"max-walls", true,
-        "refuse maps with more walls than this (default " +
-            std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}};
+      {"params", true,
+       "localisation parameters (default " STRUCTLOC_SHARE_DIR "/maps/params/office_sick.xml)"},
+      {"initial-pose", true,
+       "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
+       "it stands, or publish rt/initialpose with a stamp)"},
+      {"state-file", true, "where the pose is saved and resumed from (default: none)"},
+      {"max-walls", true,
+       "refuse maps with more walls than this (default " +
+           std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}};
   const auto frame_options = structloc::dds::FrameIdOptions();
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds::RunComponent(
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
           }
           options.initial_pose = structloc::geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
         }
-        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params,
-                                                            session, options);
+        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params, session,
+                                                            options);
       });
 }

@@ -80,8 +80,7 @@ TrackingSession::InitialPoseOutcome TrackingSession::SetInitialPose(const Initia
   if (auto r = tracker_->SetInitialPose(in.stamp, in.pose, in.covariance)) {
     if (*r == Rejection::kNoOdometry) {
       // Valid (SetInitialPose checks that first): applied at the first odometry.
-      pending_pose_ =
-          PendingPose{in.pose, in.covariance, false, InitialPoseWhen::kAtFirstOdometry};
+      pending_pose_ = PendingPose{in.pose, in.covariance, false, InitialPoseWhen::kAtFirstOdometry};
       return InitialPoseOutcome::kPending;
     }
     NoteProblem("initial pose on " + source + " rejected: " + ToString(*r), now);
@@ -139,8 +138,7 @@ std::optional<ScanReport> TrackingSession::Next(double now, bool end_of_input) {
   if (scheduling_ == Scheduling::kInOrder) {
     // Offline, a scan waits for the odometry that covers it, not for a clock.
     const bool overdue = waiting_.size() > options_.max_pending_scans;
-    const bool covered =
-        newest_odometry_ && newest_odometry_->stamp >= front.scan.LastBeamStamp();
+    const bool covered = newest_odometry_ && newest_odometry_->stamp >= front.scan.LastBeamStamp();
     if (!end_of_input && !overdue && !covered) return std::nullopt;
     waited = 1e9;
   }

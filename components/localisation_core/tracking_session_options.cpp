@@ -13,7 +13,8 @@ void SessionOptions::Validate() const {
   if (!(lost_error_after_s >= 0)) {
     throw std::invalid_argument("tracking: lost_error_after_s must be >= 0");
   }
-  if (max_pending_scans < 1) throw std::invalid_argument("tracking: max_pending_scans must be >= 1");
+  if (max_pending_scans < 1)
+    throw std::invalid_argument("tracking: max_pending_scans must be >= 1");
 }
 
 SessionOptions LoadSessionOptions(const std::string& path) {

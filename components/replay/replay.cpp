@@ -127,8 +127,7 @@ class Replayer {
     params_.max_beams = std::max(params_.max_beams, 4096);
     session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
                                                  localisation::Scheduling::kInOrder);
-    session_->ExpectInitialPose(*o_.initial_pose,
-                                TrackingSession::InitialPoseWhen::kAtFirstScan);
+    session_->ExpectInitialPose(*o_.initial_pose, TrackingSession::InitialPoseWhen::kAtFirstScan);
   }
 
   localisation::SessionScan ToSessionScan(const logs::CarmenRecord& rec) const {

@@ -9,14 +9,14 @@ int main(int argc, char** argv) {
   using structloc::config::ConfigError;
   std::vector<structloc::config::OptionSpec> specs = {
       {"scenario", true,
-        "scenario XML (default " STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml)"},
-       {"time-scale", true,
-        "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
-       {"seed", true, "override the scenario's seed"},
-       {"exit-when-done", false, "exit when the scenario ends"},
-       {"wait-for-subscribers", true,
-        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
-        "0)"}};
+       "scenario XML (default " STRUCTLOC_SHARE_DIR "/maps/scenarios/office_people.xml)"},
+      {"time-scale", true,
+       "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
+      {"seed", true, "override the scenario's seed"},
+      {"exit-when-done", false, "exit when the scenario ends"},
+      {"wait-for-subscribers", true,
+       "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
+       "0)"}};
   const auto frame_options = structloc::dds::FrameIdOptions();
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds::RunComponent(

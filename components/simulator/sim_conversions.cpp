@@ -36,8 +36,8 @@ nav_msgs::msg::Odometry PoseMessage(const geometry::Pose2D& p, double stamp,
 }
 }  // namespace
 
-nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distance_m,
-                                   double offset, const dds::FrameIds& frames) {
+nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distance_m, double offset,
+                                   const dds::FrameIds& frames) {
   auto msg = PoseMessage(s.odometry, offset + s.time, frames.odom, frames.base_link);
   msg.twist().twist().linear().x(s.odom_linear);
   msg.twist().twist().angular().z(s.odom_angular);

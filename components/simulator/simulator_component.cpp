@@ -78,9 +78,8 @@ void SimulatorComponent::PublishStep(const simulation::SimState& state) {
   distance_ += (state.odometry.Translation() - last_odometry_.Translation()).norm();
   last_odometry_ = state.odometry;
   if (steps_ % odom_every_ == 0) {
-    auto encoders =
-        ToWheelEncoders(state, sim_.GetScenario().nominal, last_ticks_, clock_offset_s_,
-                        options_.frames);
+    auto encoders = ToWheelEncoders(state, sim_.GetScenario().nominal, last_ticks_, clock_offset_s_,
+                                    options_.frames);
     last_ticks_ = state.traction_ticks;
     encoders_.Write(encoders);
     auto odom = ToOdometry(state, distance_, clock_offset_s_, options_.frames);

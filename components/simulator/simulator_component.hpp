@@ -22,7 +22,7 @@ struct SimulatorComponentOptions {
   double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
   bool exit_when_done = false;  // exit (code 0) when the scenario ends
   int wait_for_subscribers =
-      0;  // hold the clock until this many readers of rt/scan and rt/odom match
+      0;                 // hold the clock until this many readers of rt/scan and rt/odom match
   dds::FrameIds frames;  // stamped into every header
 };
 
