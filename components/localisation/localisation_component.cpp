@@ -92,10 +92,7 @@ void LocalisationComponent::Worker() {
     structloc_msgs::msg::LocalisationStatus status;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
-      const bool had_pose = session_.HasInitialPose();
-      const size_t topic_poses = inputs.initial_poses.size();
-      session_.Apply(inputs, dds::topics::kInitialPose.name);
-      if (topic_poses > 0 && !had_pose && session_.HasInitialPose()) {
+      if (session_.Apply(inputs, dds::topics::kInitialPose.name) > 0) {
         std::cout << "localisation: initial pose set from " << dds::topics::kInitialPose.name
                   << std::endl;
       }

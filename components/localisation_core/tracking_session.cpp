@@ -97,13 +97,17 @@ void TrackingSession::AddScan(SessionScan scan, double now) {
   waiting_.push_back({std::move(scan), now});
 }
 
-void TrackingSession::Apply(SessionInputs& inputs, const std::string& initial_pose_source) {
+size_t TrackingSession::Apply(SessionInputs& inputs, const std::string& initial_pose_source) {
   for (const auto& o : inputs.odometry) AddOdometry(o.stamp, o.pose, inputs.scan_arrived_s);
+  size_t set = 0;
   for (const auto& p : inputs.initial_poses) {
-    SetInitialPose(p, initial_pose_source, inputs.scan_arrived_s);
+    if (SetInitialPose(p, initial_pose_source, inputs.scan_arrived_s) == InitialPoseOutcome::kSet) {
+      ++set;
+    }
   }
   dropped_ += inputs.dropped;
   if (inputs.scan) AddScan(std::move(*inputs.scan), inputs.scan_arrived_s);
+  return set;
 }
 
 std::optional<geometry::Pose2D> TrackingSession::OdometryAt(double t) const {

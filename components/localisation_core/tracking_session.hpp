@@ -80,7 +80,8 @@ class TrackingSession {
                                     double now);
   void AddScan(SessionScan scan, double now);
   // Everything an inbox collected, in the order odometry, initial poses, scan.
-  void Apply(SessionInputs& inputs, const std::string& initial_pose_source);
+  // Returns how many of its initial poses were set.
+  size_t Apply(SessionInputs& inputs, const std::string& initial_pose_source);
 
   // The next scan that is ready, processed; nullopt when none is (yet).
   // `end_of_input`: no more odometry will come, process what waits. In
