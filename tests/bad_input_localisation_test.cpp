@@ -201,8 +201,10 @@ TEST(BadInputLocalisation, M7_DiagnosticsNameTheMissingSourceAndEscalate) {
 TEST(BadInputLocalisation, M7_IncompatibleQosIsReported) {
   testing::LocalisationFeed feed("qos_feeder", kDomain);
   // A reader that wants TRANSIENT_LOCAL durability from the VOLATILE pose writer.
-  feed.Node().Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      {"rt/pose", "latched_result"}, [](const geometry_msgs::msg::PoseWithCovarianceStamped&) {});
+  const auto durable_reader =
+      feed.Node().Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          {"rt/pose", "latched_result"},
+          [](const geometry_msgs::msg::PoseWithCovarianceStamped&) {});
   auto localisation = StartLocalisation({"--initial-pose", "2 6.5 0"});
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   ASSERT_TRUE(testing::WaitUntil([&] {

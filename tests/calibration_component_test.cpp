@@ -32,13 +32,14 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   dds::Node observer(testing::TestNodeOptions("cal_observer", kDomain));
   std::mutex mutex;
   std::string calibration_state;
-  observer.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-      dds::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
-        std::lock_guard<std::mutex> lock(mutex);
-        for (const auto& s : a.status()) {
-          if (s.name() == "structloc/calibration") calibration_state = s.message();
-        }
-      });
+  const auto diagnostics_subscription =
+      observer.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+          dds::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
+            std::lock_guard<std::mutex> lock(mutex);
+            for (const auto& s : a.status()) {
+              if (s.name() == "structloc/calibration") calibration_state = s.message();
+            }
+          });
   const std::vector<std::string> common = {"--domain", std::to_string(kDomain), "--qos",
                                            testing::ShippedQos()};
   auto args = [&](std::vector<std::string> extra) {
@@ -67,7 +68,7 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   // A subscriber that joins only now.
   dds::Node late(testing::TestNodeOptions("late_subscriber", kDomain));
   std::optional<structloc_msgs::msg::CalibrationResult> result;
-  late.Subscribe<structloc_msgs::msg::CalibrationResultPubSubType>(
+  const auto result_subscription = late.Subscribe<structloc_msgs::msg::CalibrationResultPubSubType>(
       dds::topics::kCalibration, [&](const structloc_msgs::msg::CalibrationResult& r) {
         std::lock_guard<std::mutex> lock(mutex);
         result = r;

@@ -36,7 +36,7 @@ std::vector<std::string> Args(int domain, const std::string& qos = testing::Ship
 class DiagnosticsListener {
  public:
   explicit DiagnosticsListener(dds::Node& node) {
-    node.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+    subscription_ = node.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
         dds::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
           std::lock_guard<std::mutex> lock(mutex_);
           for (const auto& s : a.status()) {
@@ -55,6 +55,7 @@ class DiagnosticsListener {
  private:
   std::mutex mutex_;
   std::map<std::string, std::map<std::string, std::string>> latest_;
+  dds::Subscription subscription_;  // last: destroyed first
 };
 
 TEST(Components, ExchangeSamplesAndStopCleanly) {

@@ -36,10 +36,11 @@ std::optional<typename PubSubType::type> RoundTrip(dds::Node& writer_node, dds::
                                                    typename PubSubType::type sample) {
   std::mutex mutex;
   std::optional<typename PubSubType::type> received;
-  reader_node.Subscribe<PubSubType>(topic, [&](const typename PubSubType::type& msg) {
-    std::lock_guard<std::mutex> lock(mutex);
-    received = msg;
-  });
+  const auto subscription =
+      reader_node.Subscribe<PubSubType>(topic, [&](const typename PubSubType::type& msg) {
+        std::lock_guard<std::mutex> lock(mutex);
+        received = msg;
+      });
   auto writer = writer_node.CreateWriter<PubSubType>(topic);
   if (!WaitUntil([&] { return writer.MatchedReaders() > 0; }, std::chrono::seconds(10))) {
     return std::nullopt;

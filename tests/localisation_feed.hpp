@@ -32,7 +32,7 @@ class LocalisationFeed {
         odometry_(node_.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
         initial_pose_(node_.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
             dds::topics::kInitialPose)) {
-    node_.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+    pose_subscription_ = node_.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
         dds::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
           const auto& p = m.pose().pose();
           const geometry::Pose2D pose{p.position().x(), p.position().y(),
@@ -43,7 +43,7 @@ class LocalisationFeed {
           non_finite_pose_ = non_finite_pose_ || !finite;
           poses_.emplace_back(dds::FromRosTime(m.header().stamp()), pose);
         });
-    node_.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+    diagnostics_subscription_ = node_.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
         dds::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
           std::lock_guard<std::mutex> lock(mutex_);
           for (const auto& s : a.status()) {
@@ -152,6 +152,9 @@ class LocalisationFeed {
   std::string message_;
   std::vector<std::string> messages_;
   std::map<std::string, std::string> values_;
+  // Last: destroyed first, before what their callbacks write.
+  dds::Subscription pose_subscription_;
+  dds::Subscription diagnostics_subscription_;
 };
 
 }  // namespace structloc::testing

@@ -91,23 +91,24 @@ TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) 
   std::mutex scan_mutex;
   double time_increment = 0.0;
   size_t beams = 0;
-  observer.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
+  const auto scan_subscription = observer.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
       dds::topics::kScan, [&](const sensor_msgs::msg::LaserScan& m) {
         scans.Add(dds::FromRosTime(m.header().stamp()));
         std::lock_guard<std::mutex> lock(scan_mutex);
         time_increment = m.time_increment();
         beams = m.ranges().size();
       });
-  observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+  const auto odom_subscription = observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kOdom,
       [&](const nav_msgs::msg::Odometry& m) { odom.Add(dds::FromRosTime(m.header().stamp())); });
-  observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+  const auto truth_subscription = observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kGroundTruth,
       [&](const nav_msgs::msg::Odometry& m) { truth.Add(dds::FromRosTime(m.header().stamp())); });
-  observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
-        encoders.Add(dds::FromRosTime(m.header().stamp()));
-      });
+  const auto encoder_subscription =
+      observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
+          dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
+            encoders.Add(dds::FromRosTime(m.header().stamp()));
+          });
   const auto start = std::chrono::steady_clock::now();
   process::ChildProcess sim(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",

@@ -26,6 +26,7 @@ inline constexpr int kBadInputLocalisationSecond = 71;
 inline constexpr int kBadInputConfig = 72;
 inline constexpr int kBadInputCalibration = 73;
 inline constexpr int kDomainPorts = 74;
+inline constexpr int kComponentTeardown = 81;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -43,6 +44,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kBadInputConfig,
                                     kBadInputCalibration,
                                     kDomainPorts,
+                                    kComponentTeardown,
                                     kLatencyBenchmark};
 
 constexpr bool AllDistinctAndSafe() {

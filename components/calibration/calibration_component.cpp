@@ -74,35 +74,21 @@ CalibrationComponent::CalibrationComponent(dds::Node& node,
       result_(node.CreateWriter<structloc_msgs::msg::CalibrationResultPubSubType>(
           dds::topics::kCalibration)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)) {
-  node.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
+          dds::topics::kDiagnostics)),
+      recorder_(RecorderOptions{options.record_s, options.calibration.max_encoder_gap_s}) {
+  encoders_subscription_ = node.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
       dds::topics::kWheelEncoders, [this](const structloc_msgs::msg::WheelEncoders& m) {
-        const auto s = FromWheelEncoders(m);
+        const auto sample = FromWheelEncoders(m);
         std::lock_guard<std::mutex> lock(mutex_);
-        if (estimated_) return;
-        if (!encoders_.empty() && !(s.t > encoders_.back().t)) {
-          ++encoders_out_of_order_;
-          return;
-        }
-        if (!encoders_.empty()) {
-          const double dt = s.t - encoders_.back().t;
-          largest_gap_s_ = std::max(largest_gap_s_, dt);
-          if (dt > options_.calibration.max_encoder_gap_s) ++gaps_;
-        }
-        encoders_.push_back(s);
+        recorder_.AddEncoders(sample);
       });
   // Fixes RELIABLE (the reliable_state profile): none may be lost.
-  node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      {options_.fix_topic, "reliable_state"},
+  fixes_subscription_ = node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      {options_.fix_topic, dds::qos_profiles::kReliableState},
       [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
-        const auto f = FromPoseFix(m);
+        const auto fix = FromPoseFix(m);
         std::lock_guard<std::mutex> lock(mutex_);
-        if (estimated_) return;
-        if (!geometry::IsFinite(f.pose) || (!fixes_.empty() && !(f.t > fixes_.back().t))) {
-          ++fixes_rejected_;
-          return;
-        }
-        fixes_.push_back(f);
+        recorder_.AddFix(fix);
       });
   std::ostringstream length;
   if (options_.record_s > 0) {
@@ -119,8 +105,7 @@ void CalibrationComponent::Step() {
   bool due = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    due = !estimated_ && options_.record_s > 0 && encoders_.size() > 1 &&
-          encoders_.back().t - encoders_.front().t >= options_.record_s;
+    due = recorder_.Due();
   }
   if (due) Estimate(false);
   if (now - last_diagnostics_s_ >= 1.0) PublishDiagnostics(now);
@@ -128,26 +113,26 @@ void CalibrationComponent::Step() {
 
 void CalibrationComponent::Stop() {
   bool pending = false;
+  bool early = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    pending = !estimated_ && encoders_.size() > 1 && fixes_.size() > 2;
+    pending = recorder_.WorthEstimating();
+    early = recorder_.StopIsEarly();
   }
-  // "Until stopped" ends here as planned; a stop before --record-s is the
-  // user's choice, so its estimate is a bonus whose failure is no error.
-  if (pending) Estimate(options_.record_s > 0);
+  if (pending) Estimate(early);
   std::lock_guard<std::mutex> lock(mutex_);
   if (!failure_.empty()) throw std::runtime_error(failure_);
 }
 
 void CalibrationComponent::Estimate(bool stopped_early) {
-  std::vector<EncoderSample> encoders;
-  std::vector<Fix> fixes;
+  Recording recording;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    estimated_ = true;  // recording ends here
-    encoders = encoders_;
-    fixes = fixes_;
+    recording = recorder_.Finish();
+    estimated_ = true;
   }
+  const auto& encoders = recording.encoders;
+  const auto& fixes = recording.fixes;
   CalibrationReport report;
   try {
     report = Calibrate(encoders, fixes, options_.nominal, options_.calibration);
@@ -221,18 +206,23 @@ std::string CalibrationComponent::WriteResults(const std::vector<EncoderSample>&
 void CalibrationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
   dds::HealthReport report;
-  std::lock_guard<std::mutex> lock(mutex_);
-  report.message = estimated_ ? outcome_ : "recording";
-  if (gaps_ > 0 || encoders_out_of_order_ > 0) report.level = dds::HealthLevel::kWarn;
-  if (gaps_ > 0) report.message += "; " + std::to_string(gaps_) + " gaps in the encoder stream";
-  report.values = {{"encoder_samples", std::to_string(encoders_.size())},
-                   {"fixes", std::to_string(fixes_.size())},
-                   {"encoder_gaps", std::to_string(gaps_)},
-                   {"largest_encoder_gap_s", std::to_string(largest_gap_s_)},
-                   {"encoders_out_of_order", std::to_string(encoders_out_of_order_)},
-                   {"fixes_rejected", std::to_string(fixes_rejected_)}};
-  auto diag = dds::ToDiagnosticArray("calibration", report, now);
-  diagnostics_.Write(diag);
+  RecorderStats stats;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats = recorder_.Stats();
+    report.message = recorder_.Finished() ? outcome_ : "recording";
+  }
+  if (stats.gaps > 0 || stats.encoders_out_of_order > 0) report.level = dds::HealthLevel::kWarn;
+  if (stats.gaps > 0) {
+    report.message += "; " + std::to_string(stats.gaps) + " gaps in the encoder stream";
+  }
+  report.values = {{"encoder_samples", std::to_string(stats.encoders)},
+                   {"fixes", std::to_string(stats.fixes)},
+                   {"encoder_gaps", std::to_string(stats.gaps)},
+                   {"largest_encoder_gap_s", std::to_string(stats.largest_gap_s)},
+                   {"encoders_out_of_order", std::to_string(stats.encoders_out_of_order)},
+                   {"fixes_rejected", std::to_string(stats.fixes_rejected)}};
+  diagnostics_.Write(dds::ToDiagnosticArray("calibration", report, now));
 }
 
 }  // namespace structloc::calibration

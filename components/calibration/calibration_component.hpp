@@ -3,17 +3,21 @@
 // topic) for a given time, or until it is stopped, then estimates the
 // parameters with the DDS-free calibration core, publishes the result latched
 // (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
-// recording and the calibrated robot file. Gaps in the encoder stream are
-// detected and reported, never silently bridged. A failed estimate of a
+// recording and the calibrated robot file. What is recorded and when to
+// estimate is the DDS-free CalibrationRecorder's policy (gaps in the encoder
+// stream are detected and reported, never silently bridged); this component
+// converts and moves messages around it. A failed estimate of a
 // complete recording, or a result that cannot be written, makes the process
 // exit non-zero.
 #pragma once
 
+#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "calibration_data.hpp"
+#include "calibration_recorder.hpp"
 #include "component_runtime.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
@@ -28,7 +32,7 @@ struct CalibrationComponentOptions {
   std::string robot_path;  // the nominal robot file: never overwritten
   CalibrationOptions calibration;
   double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
-  std::string fix_topic = "rt/pose";
+  std::string fix_topic = dds::topics::kPose.name;
   std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
   bool exit_when_done = false;
 
@@ -62,15 +66,15 @@ class CalibrationComponent : public dds::Component {
   CalibrationComponentOptions options_;
   dds::TopicWriter<structloc_msgs::msg::CalibrationResultPubSubType> result_;
   dds::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
-  std::mutex mutex_;
-  std::vector<EncoderSample> encoders_;
-  std::vector<Fix> fixes_;
-  size_t encoders_out_of_order_ = 0, fixes_rejected_ = 0, gaps_ = 0;
-  double largest_gap_s_ = 0.0;
-  bool estimated_ = false;
+  std::mutex mutex_;  // guards the three below
+  CalibrationRecorder recorder_;
   std::string outcome_;
   std::string failure_;  // why the run produced no usable result ("" = it did)
+  std::atomic<bool> estimated_{false};
   double last_diagnostics_s_ = 0.0;
+  // Last: destroyed first, so no sample reaches the members above then.
+  dds::Subscription encoders_subscription_;
+  dds::Subscription fixes_subscription_;
 };
 
 }  // namespace structloc::calibration

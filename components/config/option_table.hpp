@@ -229,8 +229,13 @@ class OptionTable {
 template <class S>
 class OptionFile {
  public:
-  OptionFile(std::string root, std::vector<OptionTable<S>> sections)
-      : root_(std::move(root)), sections_(std::move(sections)) {}
+  // `other_sections`: sections of the same file that another options struct
+  // reads (allowed here, not loaded).
+  OptionFile(std::string root, std::vector<OptionTable<S>> sections,
+             std::set<std::string> other_sections = {})
+      : root_(std::move(root)),
+        sections_(std::move(sections)),
+        other_sections_(std::move(other_sections)) {}
 
   const std::string& RootName() const { return root_; }
   const std::vector<OptionTable<S>>& Sections() const { return sections_; }
@@ -239,7 +244,7 @@ class OptionFile {
   // file:line for any problem.
   S Load(const XmlFile& file, S defaults = S{}) const {
     const auto& root = file.Root(root_);
-    std::set<std::string> names;
+    std::set<std::string> names = other_sections_;
     for (const auto& t : sections_) names.insert(t.Section());
     RequireChildNames(file, root, names);
     for (const auto& t : sections_) {
@@ -266,6 +271,7 @@ class OptionFile {
  private:
   std::string root_;
   std::vector<OptionTable<S>> sections_;
+  std::set<std::string> other_sections_;
 };
 
 }  // namespace structloc::config

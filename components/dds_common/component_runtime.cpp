@@ -6,18 +6,6 @@
 #include "shutdown_signal.hpp"
 
 namespace structloc::dds {
-namespace {
-
-struct CallbacksDetachedAtExit {
-  explicit CallbacksDetachedAtExit(Node& node) : node(node) {}
-  ~CallbacksDetachedAtExit() { node.DetachCallbacks(); }
-  CallbacksDetachedAtExit(const CallbacksDetachedAtExit&) = delete;
-  CallbacksDetachedAtExit& operator=(const CallbacksDetachedAtExit&) = delete;
-  Node& node;
-};
-
-}  // namespace
-
 std::vector<config::OptionSpec> StandardOptions() {
   return {
       {"domain", true,
@@ -28,6 +16,32 @@ std::vector<config::OptionSpec> StandardOptions() {
        "participant profile in the QoS file (default structloc_localhost)"},
       {"help", false, "print the options and exit"},
   };
+}
+
+std::vector<config::OptionSpec> FrameIdOptions() {
+  const FrameIds defaults;
+  return {
+      {"map-frame", true, "frame id of the map (default " + defaults.map + ")"},
+      {"odom-frame", true, "frame id of odometry (default " + defaults.odom + ")"},
+      {"base-frame", true, "frame id of the robot base (default " + defaults.base_link + ")"},
+      {"laser-frame", true, "frame id of the laser scanner (default " + defaults.laser + ")"},
+  };
+}
+
+FrameIds FrameIdsFrom(const config::CommandLine& cli) {
+  FrameIds frames;
+  auto read = [&cli](const std::string& option, std::string& frame) {
+    frame = cli.GetOr(option, frame);
+    if (frame.empty() || frame.find_first_of(" \t\n\r") != std::string::npos) {
+      throw config::ConfigError("--" + option + " '" + frame +
+                                "' must be a non-empty frame id without spaces");
+    }
+  };
+  read("map-frame", frames.map);
+  read("odom-frame", frames.odom);
+  read("base-frame", frames.base_link);
+  read("laser-frame", frames.laser);
+  return frames;
 }
 
 double WallClockSeconds() {
@@ -52,10 +66,9 @@ int RunComponent(int argc, char** argv, const std::string& name,
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);
     node.HoldCallbacks();  // none may reach a component still being built
+    // The component owns its subscriptions: destroying it (before the node,
+    // also when an exception leaves) ends every callback into it.
     auto component = factory(node, cli);
-    // Declared after the component, so destroyed before it, also when an
-    // exception leaves: no DDS callback can reach a destroyed component.
-    const CallbacksDetachedAtExit detach(node);
     node.ReleaseCallbacks();
     std::cout << node.EndpointReport() << std::flush;
     std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;

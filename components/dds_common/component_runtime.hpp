@@ -33,6 +33,12 @@ using ComponentFactory =
 // Options every component accepts, documented with their defaults.
 std::vector<config::OptionSpec> StandardOptions();
 
+// The frame-id options of components that stamp frames (--map-frame,
+// --odom-frame, --base-frame, --laser-frame), with the defaults of FrameIds.
+std::vector<config::OptionSpec> FrameIdOptions();
+// Reads them; throws config::ConfigError for an empty or blank frame id.
+FrameIds FrameIdsFrom(const config::CommandLine& cli);
+
 // Parses the command line, builds the node and runs the component.
 // Returns the process exit code (0 clean stop, 2 configuration error, 1 other failure).
 int RunComponent(int argc, char** argv, const std::string& name,

@@ -53,10 +53,6 @@ Node::~Node() {
   }
 }
 
-void Node::DetachCallbacks() {
-  for (auto& listener : listeners_) listener->Detach();
-}
-
 std::string Node::Describe(const TopicSpec& topic, const std::string& type_name) {
   return topic.name + "  [" + type_name + "]  qos=" + topic.qos_profile;
 }

@@ -1,15 +1,13 @@
 // A DDS participant with one publisher and one subscriber, the way a ROS 2
 // node looks on the wire: typed writers and callback readers created from the
-// topic table and QoS profiles by name. Components are thin adapters on top.
+// topic table and QoS profiles by name; subscriptions are handles owned by
+// the subscriber (subscription.hpp). Components are thin adapters on top.
 #pragma once
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
-#include <fastdds/dds/subscriber/DataReader.hpp>
-#include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -25,6 +23,7 @@
 
 #include "peer_monitor.hpp"
 #include "qos_profiles.hpp"
+#include "subscription.hpp"
 #include "topics.hpp"
 
 namespace structloc::dds {
@@ -78,27 +77,26 @@ class Node {
     return TopicWriter<PubSubType>(writer);
   }
 
-  // `callback` runs on a DDS thread for every valid sample; exceptions it
-  // throws are caught and logged so one bad sample cannot stop the component.
+  // `callback` runs on a DDS thread for every valid sample, as long as the
+  // returned handle lives: keep it as a member of the object the callback
+  // points into, declared after everything the callback uses, so that it is
+  // destroyed first. Exceptions the callback throws are caught and logged.
   template <class PubSubType>
-  void Subscribe(const TopicSpec& topic,
-                 std::function<void(const typename PubSubType::type&)> callback) {
+  [[nodiscard]] Subscription Subscribe(
+      const TopicSpec& topic, std::function<void(const typename PubSubType::type&)> callback) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
     auto listener = std::make_unique<CallbackListener<PubSubType>>(
         options_.name, topic.name, *monitor_, callbacks_held_, std::move(callback));
     auto* reader = subscriber_->create_datareader(
         dds_topic, qos_.Reader(*subscriber_, topic.qos_profile), listener.get());
     if (reader == nullptr) throw std::runtime_error("cannot create reader for " + topic.name);
-    listeners_.push_back(std::move(listener));
     endpoints_.push_back("subscribes " + Describe(topic, dds_topic->get_type_name()));
+    return Subscription(subscriber_, reader, std::move(listener));
   }
 
-  // After this returns no subscription callback runs, now or later: called
-  // before the object the callbacks point into is destroyed.
-  void DetachCallbacks();
   // While held, arriving samples wait in their readers and no callback runs:
-  // a component is built with callbacks held, so that one that throws from
-  // its constructor after subscribing is never called back half-destroyed.
+  // a component is built with callbacks held, so that none reaches an object
+  // whose constructor has not finished.
   void HoldCallbacks() { callbacks_held_ = true; }
   void ReleaseCallbacks() { callbacks_held_ = false; }
 
@@ -110,57 +108,6 @@ class Node {
   std::vector<std::string> PeerProblems() const { return monitor_->Problems(); }
 
  private:
-  class DetachableListener : public eprosima::fastdds::dds::DataReaderListener {
-   public:
-    virtual void Detach() = 0;
-  };
-
-  template <class PubSubType>
-  class CallbackListener : public DetachableListener {
-   public:
-    CallbackListener(std::string node, std::string topic, PeerMonitor& monitor,
-                     const std::atomic<bool>& held,
-                     std::function<void(const typename PubSubType::type&)> callback)
-        : node_(std::move(node)),
-          topic_(std::move(topic)),
-          monitor_(monitor),
-          held_(held),
-          callback_(std::move(callback)) {}
-    void on_requested_incompatible_qos(
-        eprosima::fastdds::dds::DataReader*,
-        const eprosima::fastdds::dds::RequestedIncompatibleQosStatus& status) override {
-      monitor_.IncompatibleQos(topic_, "subscription", status.last_policy_id);
-    }
-    void Detach() override {
-      std::lock_guard<std::mutex> lock(mutex_);
-      callback_ = nullptr;
-    }
-    void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
-      if (held_) return;  // taken with the next sample after ReleaseCallbacks()
-      typename PubSubType::type sample;
-      eprosima::fastdds::dds::SampleInfo info;
-      std::lock_guard<std::mutex> lock(mutex_);  // Detach() waits for a running callback
-      while (callback_ && reader->take_next_sample(&sample, &info) ==
-                              eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-        if (!info.valid_data) continue;
-        try {
-          callback_(sample);
-        } catch (const std::exception& e) {
-          std::cerr << node_ << ": error handling a sample on " << topic_ << ": " << e.what()
-                    << std::endl;
-        }
-      }
-    }
-
-   private:
-    std::string node_;
-    std::string topic_;
-    PeerMonitor& monitor_;
-    const std::atomic<bool>& held_;
-    std::mutex mutex_;
-    std::function<void(const typename PubSubType::type&)> callback_;
-  };
-
   class WriterListener : public eprosima::fastdds::dds::DataWriterListener {
    public:
     WriterListener(PeerMonitor& monitor, std::string topic)
@@ -199,7 +146,6 @@ class Node {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
-  std::vector<std::unique_ptr<DetachableListener>> listeners_;
   std::vector<std::unique_ptr<WriterListener>> writer_listeners_;
   std::vector<std::string> endpoints_;
 };

@@ -17,26 +17,22 @@ logs::StampedPose Stamped(const builtin_interfaces::msg::Time& t,
 }
 }  // namespace
 
-LiveEvaluator::~LiveEvaluator() {
-  node_.DetachCallbacks();
-}
-
 LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_pose)
     : node_(node), initial_pose_(initial_pose) {
-  node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+  subscriptions_.push_back(node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kGroundTruth, [this](const nav_msgs::msg::Odometry& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         truth_.push_back(Stamped(m.header().stamp(), m.pose().pose()));
         snapshot_.sim_time_s = truth_.back().stamp - truth_.front().stamp;
-      });
-  node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+      }));
+  subscriptions_.push_back(node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         auto s = Stamped(m.header().stamp(), m.pose().pose());
         s.pose = geometry::Compose(initial_pose_, s.pose);
         odometry_.push_back(s);
-      });
-  node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      }));
+  subscriptions_.push_back(node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         estimate_.push_back(Stamped(m.header().stamp(), m.pose().pose()));
@@ -54,8 +50,8 @@ LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_po
           }
           if (truth_[i].stamp < e.stamp) break;
         }
-      });
-  node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
+      }));
+  subscriptions_.push_back(node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
       dds::topics::kStatus, [this](const structloc_msgs::msg::LocalisationStatus& s) {
         std::lock_guard<std::mutex> lock(mutex_);
         snapshot_.matched_features = 0;
@@ -67,7 +63,7 @@ LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_po
         snapshot_.quality = s.quality();
         snapshot_.lost = s.lost();
         if (s.lost()) ++lost_;
-      });
+      }));
 }
 
 LiveSnapshot LiveEvaluator::Snapshot() {

@@ -28,8 +28,6 @@ class LiveEvaluator {
  public:
   // `initial_pose`: the robot's map pose at odometry's origin (for odometry-only paths).
   LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_pose);
-  // Detaches the node's callbacks, which point into this object.
-  ~LiveEvaluator();
   LiveEvaluator(const LiveEvaluator&) = delete;
   LiveEvaluator& operator=(const LiveEvaluator&) = delete;
 
@@ -51,6 +49,8 @@ class LiveEvaluator {
   std::vector<logs::StampedPose> truth_, estimate_, odometry_;
   LiveSnapshot snapshot_;
   uint64_t lost_ = 0;
+  // Last: destroyed first, so no callback reaches the members above then.
+  std::vector<dds::Subscription> subscriptions_;
 };
 
 }  // namespace structloc::evaluation

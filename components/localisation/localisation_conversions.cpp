@@ -19,6 +19,15 @@ ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg) {
   return s;
 }
 
+SessionScan ToSessionScan(const sensor_msgs::msg::LaserScan& msg) {
+  SessionScan s;
+  s.geometry = FromLaserScan(msg);
+  s.geometry.ranges = nullptr;
+  s.geometry.count = 0;
+  s.ranges = msg.ranges();
+  return s;
+}
+
 StampedPose2D FromOdometry(const nav_msgs::msg::Odometry& msg) {
   const auto& p = msg.pose().pose();
   return {dds::FromRosTime(msg.header().stamp()),
@@ -38,10 +47,11 @@ StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianc
           {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
 }
 
-geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(const TrackedPose& t) {
+geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
+    const TrackedPose& t, const dds::FrameIds& frames) {
   geometry_msgs::msg::PoseWithCovarianceStamped msg;
   msg.header().stamp(dds::ToRosTime(t.stamp));
-  msg.header().frame_id("map");
+  msg.header().frame_id(frames.map);
   msg.pose().pose().position().x(t.pose.x);
   msg.pose().pose().position().y(t.pose.y);
   msg.pose().pose().orientation(dds::ToQuaternion(t.pose.theta));
@@ -54,11 +64,12 @@ geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(const 
   return msg;
 }
 
-tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp) {
+tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp,
+                                       const dds::FrameIds& frames) {
   geometry_msgs::msg::TransformStamped t;
   t.header().stamp(dds::ToRosTime(stamp));
-  t.header().frame_id("map");
-  t.child_frame_id("odom");
+  t.header().frame_id(frames.map);
+  t.child_frame_id(frames.odom);
   t.transform().translation().x(m.x);
   t.transform().translation().y(m.y);
   t.transform().rotation(dds::ToQuaternion(m.theta));
@@ -67,10 +78,11 @@ tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp) 
   return msg;
 }
 
-structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, double stamp) {
+structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, double stamp,
+                                                 const dds::FrameIds& frames) {
   structloc_msgs::msg::ScanFeatures msg;
   msg.header().stamp(dds::ToRosTime(stamp));
-  msg.header().frame_id("laser");
+  msg.header().frame_id(frames.laser);
   for (const auto& kind : r.features) {
     structloc_msgs::msg::FeatureSet set;
     set.kind(kind.kind);
@@ -101,10 +113,10 @@ structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, do
 
 structloc_msgs::msg::LocalisationStatus ToStatus(const LocalisationResult& r,
                                                  const TrackerStats& stats, uint64_t dropped,
-                                                 double stamp) {
+                                                 double stamp, const dds::FrameIds& frames) {
   structloc_msgs::msg::LocalisationStatus s;
   s.header().stamp(dds::ToRosTime(stamp));
-  s.header().frame_id("map");
+  s.header().frame_id(frames.map);
   s.quality(r.quality);
   s.lost(r.lost);
   s.lost_reason(r.lost ? ToString(r.lost_reason) : "");

@@ -10,19 +10,21 @@
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
   namespace loc = structloc::localisation;
+  std::vector<structloc::config::OptionSpec> specs = {
+      {"map", true, "world model XML (default: maps/office_floor.xml in structloc's data folder)"},
+      {"params", true,
+       "localisation parameters (default: maps/params/office_sick.xml in structloc's data folder)"},
+      {"initial-pose", true,
+       "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
+       "it stands, or publish rt/initialpose with a stamp)"},
+      {"state-file", true, "where the pose is saved and resumed from (default: none)"},
+      {"max-walls", true,
+       "refuse maps with more walls than this (default " +
+           std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}};
+  const auto frame_options = structloc::dds::FrameIdOptions();
+  specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds::RunComponent(
-      argc, argv, "localisation",
-      {{"map", true, "world model XML (default: maps/office_floor.xml in structloc's data folder)"},
-       {"params", true,
-        "localisation parameters (default: maps/params/office_sick.xml in structloc's data "
-        "folder)"},
-       {"initial-pose", true,
-        "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
-        "it stands, or publish rt/initialpose with a stamp)"},
-       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
-       {"max-walls", true,
-        "refuse maps with more walls than this (default " +
-            std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}},
+      argc, argv, "localisation", specs,
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         structloc::world::WorldLimits limits;
         limits.max_walls = static_cast<size_t>(
@@ -38,9 +40,11 @@ int main(int argc, char** argv) {
             << " cylinders (loaded in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
             << " s)" << std::endl;
-        const auto params =
-            loc::LoadLocaliserOptions(cli.PathOr("params", "maps/params/office_sick.xml"));
+        const std::string params_path = cli.PathOr("params", "maps/params/office_sick.xml");
+        const auto params = loc::LoadLocaliserOptions(params_path);
+        const auto session = loc::LoadSessionOptions(params_path);
         loc::LocalisationComponentOptions options;
+        options.frames = structloc::dds::FrameIdsFrom(cli);
         options.state_file = cli.GetOr("state-file", "");
         if (auto text = cli.Get("initial-pose")) {
           const auto pose = structloc::config::ParseNumberList(*text, 3);
@@ -56,7 +60,7 @@ int main(int argc, char** argv) {
           }
           options.initial_pose = structloc::geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
         }
-        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params,
+        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params, session,
                                                             options);
       });
 }

@@ -110,7 +110,10 @@ config::OptionFile<LocaliserOptions> LocaliserOptionFile() {
   for (auto* section : {SolverSection, VisibilitySection, SensorMountSection, GatesSection}) {
     sections.push_back(section());
   }
-  return config::OptionFile<LocaliserOptions>("localisation_params", std::move(sections));
+  // <tracking> is the tracking session's block of the same file
+  // (tracking_session_options.hpp).
+  return config::OptionFile<LocaliserOptions>("localisation_params", std::move(sections),
+                                              {"tracking"});
 }
 
 void PrintLocaliserOptions(std::ostream& out) {

@@ -54,23 +54,6 @@ uint64_t TrackerStats::Rejected() const {
   return n;
 }
 
-void TrackerOptions::Validate() const {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("tracker: ") + what);
-  };
-  require(odometry_wait_s >= 0, "odometry_wait_s must be >= 0");
-  require(max_extrapolation_s >= 0 && max_extrapolation_s <= 0.2,
-          "max_extrapolation_s must be in [0, 0.2]");
-  require(max_future_s > 0, "max_future_s must be > 0");
-  require(max_odometry_speed_m_s > 0, "max_odometry_speed_m_s must be > 0");
-  require(odometry_sigma_xy_per_m >= 0 && odometry_sigma_theta_per_m >= 0 &&
-              odometry_sigma_theta_per_rad >= 0,
-          "odometry sigmas must be >= 0");
-  require(max_odometry_turn_rate_rad_s > 0, "max_odometry_turn_rate_rad_s must be > 0");
-  require(max_scan_duration_s > 0, "max_scan_duration_s must be > 0");
-  require(initial_sigma_xy_m > 0 && initial_sigma_theta_rad > 0, "initial sigmas must be > 0");
-}
-
 PoseTracker::PoseTracker(const world::WorldModel& world, const LocaliserOptions& localiser_options,
                          const TrackerOptions& options)
     : localiser_(world, localiser_options), options_(options), history_(4096) {

@@ -5,7 +5,9 @@
 // (covariance growing with the distance driven), and keeps the map -> odom
 // correction so that between scans the pose follows odometry. A lost update
 // never moves the correction: the robot keeps dead reckoning and says so.
-// Used by the localisation component and the offline replay alike.
+// Run by the TrackingSession (tracking_session.hpp), which the localisation
+// component and the offline replay share; its options come from the
+// <tracking> block of the parameter file.
 #pragma once
 
 #include <array>

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
@@ -12,27 +11,23 @@
 #include "localiser_options.hpp"
 #include "map_canvas.hpp"
 #include "output_file.hpp"
-#include "pose_tracker.hpp"
 #include "prefilter.hpp"
 #include "recording_writers.hpp"
 #include "strict_xml.hpp"
+#include "tracking_session.hpp"
 #include "world_model_xml.hpp"
 
 namespace structloc::replay {
 namespace {
 
-using localisation::PoseTracker;
+using localisation::ScanReport;
+using localisation::TrackingSession;
 
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
-
-// A scan read from the log, waiting until odometry covers it.
-struct PendingScan {
-  logs::CarmenRecord record;
-};
 
 class Replayer {
  public:
@@ -51,7 +46,10 @@ class Replayer {
     if (!o.no_map)
       world_ =
           std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path, o.world_limits));
-    if (!o.params_path.empty()) params_ = localisation::LoadLocaliserOptions(o.params_path);
+    if (!o.params_path.empty()) {
+      params_ = localisation::LoadLocaliserOptions(o.params_path);
+      session_options_ = localisation::LoadSessionOptions(o.params_path);
+    }
     if (!o.truth_path.empty()) {
       truth_ = logs::ReadTum(o.truth_path);
       if (truth_.empty()) {
@@ -60,6 +58,7 @@ class Replayer {
       }
     }
     reader_ = std::make_unique<logs::CarmenReader>(o.log_path, o.limits);
+    StartSession();
     const std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
     out_ = std::make_unique<logs::TumWriter>(o.out_tum, inputs);
     if (!o.fixes_path.empty()) {
@@ -74,17 +73,18 @@ class Replayer {
     size_t records = 0;
     while (reader_->Next(r)) {
       ++records;
-      time_increment_ = reader_->LaserTimeIncrement();
       if (r.kind == logs::CarmenRecord::Kind::kOdometry) {
-        AddOdometry(r.stamp, *r.robot_pose);
+        session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
       } else {
-        if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
-        pending_.push_back({r});
+        if (r.robot_pose) session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
+        session_->AddScan(ToSessionScan(r), r.stamp);
       }
       Drain(false);
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
     }
     Drain(true);
+    report_.lost_periods = session_->LostPeriods();
+    report_.lost_duration_s = session_->LostSeconds();
     report_.log = reader_->Stats();
     if (report_.scans_used == 0) {
       throw std::runtime_error(o_.log_path + ": no scan could be localised, nothing written\n" +
@@ -109,116 +109,89 @@ class Replayer {
   }
 
  private:
-  void AddOdometry(double stamp, const geometry::Pose2D& pose) {
-    if (odometry_.empty() || stamp > odometry_.back().stamp) odometry_.push_back({stamp, pose});
-    if (tracker_) tracker_->AddOdometry(stamp, pose);
-  }
-
-  // Processes waiting scans once odometry covers them (or at the end of the
-  // log). A log whose odometry never comes (RAWLASER lines without ODOM)
-  // must not keep every scan in memory: beyond kMaxPendingScans the oldest is
-  // processed with what there is (and rejected if no odometry covers it).
-  void Drain(bool end) {
-    constexpr size_t kMaxPendingScans = 1000;
-    while (!pending_.empty()) {
-      const auto& rec = pending_.front().record;
-      const double last_beam =
-          rec.stamp +
-          time_increment_ * static_cast<double>(rec.ranges.size() ? rec.ranges.size() - 1 : 0);
-      const bool overdue = pending_.size() > kMaxPendingScans;
-      if (!end && !overdue && (odometry_.empty() || odometry_.back().stamp < last_beam)) return;
-      Process(rec);
-      pending_.pop_front();
-    }
-  }
-
-  // Odometry pose at `t` from what has been read (interpolated).
-  std::optional<geometry::Pose2D> OdometryAt(double t) const {
-    if (odometry_.empty() || t < odometry_.front().stamp) return std::nullopt;
-    auto it = std::lower_bound(odometry_.begin(), odometry_.end(), t,
-                               [](const logs::StampedPose& p, double s) { return p.stamp < s; });
-    if (it == odometry_.end()) return odometry_.back().pose;
-    if (it == odometry_.begin() || it->stamp == t) return it->pose;
-    const auto& a = *(it - 1);
-    return geometry::Interpolate(a.pose, it->pose, (t - a.stamp) / (it->stamp - a.stamp));
-  }
-
-  void Start(const logs::CarmenRecord& first, const geometry::Pose2D& odom) {
-    if (first.laser_pose && first.robot_pose) {
-      report_.sensor_mount = geometry::Between(*first.robot_pose, *first.laser_pose);
-      params_.sensor_mount = report_.sensor_mount;
-    } else {
-      report_.sensor_mount = params_.sensor_mount;
+  // The sensor mounting from the first laser line that has both the laser's
+  // and the robot's pose (else the parameters'), read ahead of the replay so
+  // that the session starts with its final options.
+  void StartSession() {
+    report_.sensor_mount = params_.sensor_mount;
+    logs::CarmenReader ahead(o_.log_path, o_.limits);
+    logs::CarmenRecord r;
+    while (ahead.Next(r)) {
+      if (r.kind != logs::CarmenRecord::Kind::kScan) continue;
+      if (r.laser_pose && r.robot_pose) {
+        report_.sensor_mount = geometry::Between(*r.robot_pose, *r.laser_pose);
+        params_.sensor_mount = report_.sensor_mount;
+      }
+      break;
     }
     params_.max_beams = std::max(params_.max_beams, 4096);
-    first_odometry_ = odom;
-    if (!o_.no_map) {
-      tracker_ = std::make_unique<PoseTracker>(*world_, params_, localisation::TrackerOptions{});
-      for (const auto& p : odometry_) tracker_->AddOdometry(p.stamp, p.pose);
-      tracker_->SetInitialPose(first.stamp, *o_.initial_pose,
-                               localisation::TrackerOptions{}.InitialCovariance());
-    }
-    started_ = true;
+    session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
+                                                 localisation::Scheduling::kInOrder);
+    session_->ExpectInitialPose(*o_.initial_pose, TrackingSession::InitialPoseWhen::kAtFirstScan);
   }
 
-  void Process(const logs::CarmenRecord& rec) {
-    const auto odom = rec.robot_pose ? rec.robot_pose : OdometryAt(rec.stamp);
-    if (!odom) {
-      ++report_.scans_rejected["no odometry before the first laser line"];
+  localisation::SessionScan ToSessionScan(const logs::CarmenRecord& rec) const {
+    localisation::SessionScan scan;
+    scan.geometry.stamp = rec.stamp;
+    scan.geometry.angle_min = rec.start_angle;
+    scan.geometry.angle_increment = rec.angular_resolution;
+    scan.geometry.angle_max = NAN;
+    scan.geometry.time_increment = reader_->LaserTimeIncrement();
+    scan.geometry.range_min = 0.0;
+    scan.geometry.range_max = rec.max_range;
+    scan.ranges = rec.ranges;
+    scan.odometry = rec.robot_pose;
+    return scan;
+  }
+
+  // Handles the scans the session has ready (all of them at the end of the log).
+  void Drain(bool end) {
+    while (auto report = session_->Next(0.0, end)) Handle(*report);
+  }
+
+  void Handle(const ScanReport& report) {
+    const auto& scan = report.scan;
+    if (!report.odometry) {
+      ++report_.scans_rejected[localisation::ToString(report.rejection)];
       return;
     }
-    if (!started_) Start(rec, *odom);
+    if (!have_first_odometry_) {
+      first_odometry_ = *report.odometry;
+      have_first_odometry_ = true;
+    }
     // Odometry alone, carried from the initial pose.
     const geometry::Pose2D dead_reckoned =
-        geometry::Compose(*o_.initial_pose, geometry::Between(first_odometry_, *odom));
-    odometry_only_.push_back({rec.stamp, dead_reckoned});
+        geometry::Compose(*o_.initial_pose, geometry::Between(first_odometry_, *report.odometry));
+    odometry_only_.push_back({report.stamp, dead_reckoned});
     if (o_.no_map) {
-      PassThrough(rec, dead_reckoned);
+      PassThrough(scan, report, dead_reckoned);
       return;
     }
-    localisation::ScanInput in;
-    in.stamp = rec.stamp;
-    in.angle_min = rec.start_angle;
-    in.angle_increment = rec.angular_resolution;
-    in.angle_max = NAN;
-    in.time_increment = time_increment_;
-    in.range_min = 0.0;
-    in.range_max = rec.max_range;
-    in.ranges = rec.ranges.data();
-    in.count = rec.ranges.size();
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto outcome = tracker_->ProcessScan(in, 1e9);
-    times_us_.push_back(
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    if (outcome.verdict != PoseTracker::ScanVerdict::kProcessed) {
-      ++report_.scans_rejected[localisation::ToString(outcome.rejection)];
+    times_us_.push_back(report.update_us);
+    if (report.kind != ScanReport::Kind::kTracked) {
+      ++report_.scans_rejected[localisation::ToString(report.rejection)];
       return;
     }
-    const auto& r = *outcome.result;
+    const auto& r = *report.result;
     ++report_.scans_used;
     features_ += r.Matched();
-    if (r.lost) {
-      ++report_.scans_lost;
-      if (!lost_) ++report_.lost_periods;
-      if (lost_) report_.lost_duration_s += rec.stamp - last_stamp_;
-    }
-    lost_ = r.lost;
-    last_stamp_ = rec.stamp;
-    Emit(rec, outcome.pose.pose);
+    if (r.lost) ++report_.scans_lost;
+    Emit(scan, report.pose.pose);
     if (fixes_ && !r.lost) {
-      const auto& c = outcome.pose.covariance;
-      fixes_->Fix(rec.stamp, outcome.pose.pose, c(0, 0), c(1, 1), c(2, 2));
+      const auto& c = report.pose.covariance;
+      fixes_->Fix(report.stamp, report.pose.pose, c(0, 0), c(1, 1), c(2, 2));
     }
   }
 
-  void PassThrough(const logs::CarmenRecord& rec, const geometry::Pose2D& pose) {
+  void PassThrough(const localisation::SessionScan& scan, const ScanReport& report,
+                   const geometry::Pose2D& pose) {
     // Still exercise parsing, filtering and timing on every scan.
     localisation::ScanView view;
-    view.ranges = rec.ranges.data();
-    view.count = rec.ranges.size();
-    view.angle_min = rec.start_angle;
-    view.angle_increment = rec.angular_resolution;
-    view.range_max = rec.max_range;
+    view.ranges = scan.ranges.data();
+    view.count = scan.ranges.size();
+    view.angle_min = scan.geometry.angle_min;
+    view.angle_increment = scan.geometry.angle_increment;
+    view.range_max = scan.geometry.range_max;
     const auto t0 = std::chrono::steady_clock::now();
     if (view.count > 0 && view.angle_increment != 0.0) {
       directions_.Update(view);
@@ -230,28 +203,25 @@ class Replayer {
     }
     times_us_.push_back(
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    if (view.count == 0 || view.angle_increment == 0.0) {
-      ++report_.scans_rejected["empty scan"];
+    if (report.kind == ScanReport::Kind::kRejected) {
+      ++report_.scans_rejected[localisation::ToString(report.rejection)];
       return;
     }
-    if (!(rec.stamp > last_stamp_)) {
-      ++report_.scans_rejected["scan stamp not after the previous scan"];
-      return;
-    }
-    last_stamp_ = rec.stamp;
     ++report_.scans_used;
-    Emit(rec, pose);
+    Emit(scan, pose);
   }
 
-  void Emit(const logs::CarmenRecord& rec, const geometry::Pose2D& pose) {
-    out_->Pose(rec.stamp, pose);
-    report_.estimate.push_back({rec.stamp, pose});
+  void Emit(const localisation::SessionScan& scan, const geometry::Pose2D& pose) {
+    const double stamp = scan.geometry.stamp;
+    out_->Pose(stamp, pose);
+    report_.estimate.push_back({stamp, pose});
     if (!o_.plot_path.empty() && report_.scans_used % 10 == 1) {
       const geometry::Pose2D laser = geometry::Compose(pose, report_.sensor_mount);
-      for (size_t i = 0; i < rec.ranges.size(); i += 2) {
-        const double range = rec.ranges[i];
-        if (!(range > 0.1 && range < std::min(rec.max_range, 30.0))) continue;
-        const double a = rec.start_angle + static_cast<double>(i) * rec.angular_resolution;
+      for (size_t i = 0; i < scan.ranges.size(); i += 2) {
+        const double range = scan.ranges[i];
+        if (!(range > 0.1 && range < std::min(scan.geometry.range_max, 30.0))) continue;
+        const double a =
+            scan.geometry.angle_min + static_cast<double>(i) * scan.geometry.angle_increment;
         scan_points_.push_back(laser.Apply({range * std::cos(a), range * std::sin(a)}));
       }
     }
@@ -339,18 +309,14 @@ class Replayer {
   std::unique_ptr<logs::FixesCsvWriter> fixes_;
   std::unique_ptr<config::OutputFile> plot_;
   localisation::LocaliserOptions params_;
-  std::unique_ptr<PoseTracker> tracker_;
-  std::vector<logs::StampedPose> odometry_;
+  localisation::SessionOptions session_options_;
+  std::unique_ptr<TrackingSession> session_;
   std::vector<logs::StampedPose> odometry_only_;
-  std::deque<PendingScan> pending_;
   geometry::Pose2D first_odometry_;
-  bool started_ = false;
-  double time_increment_ = 0.0;
+  bool have_first_odometry_ = false;
   ReplayReport report_;
   std::vector<double> times_us_;
   size_t features_ = 0;
-  bool lost_ = false;
-  double last_stamp_ = -1e300;
   std::vector<Eigen::Vector2d> scan_points_;
   localisation::BeamDirections directions_;
   localisation::ScanPoints points_;

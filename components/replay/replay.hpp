@@ -1,5 +1,5 @@
-// Offline replay of a CARMEN log through the same PoseTracker / Localiser as
-// the localisation component: one TUM line per scan, a summary (scans used and
+// Offline replay of a CARMEN log through the same TrackingSession (scans in
+// order, each once odometry covers it) as the localisation component: one TUM line per scan, a summary (scans used and
 // rejected by reason, features matched, lost periods, time per update), and,
 // given ground truth, the error of the estimate and of odometry alone.
 // --no-map passes odometry through while still parsing, prefiltering and

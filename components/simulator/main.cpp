@@ -3,17 +3,20 @@
 
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
+  std::vector<structloc::config::OptionSpec> specs = {
+      {"scenario", true,
+       "scenario XML (default: maps/scenarios/office_people.xml in structloc's data folder)"},
+      {"time-scale", true,
+       "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
+      {"seed", true, "override the scenario's seed"},
+      {"exit-when-done", false, "exit when the scenario ends"},
+      {"wait-for-subscribers", true,
+       "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
+       "0)"}};
+  const auto frame_options = structloc::dds::FrameIdOptions();
+  specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds::RunComponent(
-      argc, argv, "simulator",
-      {{"scenario", true,
-        "scenario XML (default: maps/scenarios/office_people.xml in structloc's data folder)"},
-       {"time-scale", true,
-        "simulated seconds per wall second, 0 = as fast as possible (default 1)"},
-       {"seed", true, "override the scenario's seed"},
-       {"exit-when-done", false, "exit when the scenario ends"},
-       {"wait-for-subscribers", true,
-        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
-        "0)"}},
+      argc, argv, "simulator", specs,
       [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
         auto scenario = structloc::simulation::LoadScenario(
             cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
@@ -28,6 +31,7 @@ int main(int argc, char** argv) {
           throw ConfigError("--time-scale must be in [0, 1000]");
         }
         options.exit_when_done = cli.Has("exit-when-done");
+        options.frames = structloc::dds::FrameIdsFrom(cli);
         options.wait_for_subscribers = static_cast<int>(cli.Integer("wait-for-subscribers", 0));
         if (options.wait_for_subscribers < 0)
           throw ConfigError("--wait-for-subscribers must be >= 0");

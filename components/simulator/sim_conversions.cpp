@@ -5,10 +5,11 @@
 
 namespace structloc::simulator {
 
-sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double offset) {
+sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double offset,
+                                        const dds::FrameIds& frames) {
   sensor_msgs::msg::LaserScan msg;
   msg.header().stamp(dds::ToRosTime(offset + scan.stamp));
-  msg.header().frame_id("laser");
+  msg.header().frame_id(frames.laser);
   msg.angle_min(static_cast<float>(scan.angle_min));
   msg.angle_increment(static_cast<float>(scan.angle_increment));
   msg.angle_max(static_cast<float>(
@@ -22,11 +23,12 @@ sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double 
 }
 
 namespace {
-nav_msgs::msg::Odometry PoseMessage(const geometry::Pose2D& p, double stamp, const char* frame) {
+nav_msgs::msg::Odometry PoseMessage(const geometry::Pose2D& p, double stamp,
+                                    const std::string& frame, const std::string& child_frame) {
   nav_msgs::msg::Odometry msg;
   msg.header().stamp(dds::ToRosTime(stamp));
   msg.header().frame_id(frame);
-  msg.child_frame_id("base_link");
+  msg.child_frame_id(child_frame);
   msg.pose().pose().position().x(p.x);
   msg.pose().pose().position().y(p.y);
   msg.pose().pose().orientation(dds::ToQuaternion(p.theta));
@@ -34,9 +36,9 @@ nav_msgs::msg::Odometry PoseMessage(const geometry::Pose2D& p, double stamp, con
 }
 }  // namespace
 
-nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distance_m,
-                                   double offset) {
-  auto msg = PoseMessage(s.odometry, offset + s.time, "odom");
+nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distance_m, double offset,
+                                   const dds::FrameIds& frames) {
+  auto msg = PoseMessage(s.odometry, offset + s.time, frames.odom, frames.base_link);
   msg.twist().twist().linear().x(s.odom_linear);
   msg.twist().twist().angular().z(s.odom_angular);
   // A plain drift model: 2 cm and 0.6 deg per metre driven (1 sigma), plus a floor.
@@ -48,16 +50,18 @@ nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distanc
   return msg;
 }
 
-nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& s, double offset) {
-  return PoseMessage(s.truth, offset + s.time, "map");
+nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& s, double offset,
+                                      const dds::FrameIds& frames) {
+  return PoseMessage(s.truth, offset + s.time, frames.map, frames.base_link);
 }
 
 structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation::SimState& s,
                                                    const kinematics::RobotParameters& nominal,
-                                                   uint64_t previous_ticks, double offset) {
+                                                   uint64_t previous_ticks, double offset,
+                                                   const dds::FrameIds& frames) {
   structloc_msgs::msg::WheelEncoders msg;
   msg.header().stamp(dds::ToRosTime(offset + s.time));
-  msg.header().frame_id("base_link");
+  msg.header().frame_id(frames.base_link);
   msg.traction_ticks(static_cast<uint32_t>(s.traction_ticks));
   msg.traction_counter_bits(static_cast<uint8_t>(nominal.traction_counter_bits));
   msg.steering_ticks(static_cast<int32_t>(s.steering_ticks));

@@ -6,18 +6,23 @@
 #include "sensor_msgs/msg/LaserScan.h"
 #include "simulation.hpp"
 #include "structloc_msgs/msg/WheelEncoders.h"
+#include "topics.hpp"
 
 namespace structloc::simulator {
 
-// `clock_offset_s` maps simulation time to message stamps.
-sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double clock_offset_s);
+// `clock_offset_s` maps simulation time to message stamps; headers carry the
+// frame ids of `frames`.
+sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double clock_offset_s,
+                                        const dds::FrameIds& frames = {});
 // Odometry in the odom frame with a covariance growing with the distance driven.
 nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& state, double distance_m,
-                                   double clock_offset_s);
+                                   double clock_offset_s, const dds::FrameIds& frames = {});
 // Ground truth: the true pose in the map frame, zero covariance.
-nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& state, double clock_offset_s);
+nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& state, double clock_offset_s,
+                                      const dds::FrameIds& frames = {});
 structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation::SimState& state,
                                                    const kinematics::RobotParameters& nominal,
-                                                   uint64_t previous_ticks, double clock_offset_s);
+                                                   uint64_t previous_ticks, double clock_offset_s,
+                                                   const dds::FrameIds& frames = {});
 
 }  // namespace structloc::simulator

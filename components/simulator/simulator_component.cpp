@@ -23,7 +23,7 @@ SimulatorComponent::SimulatorComponent(dds::Node& node, const simulation::Scenar
           dds::topics::kDiagnostics)),
       clock_offset_s_(std::floor(dds::WallClockSeconds())),
       wall_start_(std::chrono::steady_clock::now()) {
-  node.Subscribe<geometry_msgs::msg::TwistPubSubType>(
+  cmd_vel_ = node.Subscribe<geometry_msgs::msg::TwistPubSubType>(
       dds::topics::kCmdVel, [this](const geometry_msgs::msg::Twist& t) {
         if (!std::isfinite(t.linear().x()) || !std::isfinite(t.angular().z())) return;
         std::lock_guard<std::mutex> lock(command_mutex_);
@@ -78,17 +78,17 @@ void SimulatorComponent::PublishStep(const simulation::SimState& state) {
   distance_ += (state.odometry.Translation() - last_odometry_.Translation()).norm();
   last_odometry_ = state.odometry;
   if (steps_ % odom_every_ == 0) {
-    auto encoders =
-        ToWheelEncoders(state, sim_.GetScenario().nominal, last_ticks_, clock_offset_s_);
+    auto encoders = ToWheelEncoders(state, sim_.GetScenario().nominal, last_ticks_, clock_offset_s_,
+                                    options_.frames);
     last_ticks_ = state.traction_ticks;
     encoders_.Write(encoders);
-    auto odom = ToOdometry(state, distance_, clock_offset_s_);
+    auto odom = ToOdometry(state, distance_, clock_offset_s_, options_.frames);
     odom_.Write(odom);
-    auto truth = ToGroundTruth(state, clock_offset_s_);
+    auto truth = ToGroundTruth(state, clock_offset_s_, options_.frames);
     ground_truth_.Write(truth);
   }
   if (auto scan = sim_.TakeScan()) {
-    auto msg = ToLaserScan(*scan, clock_offset_s_);
+    auto msg = ToLaserScan(*scan, clock_offset_s_, options_.frames);
     scan_.Write(msg);
     ++scans_published_;
   }

@@ -22,7 +22,8 @@ struct SimulatorComponentOptions {
   double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
   bool exit_when_done = false;  // exit (code 0) when the scenario ends
   int wait_for_subscribers =
-      0;  // hold the clock until this many readers of rt/scan and rt/odom match
+      0;                 // hold the clock until this many readers of rt/scan and rt/odom match
+  dds::FrameIds frames;  // stamped into every header
 };
 
 class SimulatorComponent : public dds::Component {
@@ -56,6 +57,8 @@ class SimulatorComponent : public dds::Component {
   uint64_t scans_published_ = 0;
   double last_diagnostics_wall_s_ = 0.0;
   bool started_ = false;
+  // Last: destroyed first, so no command arrives in a half-destroyed object.
+  dds::Subscription cmd_vel_;
 };
 
 }  // namespace structloc::simulator

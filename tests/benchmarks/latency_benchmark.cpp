@@ -62,15 +62,17 @@ int main(int argc, char** argv) {
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::vector<double> latency_ms;
-  node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
-        const auto now = Clock::now();
-        std::lock_guard<std::mutex> lock(mutex);
-        auto it = sent.find(dds::FromRosTime(m.header().stamp()));
-        if (it != sent.end()) {
-          latency_ms.push_back(std::chrono::duration<double, std::milli>(now - it->second).count());
-        }
-      });
+  const auto pose_subscription =
+      node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+            const auto now = Clock::now();
+            std::lock_guard<std::mutex> lock(mutex);
+            auto it = sent.find(dds::FromRosTime(m.header().stamp()));
+            if (it != sent.end()) {
+              latency_ms.push_back(
+                  std::chrono::duration<double, std::milli>(now - it->second).count());
+            }
+          });
   const auto& p = scenario.initial_pose;
   process::ChildProcess loc(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",

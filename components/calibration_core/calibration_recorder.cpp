@@ -1,0 +1,65 @@
+// Calibration recorder (see header).
+#include "calibration_recorder.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace structloc::calibration {
+
+CalibrationRecorder::CalibrationRecorder(const RecorderOptions& options) : options_(options) {
+  if (!(options_.record_s >= 0)) throw std::invalid_argument("record_s must be >= 0");
+  if (!(options_.max_encoder_gap_s > 0)) {
+    throw std::invalid_argument("max_encoder_gap_s must be > 0");
+  }
+}
+
+bool CalibrationRecorder::AddEncoders(const EncoderSample& s) {
+  if (finished_) return false;
+  auto& encoders = recording_.encoders;
+  if (!encoders.empty() && !(s.t > encoders.back().t)) {
+    ++stats_.encoders_out_of_order;
+    return false;
+  }
+  if (!encoders.empty()) {
+    const double dt = s.t - encoders.back().t;
+    stats_.largest_gap_s = std::max(stats_.largest_gap_s, dt);
+    if (dt > options_.max_encoder_gap_s) ++stats_.gaps;
+  }
+  encoders.push_back(s);
+  return true;
+}
+
+bool CalibrationRecorder::AddFix(const Fix& f) {
+  if (finished_) return false;
+  auto& fixes = recording_.fixes;
+  if (!geometry::IsFinite(f.pose) || (!fixes.empty() && !(f.t > fixes.back().t))) {
+    ++stats_.fixes_rejected;
+    return false;
+  }
+  fixes.push_back(f);
+  return true;
+}
+
+bool CalibrationRecorder::Due() const {
+  const auto& e = recording_.encoders;
+  return !finished_ && options_.record_s > 0 && e.size() > 1 &&
+         e.back().t - e.front().t >= options_.record_s;
+}
+
+bool CalibrationRecorder::WorthEstimating() const {
+  return !finished_ && recording_.encoders.size() > 1 && recording_.fixes.size() > 2;
+}
+
+Recording CalibrationRecorder::Finish() {
+  finished_ = true;  // recording ends here
+  return recording_;
+}
+
+RecorderStats CalibrationRecorder::Stats() const {
+  RecorderStats s = stats_;
+  s.encoders = recording_.encoders.size();
+  s.fixes = recording_.fixes.size();
+  return s;
+}
+
+}  // namespace structloc::calibration

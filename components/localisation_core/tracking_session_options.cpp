@@ -1,0 +1,81 @@
+// Tracking-session options declared once (key, range, unit, description; the
+// struct members hold the defaults) for the <tracking> block of a
+// <localisation_params> file (see header).
+#include "tracking_session_options.hpp"
+
+#include <stdexcept>
+
+#include "localiser_options.hpp"
+#include "option_table.hpp"
+
+namespace structloc::localisation {
+namespace {
+
+using config::Range;
+using S = SessionOptions;
+using T = TrackerOptions;
+
+config::OptionFile<SessionOptions> SessionOptionFile() {
+  config::OptionTable<S> t(
+      "tracking", "the pose tracker (odometry prior, thesis 3.6) and the session's timing");
+  t.Number("odometry_wait_s", &S::tracker, &T::odometry_wait_s, Range::NonNegative(), "s",
+           "how long a scan may wait for odometry to cover it");
+  t.Number("max_extrapolation_s", &S::tracker, &T::max_extrapolation_s, Range::Closed(0, 0.2), "s",
+           "beams this far past the newest odometry are de-skewed by extrapolating it");
+  t.Number("max_future_s", &S::tracker, &T::max_future_s, Range::Positive(), "s",
+           "scans stamped further ahead of the odometry are refused");
+  t.Number("max_odometry_speed_m_s", &S::tracker, &T::max_odometry_speed_m_s, Range::Positive(),
+           "m/s", "faster odometry steps are jumps and refused");
+  t.Number("max_odometry_turn_rate_rad_s", &S::tracker, &T::max_odometry_turn_rate_rad_s,
+           Range::Positive(), "rad/s", "faster heading changes are jumps and refused");
+  t.Number("max_scan_duration_s", &S::tracker, &T::max_scan_duration_s, Range::Positive(), "s",
+           "a scan whose beams span longer than this is refused");
+  t.Number("odometry_sigma_xy_per_m", &S::tracker, &T::odometry_sigma_xy_per_m,
+           Range::NonNegative(), "m/m", "prior growth per metre driven (1 sigma)");
+  t.Number("odometry_sigma_theta_per_m", &S::tracker, &T::odometry_sigma_theta_per_m,
+           Range::NonNegative(), "rad/m", "heading prior growth per metre driven");
+  t.Number("odometry_sigma_theta_per_rad", &S::tracker, &T::odometry_sigma_theta_per_rad,
+           Range::NonNegative(), "rad/rad", "heading prior growth per radian turned");
+  t.Number("initial_sigma_xy_m", &S::tracker, &T::initial_sigma_xy_m, Range::Positive(), "m",
+           "uncertainty of a given initial pose (x and y)");
+  t.Number("initial_sigma_theta_rad", &S::tracker, &T::initial_sigma_theta_rad, Range::Positive(),
+           "rad", "uncertainty of a given initial heading");
+  t.Flag("deskew", &S::tracker, &T::deskew, "de-skew scans from the odometry history");
+  t.Number("state_period_s", &S::state_period_s, Range::Positive(), "s",
+           "how often the pose is due to be saved");
+  t.Number("lost_error_after_s", &S::lost_error_after_s, Range::NonNegative(), "s",
+           "lost (dead reckoning) this long is an error, not a warning");
+  t.Number("max_pending_scans", &S::max_pending_scans, Range::Closed(1, 1000000), "",
+           "scans waiting for odometry in in-order scheduling (replay)");
+  std::set<std::string> localiser_sections;
+  const auto localiser_file = LocaliserOptionFile();
+  for (const auto& section : localiser_file.Sections()) {
+    localiser_sections.insert(section.Section());
+  }
+  return config::OptionFile<SessionOptions>("localisation_params", {t}, localiser_sections);
+}
+
+}  // namespace
+
+// Declared with the tracker (pose_tracker.hpp); its ranges are the <tracking>
+// block's, so they are written once, above.
+void TrackerOptions::Validate() const {
+  SessionOptions s;
+  s.tracker = *this;
+  SessionOptionFile().Validate(s);
+}
+
+void SessionOptions::Validate() const {
+  SessionOptionFile().Validate(*this);
+}
+
+void PrintSessionOptions(std::ostream& out) {
+  SessionOptionFile().Print(out, SessionOptions{});
+}
+
+SessionOptions LoadSessionOptions(const std::string& path) {
+  const auto file = config::XmlFile::Load(path);
+  return SessionOptionFile().Load(file);
+}
+
+}  // namespace structloc::localisation
