@@ -172,7 +172,8 @@ class OptionTable {
   void Print(std::ostream& out, const S& defaults) const {
     out << "<" << section_ << ">  " << description_ << "\n";
     for (const auto& e : entries_) {
-      out << "  " << Pad(e.key, 28) << " " << Pad(e.show(defaults), 14) << " "
+      const std::string shown = e.show(defaults);
+      out << "  " << Pad(e.key, 28) << " " << Pad(shown.empty() ? "\"\"" : shown, 14) << " "
           << Pad(e.unit.empty() ? "-" : e.unit, 5) << " " << Pad(e.valid, 26) << " "
           << (e.optional ? "[optional] " : "") << e.description << "\n";
     }

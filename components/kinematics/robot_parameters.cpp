@@ -46,6 +46,8 @@ config::OptionTable<RobotParameters> RobotParameterTable() {
 }
 
 void PrintRobotParameters(std::ostream& out) {
+  out << "<robot>: one element; every key is required unless marked [optional]; columns: key, "
+         "default, unit, valid values, meaning\n";
   RobotParameterTable().Print(out, RobotParameters{});
 }
 
