@@ -143,7 +143,8 @@ class OptionTable {
   }
 
   // Every key with the value of `options` as text (numbers with 10 significant
-  // digits, choices by name), in declaration order: for writing a file.
+  // digits, choices by name, text as it is: escape it for XML), in declaration
+  // order: for writing a file.
   std::vector<std::pair<std::string, std::string>> Values(const S& options) const {
     std::vector<std::pair<std::string, std::string>> values;
     for (const auto& e : entries_) values.emplace_back(e.key, e.show(options));
