@@ -308,11 +308,11 @@ TEST(BadInputConfig, L2_AbsurdIterationCountsRatesAndDurationsAreRefused) {
                  LoadParams, {"<kohonen>", "from 1 to 100000"});
   const std::string room = "maps/scenarios/robustness_room.xml";
   ExpectRejected(Mutated(dir, room, "rate_hz=\"5\"", "rate_hz=\"1e9\""), LoadScenario,
-                 {"rate_hz", "must be from 0.1 to 100"});
+                 {"laser: rate_hz must be in [0.1, 100]"});
   ExpectRejected(Mutated(dir, room, "step_s=\"0.01\"", "step_s=\"1e-9\""), LoadScenario,
-                 {"step_s", "must be from 0.0001 to 0.1"});
+                 {"scenario: step_s must be in [0.0001, 0.1]"});
   ExpectRejected(Mutated(dir, room, "duration_s=\"10\"", "duration_s=\"1e9\""), LoadScenario,
-                 {"duration_s", "must be from 0 to 3600"});
+                 {"scenario: duration_s must be in (0, 3600]"});
   ExpectRejected(Mutated(dir, room, "traction_start_tick=\"0\"",
                          "traction_start_tick=\"9223372036854775807\""),
                  LoadScenario, {"traction_start_tick", "from 0 to 4294967295"});

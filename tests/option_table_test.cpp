@@ -120,6 +120,77 @@ TEST(OptionTable, ListingShowsKeyDefaultUnitRangeAndDescription) {
   }
 }
 
+struct Tagged {
+  std::string name = "none";
+  double scale = 0.5;
+  double offset_m = 0.0;
+  int bits = 32;
+};
+
+OptionTable<Tagged> TaggedTable() {
+  OptionTable<Tagged> t("tagged", "text, a magnitude range, an optional key, own wording");
+  t.Wording([](const std::string& key, const std::string& value, const std::string& valid,
+               const std::string& unit) {
+    return key + " = " + value + " is implausible; it must be " + valid + " " + unit;
+  });
+  t.Text("name", &Tagged::name, "a name");
+  t.Number("scale", &Tagged::scale, Range::Magnitude(0.1, 1), "m", "either sign");
+  t.Number("offset_m", &Tagged::offset_m, Range::Closed(-1, 1), "m", "may be left out").Optional();
+  t.Number("bits", &Tagged::bits, Range::Closed(8, 63), "bit", "checked before narrowing");
+  return t;
+}
+
+std::string TaggedProblem(const std::string& attributes, Tagged* loaded = nullptr) {
+  const testing::TempDir dir;
+  const std::string path = dir.Write("tagged.xml", "<tagged " + attributes + "/>\n");
+  try {
+    const auto file = XmlFile::Load(path);
+    Tagged t;
+    TaggedTable().Load(file, file.Root(), t);
+    if (loaded != nullptr) *loaded = t;
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(OptionTable, TextOptionalKeysMagnitudesAndOwnWording) {
+  Tagged t;
+  EXPECT_EQ(TaggedProblem("name=\"a b\" scale=\"-0.5\" bits=\"16\"", &t), "accepted");
+  EXPECT_EQ(t.name, "a b");
+  EXPECT_DOUBLE_EQ(t.scale, -0.5);
+  EXPECT_DOUBLE_EQ(t.offset_m, 0.0);  // left out: the default
+  EXPECT_EQ(t.bits, 16);
+  EXPECT_EQ(TaggedProblem("name=\"a\" scale=\"1\" offset_m=\"-1\" bits=\"8\"", &t), "accepted");
+  EXPECT_DOUBLE_EQ(t.offset_m, -1.0);
+  auto what = TaggedProblem("name=\"a\" scale=\"0.01\" bits=\"16\"");
+  EXPECT_NE(what.find("tagged: scale = 0.01 is implausible; it must be magnitude in [0.1, 1] m"),
+            std::string::npos)
+      << what;
+  what = TaggedProblem("name=\"a\" scale=\"1\" offset_m=\"2\" bits=\"16\"");
+  EXPECT_NE(what.find("tagged: offset_m = 2 is implausible"), std::string::npos) << what;
+  what = TaggedProblem("name=\"a\" scale=\"1\" bits=\"4294967304\"");
+  EXPECT_NE(what.find("tagged: bits = 4294967304 is implausible; it must be in [8, 63] bit"),
+            std::string::npos)
+      << what;
+  what = TaggedProblem("scale=\"1\" bits=\"16\"");
+  EXPECT_NE(what.find("missing attribute name"), std::string::npos) << what;
+}
+
+TEST(OptionTable, ValuesGiveEveryKeyAsWrittenAndTheListingMarksOptionalKeys) {
+  Tagged t;
+  t.scale = -0.123456789012;
+  const auto values = TaggedTable().Values(t);
+  ASSERT_EQ(values.size(), 4u);
+  EXPECT_EQ(values[0], std::make_pair(std::string("name"), std::string("none")));
+  EXPECT_EQ(values[1], std::make_pair(std::string("scale"), std::string("-0.123456789")));
+  EXPECT_EQ(values[3], std::make_pair(std::string("bits"), std::string("32")));
+  std::ostringstream out;
+  TaggedTable().Print(out, Tagged{});
+  EXPECT_NE(out.str().find("[optional] may be left out"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("magnitude in [0.1, 1]"), std::string::npos) << out.str();
+}
+
 TEST(Range, DescribesAndChecksItsEnds) {
   EXPECT_TRUE(Range::Positive().Contains(1e-9));
   EXPECT_FALSE(Range::Positive().Contains(0.0));
@@ -129,6 +200,9 @@ TEST(Range, DescribesAndChecksItsEnds) {
   EXPECT_EQ(Range::Open(0, 1).Describe(), "in (0, 1)");
   EXPECT_EQ(Range::AtLeast(1).Describe(), ">= 1");
   EXPECT_EQ(Range::Any().Describe(), "finite");
+  EXPECT_TRUE(Range::Magnitude(0.1, 1).Contains(-1.0));
+  EXPECT_FALSE(Range::Magnitude(0.1, 1).Contains(0.0));
+  EXPECT_FALSE(Range::Magnitude(0.1, 1).Contains(-1.5));
 }
 
 }  // namespace

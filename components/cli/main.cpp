@@ -34,7 +34,8 @@ const Subcommand kSubcommands[] = {
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
     {"params", structloc::cli::ParamsCommand,
-     "[--check P.xml]  list every localiser parameter, or check a parameter file"},
+     "[--localiser] [--robot] [--scenario] [--check FILE.xml]  list every option of the "
+     "localiser, robot and scenario files, or check such a file"},
 };
 
 void Usage(std::ostream& out) {

@@ -1,26 +1,63 @@
-// "structloc params [--check P.xml]": lists every localiser parameter (key,
-// default, unit, valid values, meaning) from the one place the options are
-// declared, or checks that a parameter file loads.
+// "structloc params [--localiser] [--robot] [--scenario] [--check FILE]": lists
+// every option of the localiser parameter files, the robot files and the
+// scenario files (key, default, unit, valid values, meaning) from the one place
+// each is declared (all three when none is chosen), or checks that a file of
+// any of the three kinds loads (the kind from its root element).
 #include <iostream>
 
 #include "command_line.hpp"
 #include "localiser_options.hpp"
+#include "robot_parameters.hpp"
+#include "scenario_options.hpp"
+#include "strict_xml.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
+namespace {
+
+// Loads `path` as what its root element says it is; throws ConfigError.
+void Check(const std::string& path) {
+  const std::string root = config::XmlFile::Load(path).Root().Name();
+  if (root == "localisation_params") {
+    localisation::LoadLocaliserOptions(path);
+  } else if (root == "robot") {
+    kinematics::LoadRobotParameters(path);
+  } else if (root == "scenario") {
+    simulation::LoadScenario(path);
+  } else {
+    throw config::ConfigError(path + ": root element is <" + root +
+                              ">, expected <localisation_params>, <robot> or <scenario>");
+  }
+}
+
+}  // namespace
 
 int ParamsCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
-      {"check", true, "a <localisation_params> file to load and validate instead of listing"},
+      {"localiser", false, "list the <localisation_params> file's options"},
+      {"robot", false, "list the <robot> file's options"},
+      {"scenario", false, "list the <scenario> file's options"},
+      {"check", true,
+       "a <localisation_params>, <robot> or <scenario> file to load and validate instead of "
+       "listing"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     if (const auto path = cli.Get("check")) {
-      localisation::LoadLocaliserOptions(*path);
+      Check(*path);
       std::cout << *path << ": valid\n";
       return 0;
     }
-    localisation::PrintLocaliserOptions(std::cout);
+    const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario");
+    if (all || cli.Has("localiser")) localisation::PrintLocaliserOptions(std::cout);
+    if (all || cli.Has("robot")) {
+      std::cout << (all ? "\n" : "");
+      kinematics::PrintRobotParameters(std::cout);
+    }
+    if (all || cli.Has("scenario")) {
+      std::cout << (all ? "\n" : "");
+      simulation::PrintScenarioOptions(std::cout);
+    }
     return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc params: " << e.what() << "\n";

@@ -14,11 +14,13 @@ std::string FormatNumber(double value) {
 
 bool Range::Contains(double value) const {
   if (!std::isfinite(value)) return false;
+  if (magnitude) value = std::abs(value);
   if (min_open ? !(value > min) : !(value >= min)) return false;
   return max_open ? value < max : value <= max;
 }
 
 std::string Range::Describe() const {
+  if (magnitude) return "magnitude " + Range{min, max, min_open, max_open, false}.Describe();
   const bool low = std::isfinite(min), high = std::isfinite(max);
   if (!low && !high) return "finite";
   if (!high) return std::string(min_open ? "> " : ">= ") + FormatNumber(min);

@@ -23,29 +23,41 @@
 
 namespace structloc::config {
 
-// The valid values of a number: from min to max, either end open or unbounded.
+// The valid values of a number: from min to max, either end open or unbounded;
+// with `magnitude`, the bounds apply to the absolute value (either sign).
 // Values must also be finite.
 struct Range {
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
   bool min_open = false;
   bool max_open = false;
+  bool magnitude = false;
 
   static Range Any() { return {}; }
-  static Range Positive() { return {0.0, Range{}.max, true, false}; }
-  static Range NonNegative() { return {0.0, Range{}.max, false, false}; }
-  static Range AtLeast(double min) { return {min, Range{}.max, false, false}; }
-  static Range Closed(double min, double max) { return {min, max, false, false}; }
-  static Range Open(double min, double max) { return {min, max, true, true}; }
-  static Range LeftOpen(double min, double max) { return {min, max, true, false}; }
+  static Range Positive() { return {0.0, Range{}.max, true, false, false}; }
+  static Range NonNegative() { return {0.0, Range{}.max, false, false, false}; }
+  static Range AtLeast(double min) { return {min, Range{}.max, false, false, false}; }
+  static Range Closed(double min, double max) { return {min, max, false, false, false}; }
+  static Range Open(double min, double max) { return {min, max, true, true, false}; }
+  static Range LeftOpen(double min, double max) { return {min, max, true, false, false}; }
+  // |value| in [min, max], e.g. a non-zero scale factor of either sign.
+  static Range Magnitude(double min, double max) { return {min, max, false, false, true}; }
 
   bool Contains(double value) const;
-  // "> 0", ">= 1", "in (0, 1.570796327)", "in [1, 60]", "finite".
+  // "> 0", ">= 1", "in (0, 1.570796327)", "in [1, 60]", "finite",
+  // "magnitude in [1e-09, 1]".
   std::string Describe() const;
 };
 
 // Formats a value for listings and messages (shortest of 10 significant digits).
 std::string FormatNumber(double value);
+
+// How an out-of-range value is reported after "section: ", from the key, the
+// value as text, the valid values (Range::Describe) and the unit (may be empty).
+// The default reads "key must be VALID, not VALUE".
+using OutOfRangeWording =
+    std::function<std::string(const std::string& key, const std::string& value,
+                              const std::string& valid, const std::string& unit)>;
 
 // The options of one XML section (one element whose attributes are the keys)
 // of the options struct S.
@@ -54,6 +66,13 @@ class OptionTable {
  public:
   OptionTable(std::string section, std::string description)
       : section_(std::move(section)), description_(std::move(description)) {}
+
+  // Words out-of-range values of this table differently (see OutOfRangeWording);
+  // integers read from a file are then checked with it too.
+  OptionTable& Wording(OutOfRangeWording wording) {
+    wording_ = std::move(wording);
+    return *this;
+  }
 
   // A number (double or integer type) stored in s.*member.
   template <class T>
@@ -95,13 +114,50 @@ class OptionTable {
         [ outer, member ](auto& s) -> auto& { return (s.*outer).*member; });
   }
 
+  // Free text, e.g. a name.
+  OptionTable& Text(const char* key, std::string S::*member, const char* description) {
+    Entry e{key, "", "text", description, {}, {}, {}, false};
+    const std::string name = key;
+    e.load = [name, member](const OptionTable&, AttributeReader& reader, S& s) {
+      s.*member = reader.String(name.c_str());
+    };
+    e.check = [](const OptionTable&, const S&) { return std::string(); };
+    e.show = [member](const S& s) { return s.*member; };
+    entries_.push_back(std::move(e));
+    return *this;
+  }
+
+  // Makes the key declared last optional: when a file leaves it out, the
+  // member keeps the value it had (the default). Listed as "[optional]".
+  OptionTable& Optional() {
+    if (!entries_.empty()) entries_.back().optional = true;
+    return *this;
+  }
+
   const std::string& Section() const { return section_; }
+  bool HasOptionalKeys() const {
+    for (const auto& e : entries_) {
+      if (e.optional) return true;
+    }
+    return false;
+  }
+
+  // Every key with the value of `options` as text (numbers with 10 significant
+  // digits, choices by name, text as it is: escape it for XML), in declaration
+  // order: for writing a file.
+  std::vector<std::pair<std::string, std::string>> Values(const S& options) const {
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const auto& e : entries_) values.emplace_back(e.key, e.show(options));
+    return values;
+  }
 
   // Reads every key of `element` into `out`; throws ConfigError naming
   // file:line for a missing, unknown, malformed or out-of-range value.
   void Load(const XmlFile& file, const tinyxml2::XMLElement& element, S& out) const {
     AttributeReader reader(file, element);
-    for (const auto& e : entries_) e.load(reader, out);
+    for (const auto& e : entries_) {
+      if (!e.optional || reader.Has(e.key.c_str())) e.load(*this, reader, out);
+    }
     reader.Finish();
     const std::string problem = FirstProblem(out);
     if (!problem.empty()) file.Fail(element, problem);
@@ -117,19 +173,29 @@ class OptionTable {
   void Print(std::ostream& out, const S& defaults) const {
     out << "<" << section_ << ">  " << description_ << "\n";
     for (const auto& e : entries_) {
-      out << "  " << Pad(e.key, 28) << " " << Pad(e.show(defaults), 14) << " "
+      const std::string shown = e.show(defaults);
+      out << "  " << Pad(e.key, 28) << " " << Pad(shown.empty() ? "\"\"" : shown, 14) << " "
           << Pad(e.unit.empty() ? "-" : e.unit, 5) << " " << Pad(e.valid, 26) << " "
-          << e.description << "\n";
+          << (e.optional ? "[optional] " : "") << e.description << "\n";
     }
   }
 
  private:
+  // The functions take the table (not captured, so that tables copy safely)
+  // for its wording.
   struct Entry {
     std::string key, unit, valid, description;
-    std::function<void(AttributeReader&, S&)> load;
-    std::function<std::string(const S&)> check;  // empty when valid
+    std::function<void(const OptionTable&, AttributeReader&, S&)> load;
+    std::function<std::string(const OptionTable&, const S&)> check;  // empty when valid
     std::function<std::string(const S&)> show;
+    bool optional = false;
   };
+
+  std::string OutOfRange(const std::string& key, const std::string& value, const std::string& valid,
+                         const std::string& unit) const {
+    if (wording_) return wording_(key, value, valid, unit);
+    return key + " must be " + valid + ", not " + value;
+  }
 
   static std::string Pad(const std::string& text, size_t width) {
     return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
@@ -137,8 +203,8 @@ class OptionTable {
 
   std::string FirstProblem(const S& options) const {
     for (const auto& e : entries_) {
-      std::string why = e.check(options);
-      if (!why.empty()) return section_ + ": " + e.key + " " + why;
+      std::string why = e.check(*this, options);
+      if (!why.empty()) return section_ + ": " + why;
     }
     return {};
   }
@@ -149,25 +215,38 @@ class OptionTable {
     static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>, "use Flag for bool");
     const bool any_integer =
         std::is_integral_v<T> && !std::isfinite(range.min) && !std::isfinite(range.max);
-    Entry e{key, unit, any_integer ? "integer" : range.Describe(), description, {}, {}, {}};
-    const std::string name = key;
-    e.load = [name, range, get](AttributeReader& reader, S& s) {
+    Entry e{key, unit, any_integer ? "integer" : range.Describe(), description, {}, {}, {}, false};
+    const std::string name = key, unit_name = unit;
+    e.load = [name, unit_name, range, get](const OptionTable& table, AttributeReader& reader,
+                                           S& s) {
       if constexpr (std::is_integral_v<T>) {
-        // Bounds within T's own range, so that a value is never truncated.
+        // Bounds within T's own range, so that a value is never truncated (a
+        // magnitude range's lower bound is checked after reading, by `check`).
         constexpr T kMin = std::numeric_limits<T>::min(), kMax = std::numeric_limits<T>::max();
-        const T lo =
-            range.min <= static_cast<double>(kMin) ? kMin : static_cast<T>(std::ceil(range.min));
+        const double min = range.magnitude ? -range.max : range.min;
+        const T lo = min <= static_cast<double>(kMin) ? kMin : static_cast<T>(std::ceil(min));
         const T hi =
             range.max >= static_cast<double>(kMax) ? kMax : static_cast<T>(std::floor(range.max));
-        get(s) = reader.IntegerIn<T>(name.c_str(), lo, hi);
+        if (!table.wording_) {
+          get(s) = reader.IntegerIn<T>(name.c_str(), lo, hi);
+          return;
+        }
+        // Checked as read, before narrowing to T (4294967328 must not become 32).
+        const long long value = reader.Integer(name.c_str());
+        if (!range.Contains(static_cast<double>(value)) || value < static_cast<long long>(lo) ||
+            value > static_cast<long long>(hi)) {
+          reader.Fail(table.section_ + ": " +
+                      table.OutOfRange(name, std::to_string(value), range.Describe(), unit_name));
+        }
+        get(s) = static_cast<T>(value);
       } else {
         get(s) = static_cast<T>(reader.Double(name.c_str()));
       }
     };
-    e.check = [range, get](const S& s) -> std::string {
+    e.check = [name, unit_name, range, get](const OptionTable& table, const S& s) -> std::string {
       const double value = static_cast<double>(get(s));
       if (range.Contains(value)) return {};
-      return "must be " + range.Describe() + ", not " + FormatNumber(value);
+      return table.OutOfRange(name, FormatNumber(value), range.Describe(), unit_name);
     };
     e.show = [get](const S& s) { return FormatNumber(static_cast<double>(get(s))); };
     entries_.push_back(std::move(e));
@@ -176,10 +255,12 @@ class OptionTable {
 
   template <class Get>
   OptionTable& AddFlag(const char* key, const char* description, Get get) {
-    Entry e{key, "", "true or false", description, {}, {}, {}};
+    Entry e{key, "", "true or false", description, {}, {}, {}, false};
     const std::string name = key;
-    e.load = [name, get](AttributeReader& reader, S& s) { get(s) = reader.Bool(name.c_str()); };
-    e.check = [](const S&) { return std::string(); };
+    e.load = [name, get](const OptionTable&, AttributeReader& reader, S& s) {
+      get(s) = reader.Bool(name.c_str());
+    };
+    e.check = [](const OptionTable&, const S&) { return std::string(); };
     e.show = [get](const S& s) { return std::string(get(s) ? "true" : "false"); };
     entries_.push_back(std::move(e));
     return *this;
@@ -192,9 +273,9 @@ class OptionTable {
     for (size_t i = 0; i < names.size(); ++i) {
       valid += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
     }
-    Entry e{key, "", valid, description, {}, {}, {}};
+    Entry e{key, "", valid, description, {}, {}, {}, false};
     const std::string name = key;
-    e.load = [name, names, valid, get](AttributeReader& reader, S& s) {
+    e.load = [name, names, valid, get](const OptionTable&, AttributeReader& reader, S& s) {
       const std::string value = reader.String(name.c_str());
       for (const auto& n : names) {
         if (n.first == value) {
@@ -204,11 +285,11 @@ class OptionTable {
       }
       reader.Fail(name + " must be " + valid + ", not '" + value + "'");
     };
-    e.check = [names, valid, get](const S& s) -> std::string {
+    e.check = [name, names, valid, get](const OptionTable&, const S& s) -> std::string {
       for (const auto& n : names) {
         if (n.second == get(s)) return {};
       }
-      return "must be " + valid;
+      return name + " must be " + valid;
     };
     e.show = [names, get](const S& s) {
       for (const auto& n : names) {
@@ -222,6 +303,7 @@ class OptionTable {
 
   std::string section_, description_;
   std::vector<Entry> entries_;
+  OutOfRangeWording wording_;
 };
 
 // A file whose root element holds one element per OptionTable, each exactly
@@ -263,8 +345,11 @@ class OptionFile {
   }
 
   void Print(std::ostream& out, const S& defaults) const {
-    out << "<" << root_ << ">: every key below is required; columns: key, default, unit, "
-        << "valid values, meaning\n";
+    bool optional = false;
+    for (const auto& t : sections_) optional = optional || t.HasOptionalKeys();
+    out << "<" << root_ << ">: every key below is required"
+        << (optional ? " unless marked [optional]" : "")
+        << "; columns: key, default, unit, valid values, meaning\n";
     for (const auto& t : sections_) t.Print(out, defaults);
   }
 

@@ -1,70 +1,58 @@
-// Robot parameter file reading, writing and validation.
+// Robot parameter file reading, writing and validation, all from the one
+// declaration of its keys.
 #include "robot_parameters.hpp"
-
-#include <cmath>
-#include <iomanip>
-#include <sstream>
-#include <stdexcept>
 
 #include "strict_xml.hpp"
 
 namespace structloc::kinematics {
-namespace {
 
-std::string Text(double value) {
-  std::ostringstream out;
-  out << std::setprecision(6) << value;
-  return out.str();
+config::OptionTable<RobotParameters> RobotParameterTable() {
+  using config::Range;
+  using R = RobotParameters;
+  const Range length = Range::Closed(kMinRobotLength_m, kMaxRobotLength_m);
+  const Range mount = Range::Closed(-kMaxRobotLength_m, kMaxRobotLength_m);
+  config::OptionTable<R> t("robot",
+                           "tricycle odometry, thesis 5.2 / EQ 46 (reference point: rear axle "
+                           "middle)");
+  t.Wording([](const std::string& key, const std::string& value, const std::string& valid,
+               const std::string& unit) {
+    return key + " = " + value + " is implausible; it must be " + valid +
+           (unit.empty() ? "" : " " + unit);
+  });
+  t.Number("wheel_radius", &R::wheel_radius, length, "m", "traction (front) wheel radius");
+  t.Number("axle_distance", &R::axle_distance, length, "m", "front wheel axis to rear axle");
+  t.Number("steering_offset", &R::steering_offset, Range::Open(-geometry::kPi, geometry::kPi),
+           "rad", "steering angle at steering_zero_tick");
+  t.Number("traction_ticks_per_rev", &R::traction_ticks_per_rev,
+           Range::Closed(kMinTicksPerRev, kMaxTicksPerRev), "",
+           "encoder ticks per wheel revolution");
+  t.Number("traction_counter_bits", &R::traction_counter_bits,
+           Range::Closed(kMinCounterBits, kMaxCounterBits), "",
+           "the traction counter wraps at 2^bits");
+  t.Number("steering_rad_per_tick", &R::steering_rad_per_tick,
+           Range::Magnitude(kMinSteeringRadPerTick, kMaxSteeringRadPerTick), "rad",
+           "steering angle per encoder tick (either sign)");
+  t.Number("steering_zero_tick", &R::steering_zero_tick,
+           Range::Closed(-kMaxSteeringZeroTick, kMaxSteeringZeroTick), "",
+           "steering encoder reading at steering_offset");
+  t.Number("sensor_x", &R::sensor, &geometry::Pose2D::x, mount, "m",
+           "calibration fix sensor, ahead of the reference point")
+      .Optional();
+  t.Number("sensor_y", &R::sensor, &geometry::Pose2D::y, mount, "m", "... left of it").Optional();
+  t.Number("sensor_theta", &R::sensor, &geometry::Pose2D::theta,
+           Range::Closed(-geometry::kPi, geometry::kPi), "rad", "... its heading on the robot")
+      .Optional();
+  return t;
 }
 
-// Throws std::invalid_argument "robot: NAME = VALUE; must be RULE" unless `ok`.
-void Require(bool ok, const char* name, double value, const std::string& rule) {
-  if (!ok) {
-    throw std::invalid_argument(std::string("robot: ") + name + " = " + Text(value) +
-                                " is implausible; it must be " + rule);
-  }
+void PrintRobotParameters(std::ostream& out) {
+  out << "<robot>: one element; every key is required unless marked [optional]; columns: key, "
+         "default, unit, valid values, meaning\n";
+  RobotParameterTable().Print(out, RobotParameters{});
 }
-
-std::string Range(double low, double high, const char* unit) {
-  return Text(low) + " .. " + Text(high) + unit;
-}
-
-}  // namespace
 
 void RobotParameters::Validate() const {
-  const std::string length_range = Range(kMinRobotLength_m, kMaxRobotLength_m, " m");
-  Require(std::isfinite(wheel_radius) && wheel_radius >= kMinRobotLength_m &&
-              wheel_radius <= kMaxRobotLength_m,
-          "wheel_radius", wheel_radius, length_range);
-  Require(std::isfinite(axle_distance) && axle_distance >= kMinRobotLength_m &&
-              axle_distance <= kMaxRobotLength_m,
-          "axle_distance", axle_distance, length_range);
-  Require(std::isfinite(steering_offset) && std::abs(steering_offset) < geometry::kPi,
-          "steering_offset", steering_offset, "within (-pi, pi) rad");
-  Require(std::isfinite(traction_ticks_per_rev) && traction_ticks_per_rev >= kMinTicksPerRev &&
-              traction_ticks_per_rev <= kMaxTicksPerRev,
-          "traction_ticks_per_rev", traction_ticks_per_rev,
-          Range(kMinTicksPerRev, kMaxTicksPerRev, " ticks per wheel revolution"));
-  Require(traction_counter_bits >= kMinCounterBits && traction_counter_bits <= kMaxCounterBits,
-          "traction_counter_bits", traction_counter_bits,
-          std::to_string(kMinCounterBits) + " .. " + std::to_string(kMaxCounterBits));
-  Require(std::isfinite(steering_rad_per_tick) &&
-              std::abs(steering_rad_per_tick) >= kMinSteeringRadPerTick &&
-              std::abs(steering_rad_per_tick) <= kMaxSteeringRadPerTick,
-          "steering_rad_per_tick", steering_rad_per_tick,
-          "non-zero with magnitude " +
-              Range(kMinSteeringRadPerTick, kMaxSteeringRadPerTick, " rad per tick"));
-  Require(std::isfinite(steering_zero_tick) && std::abs(steering_zero_tick) <= kMaxSteeringZeroTick,
-          "steering_zero_tick", steering_zero_tick,
-          "within +-" + Text(kMaxSteeringZeroTick) + " ticks");
-  const std::string mount_range =
-      "within +-" + Text(kMaxRobotLength_m) + " m of the reference point";
-  Require(std::isfinite(sensor.x) && std::abs(sensor.x) <= kMaxRobotLength_m, "sensor_x", sensor.x,
-          mount_range);
-  Require(std::isfinite(sensor.y) && std::abs(sensor.y) <= kMaxRobotLength_m, "sensor_y", sensor.y,
-          mount_range);
-  Require(std::isfinite(sensor.theta) && std::abs(sensor.theta) <= geometry::kPi, "sensor_theta",
-          sensor.theta, "within [-pi, pi] rad");
+  RobotParameterTable().Validate(*this);
 }
 
 int64_t RobotParameters::TickDelta(uint64_t previous, uint64_t current) const {
@@ -84,30 +72,8 @@ RobotParameters LoadRobotParameters(const std::string& path) {
   const auto file = config::XmlFile::Load(path);
   const auto& root = file.Root("robot");
   if (root.FirstChildElement() != nullptr) file.Fail(root, "takes no child elements");
-  config::AttributeReader a(file, root);
   RobotParameters p;
-  p.wheel_radius = a.Double("wheel_radius");
-  p.axle_distance = a.Double("axle_distance");
-  p.steering_offset = a.Double("steering_offset");
-  p.traction_ticks_per_rev = a.Double("traction_ticks_per_rev");
-  // Range-checked as read, before narrowing to int (4294967328 must not become 32).
-  const long long bits = a.Integer("traction_counter_bits");
-  if (bits < kMinCounterBits || bits > kMaxCounterBits) {
-    a.Fail("traction_counter_bits = " + std::to_string(bits) + " is implausible; it must be " +
-           std::to_string(kMinCounterBits) + " .. " + std::to_string(kMaxCounterBits));
-  }
-  p.traction_counter_bits = static_cast<int>(bits);
-  p.steering_rad_per_tick = a.Double("steering_rad_per_tick");
-  p.steering_zero_tick = a.Double("steering_zero_tick");
-  p.sensor.x = a.OptionalDouble("sensor_x").value_or(0.0);
-  p.sensor.y = a.OptionalDouble("sensor_y").value_or(0.0);
-  p.sensor.theta = a.OptionalDouble("sensor_theta").value_or(0.0);
-  a.Finish();
-  try {
-    p.Validate();
-  } catch (const std::invalid_argument& e) {
-    file.Fail(root, e.what());
-  }
+  RobotParameterTable().Load(file, root, p);
   return p;
 }
 
@@ -123,14 +89,18 @@ std::string XmlCommentBody(const std::string& text) {
 }
 
 void WriteRobotParameters(const RobotParameters& p, std::ostream& out, const std::string& comment) {
-  out << std::setprecision(10);
-  out << "<?xml version=\"1.0\"?>\n<!-- " << XmlCommentBody(comment) << " -->\n"
-      << "<robot wheel_radius=\"" << p.wheel_radius << "\" axle_distance=\"" << p.axle_distance
-      << "\" steering_offset=\"" << p.steering_offset << "\"\n       traction_ticks_per_rev=\""
-      << p.traction_ticks_per_rev << "\" traction_counter_bits=\"" << p.traction_counter_bits
-      << "\" steering_rad_per_tick=\"" << p.steering_rad_per_tick << "\" steering_zero_tick=\""
-      << p.steering_zero_tick << "\"\n       sensor_x=\"" << p.sensor.x << "\" sensor_y=\""
-      << p.sensor.y << "\" sensor_theta=\"" << p.sensor.theta << "\"/>\n";
+  out << "<?xml version=\"1.0\"?>\n<!-- " << XmlCommentBody(comment) << " -->\n<robot";
+  size_t column = 6;  // attributes wrapped within 100 columns, continued under the first
+  for (const auto& [key, value] : RobotParameterTable().Values(p)) {
+    const std::string attribute = key + "=\"" + value + "\"";
+    if (column > 6 && column + 1 + attribute.size() > 100) {
+      out << "\n      ";
+      column = 6;
+    }
+    out << " " << attribute;
+    column += 1 + attribute.size();
+  }
+  out << "/>\n";
 }
 
 }  // namespace structloc::kinematics

@@ -13,12 +13,16 @@
 // calibration uses (default: the reference point itself).
 // Values outside the plausibility bounds below are refused: they are typing or
 // unit mistakes (millimetres for metres, degrees for radians, 1e-300 ticks).
+// Every key is declared once, in RobotParameterTable() (key, range, unit,
+// description; the struct members hold the defaults); loading, validation,
+// writing and the `structloc params --robot` listing derive from it.
 #pragma once
 
 #include <cstdint>
 #include <ostream>
 #include <string>
 
+#include "option_table.hpp"
 #include "pose2d.hpp"
 
 namespace structloc::kinematics {
@@ -59,6 +63,12 @@ struct RobotParameters {
     return static_cast<double>(tick_delta) * 2.0 * geometry::kPi / traction_ticks_per_rev;
   }
 };
+
+// The one declaration of the <robot> element's keys. Out-of-range values read
+// "robot: KEY = VALUE is implausible; it must be ...".
+config::OptionTable<RobotParameters> RobotParameterTable();
+// Lists every key: default, unit, valid values, meaning.
+void PrintRobotParameters(std::ostream& out);
 
 // Throws config::ConfigError "FILE:LINE: problem" for a missing, malformed or
 // implausible parameter.
