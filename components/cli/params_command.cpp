@@ -11,6 +11,7 @@
 #include "scenario_options.hpp"
 #include "strict_xml.hpp"
 #include "subcommands.hpp"
+#include "tracking_session_options.hpp"
 
 namespace structloc::cli {
 namespace {
@@ -20,6 +21,7 @@ void Check(const std::string& path) {
   const std::string root = config::XmlFile::Load(path).Root().Name();
   if (root == "localisation_params") {
     localisation::LoadLocaliserOptions(path);
+    localisation::LoadSessionOptions(path);
   } else if (root == "robot") {
     kinematics::LoadRobotParameters(path);
   } else if (root == "scenario") {
@@ -49,7 +51,10 @@ int ParamsCommand(const Invocation& inv) {
       return 0;
     }
     const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario");
-    if (all || cli.Has("localiser")) localisation::PrintLocaliserOptions(std::cout);
+    if (all || cli.Has("localiser")) {
+      localisation::PrintLocaliserOptions(std::cout);
+      localisation::PrintSessionOptions(std::cout);
+    }
     if (all || cli.Has("robot")) {
       std::cout << (all ? "\n" : "");
       kinematics::PrintRobotParameters(std::cout);
