@@ -14,19 +14,19 @@
 #include <sstream>
 #include <thread>
 
-#include "calibration_data.hpp"
-#include "child_process.hpp"
 #include "cli_runner.hpp"
 #include "dds_test_support.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
-#include "odometry_calibration.hpp"
-#include "robot_parameters.hpp"
-#include "ros_conversions.hpp"
+#include "structloc/calibration_core/calibration_data.hpp"
+#include "structloc/calibration_core/odometry_calibration.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/kinematics/robot_parameters.hpp"
+#include "structloc/kinematics/tricycle.hpp"
+#include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 #include "test_paths.hpp"
-#include "tricycle.hpp"
 
 namespace structloc {
 namespace {
@@ -160,9 +160,9 @@ TEST(BadInputCalibration, M2_ReportSuccessMeansSomethingWasEstimated) {
   const testing::TempDir dir;
   auto constant = Simulate({0, 32, true});
   const auto encoders =
-      calibration::ReadEncodersCsv(dir.Write("encoders.csv", constant.encoders_csv), 32);
-  const auto fixes = calibration::ReadFixesCsv(dir.Write("fixes.csv", recording.fixes_csv));
-  const auto report = calibration::Calibrate(encoders, fixes.fixes, {}, {});
+      calibration_core::ReadEncodersCsv(dir.Write("encoders.csv", constant.encoders_csv), 32);
+  const auto fixes = calibration_core::ReadFixesCsv(dir.Write("fixes.csv", recording.fixes_csv));
+  const auto report = calibration_core::Calibrate(encoders, fixes.fixes, {}, {});
   EXPECT_FALSE(report.success);
   EXPECT_FALSE(report.failure.empty());
   ASSERT_FALSE(report.likely_causes.empty());
@@ -171,13 +171,13 @@ TEST(BadInputCalibration, M2_ReportSuccessMeansSomethingWasEstimated) {
 
 // Reads a simulated recording back through the CSV readers.
 struct Inputs {
-  std::vector<calibration::EncoderSample> encoders;
-  std::vector<calibration::Fix> fixes;
+  std::vector<calibration_core::EncoderSample> encoders;
+  std::vector<calibration_core::Fix> fixes;
 };
 
 Inputs Read(const testing::TempDir& dir, const Recording& recording) {
-  return {calibration::ReadEncodersCsv(dir.Write("encoders.csv", recording.encoders_csv), 32),
-          calibration::ReadFixesCsv(dir.Write("fixes.csv", recording.fixes_csv)).fixes};
+  return {calibration_core::ReadEncodersCsv(dir.Write("encoders.csv", recording.encoders_csv), 32),
+          calibration_core::ReadFixesCsv(dir.Write("fixes.csv", recording.fixes_csv)).fixes};
 }
 
 TEST(BadInputCalibration, M2_MostlyOutlierIntervalsFail) {
@@ -189,7 +189,7 @@ TEST(BadInputCalibration, M2_MostlyOutlierIntervalsFail) {
     fix.has_variance = true;
     fix.variance = {sigma * sigma, sigma * sigma, sigma * sigma};
   }
-  const auto report = calibration::Calibrate(inputs.encoders, inputs.fixes, {}, {});
+  const auto report = calibration_core::Calibrate(inputs.encoders, inputs.fixes, {}, {});
   EXPECT_FALSE(report.success);
   EXPECT_TRUE(Contains(report.failure, "fix intervals are outliers")) << report.failure;
 }
@@ -197,14 +197,14 @@ TEST(BadInputCalibration, M2_MostlyOutlierIntervalsFail) {
 TEST(BadInputCalibration, M2_DeadReckoningMustImproveOnNominal) {
   const testing::TempDir dir;
   const auto inputs = Read(dir, Simulate({}));
-  calibration::CalibrationOptions options;
-  const auto first = calibration::Calibrate(inputs.encoders, inputs.fixes, {}, options);
+  calibration_core::CalibrationOptions options;
+  const auto first = calibration_core::Calibrate(inputs.encoders, inputs.fixes, {}, options);
   EXPECT_TRUE(first.success);
   // Re-calibrating the calibrated robot confirms it (no better, no worse).
-  EXPECT_TRUE(
-      calibration::Calibrate(inputs.encoders, inputs.fixes, first.parameters, options).success);
+  EXPECT_TRUE(calibration_core::Calibrate(inputs.encoders, inputs.fixes, first.parameters, options)
+                  .success);
   options.max_dead_reckoning_ratio = 0.001;  // demands a 1000-fold improvement
-  const auto report = calibration::Calibrate(inputs.encoders, inputs.fixes, {}, options);
+  const auto report = calibration_core::Calibrate(inputs.encoders, inputs.fixes, {}, options);
   EXPECT_FALSE(report.success);
   EXPECT_TRUE(Contains(report.failure, "dead reckoning with the estimate is worse"))
       << report.failure;
@@ -260,7 +260,7 @@ TEST(BadInputCalibration, M3_TractionTicksBeyondTheCounterAreRefusedWithFileAndL
     const testing::TempDir dir;
     const std::string path = dir.Write("encoders.csv", header + "2," + ticks + ",0\n");
     try {
-      calibration::ReadEncodersCsv(path, 32);
+      calibration_core::ReadEncodersCsv(path, 32);
       ADD_FAILURE() << ticks << " accepted";
     } catch (const std::runtime_error& e) {
       EXPECT_TRUE(Contains(e.what(), path + ":3: ")) << e.what();
@@ -269,7 +269,7 @@ TEST(BadInputCalibration, M3_TractionTicksBeyondTheCounterAreRefusedWithFileAndL
   }
   const testing::TempDir dir;
   const auto samples =
-      calibration::ReadEncodersCsv(dir.Write("encoders.csv", header + "2,4294967295,0\n"), 32);
+      calibration_core::ReadEncodersCsv(dir.Write("encoders.csv", header + "2,4294967295,0\n"), 32);
   EXPECT_EQ(samples.back().traction_ticks, 4294967295u);
 }
 
@@ -304,11 +304,11 @@ TEST(BadInputCalibration, M6_ComponentRefusesAnOutDirThatIsNotAFolderAtStartUp) 
 
 // Plays a recording on rt/wheel_encoders and rt/pose (encoders at 20 Hz, all
 // fixes, in stamp order) once the component's readers are matched.
-void Publish(dds::Node& node, const Inputs& inputs) {
-  auto encoders =
-      node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(dds::topics::kWheelEncoders);
+void Publish(dds_common::Node& node, const Inputs& inputs) {
+  auto encoders = node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(
+      dds_common::topics::kWheelEncoders);
   auto fixes = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose);
+      dds_common::topics::kPose);
   ASSERT_TRUE(testing::WaitUntil(
       [&] { return encoders.MatchedReaders() > 0 && fixes.MatchedReaders() > 0; }));
   size_t f = 0;
@@ -316,16 +316,16 @@ void Publish(dds::Node& node, const Inputs& inputs) {
     const auto& e = inputs.encoders[k];
     for (; f < inputs.fixes.size() && inputs.fixes[f].t <= e.t; ++f) {
       geometry_msgs::msg::PoseWithCovarianceStamped m;
-      m.header().stamp(dds::ToRosTime(inputs.fixes[f].t));
+      m.header().stamp(dds_common::ToRosTime(inputs.fixes[f].t));
       m.pose().pose().position().x(inputs.fixes[f].pose.x);
       m.pose().pose().position().y(inputs.fixes[f].pose.y);
-      m.pose().pose().orientation(dds::ToQuaternion(inputs.fixes[f].pose.theta));
+      m.pose().pose().orientation(dds_common::ToQuaternion(inputs.fixes[f].pose.theta));
       m.pose().covariance()[0] = m.pose().covariance()[7] = 1e-4;
       m.pose().covariance()[35] = 1e-4;
       fixes.Write(m);
     }
     structloc_msgs::msg::WheelEncoders m;
-    m.header().stamp(dds::ToRosTime(e.t));
+    m.header().stamp(dds_common::ToRosTime(e.t));
     m.traction_ticks(e.traction_ticks);
     m.steering_ticks(static_cast<int32_t>(e.steering_ticks));
     encoders.Write(m);
@@ -352,7 +352,7 @@ TEST(BadInputCalibration, M2_ComponentExitsNonZeroWhenTheCalibrationFails) {
   const auto inputs = Read(dir, Simulate({0, 32, true}));
   auto component = StartRecordingComponent(dir / "out");
   ASSERT_TRUE(WaitForRunning(component)) << component.CapturedOutput();
-  dds::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
+  dds_common::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
   Publish(node, inputs);
   const auto code = component.WaitExit(std::chrono::seconds(30));
   ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
@@ -371,7 +371,7 @@ TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) 
   // The folder checked at start-up turns into a file before the result is written.
   std::filesystem::remove_all(out);
   dir.Write("out", "not a folder");
-  dds::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
+  dds_common::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
   Publish(node, inputs);
   const auto code = component.WaitExit(std::chrono::seconds(30));
   ASSERT_TRUE(code.has_value()) << component.CapturedOutput();
@@ -397,22 +397,22 @@ TEST(BadInputCalibration, L1_CounterBitsAreRangeCheckedBeforeNarrowing) {
 
 TEST(BadInputCalibration, L4_ByteOrderMarkBeforeTheHeaderIsAccepted) {
   const testing::TempDir dir;
-  const auto encoders = calibration::ReadEncodersCsv(
+  const auto encoders = calibration_core::ReadEncodersCsv(
       dir.Write("e.csv", "\xEF\xBB\xBFt,traction_ticks,steering_ticks\n1,0,0\n2,5,0\n"), 32);
   EXPECT_EQ(encoders.size(), 2u);
-  const auto fixes = calibration::ReadFixesCsv(
+  const auto fixes = calibration_core::ReadFixesCsv(
       dir.Write("f.csv", "\xEF\xBB\xBFt,x,y,theta\n1,0,0,0\n2,1,0,0\n3,2,0,0\n"));
   EXPECT_EQ(fixes.fixes.size(), 3u);
 }
 
 TEST(BadInputCalibration, L4_InfiniteAndNegativeVariancesAreNamedAsSuch) {
   const testing::TempDir dir;
-  const auto file = calibration::ReadFixesCsv(
+  const auto file = calibration_core::ReadFixesCsv(
       dir.Write("f.csv",
                 "t,x,y,theta,var_x,var_y,var_theta\n1,0,0,0,1,1,1\n2,1,0,0,inf,1,1\n"
                 "3,2,0,0,1,-1,1\n4,3,0,0,1,1,1\n5,nan,0,0,1,1,1\n6,4,0,0,1,1,1\n"));
   EXPECT_EQ(file.fixes.size(), 3u);
-  EXPECT_EQ(calibration::DescribeDropped(file),
+  EXPECT_EQ(calibration_core::DescribeDropped(file),
             "3 dropped (1 with NaN, 1 with an infinite value, 1 with a negative variance; "
             "first at line 3)");
 }

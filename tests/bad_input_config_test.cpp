@@ -10,18 +10,18 @@
 #include <functional>
 #include <sstream>
 
-#include "child_process.hpp"
 #include "cli_runner.hpp"
-#include "launch_file.hpp"
-#include "localiser_options.hpp"
-#include "scenario.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/process/launch_file.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/world_model/visibility.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 #include "test_paths.hpp"
-#include "visibility.hpp"
 #include "wait_until.hpp"
-#include "world_model_xml.hpp"
 
 namespace structloc {
 namespace {
@@ -63,13 +63,13 @@ void ExpectRejected(const std::string& path, const std::function<void(const std:
 }
 
 void LoadWorld(const std::string& path) {
-  world::LoadWorldModel(path);
+  world_model::LoadWorldModel(path);
 }
 void LoadScenario(const std::string& path) {
-  simulation::LoadScenario(path);
+  simulation_core::LoadScenario(path);
 }
 void LoadParams(const std::string& path) {
-  localisation::LoadLocaliserOptions(path);
+  localisation_core::LoadLocaliserOptions(path);
 }
 void LoadLaunch(const std::string& path) {
   process::ReadLaunchFile(path, {SourcePath(""), STRUCTLOC_BIN_DIR, {}});
@@ -102,7 +102,7 @@ TEST(BadInputConfig, M4_WorldOf100000WallsLoadsWithoutBlowingUp) {
   TempDir dir;
   const std::string path = dir.Write("grid.xml", GridWorld(224));  // 100 800 walls
   const auto start = std::chrono::steady_clock::now();
-  const auto world = world::LoadWorldModel(path);
+  const auto world = world_model::LoadWorldModel(path);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(world.Walls().size(), 100800u);
@@ -115,22 +115,22 @@ TEST(BadInputConfig, M4_WorldOf100000WallsLoadsWithoutBlowingUp) {
 
 TEST(BadInputConfig, M4_CornersFromTheIndexMatchTryingEveryPair) {
   // Walls meeting at right angles, at shallow angles, near misses and crossings.
-  std::vector<world::Wall> walls;
+  std::vector<world_model::Wall> walls;
   int id = 0;
   for (int k = 0; k < 40; ++k) {
     const Eigen::Vector2d base(0.37 * k, 0.11 * (k % 7));
-    walls.push_back(world::MakeWall(id++, base, base + Eigen::Vector2d(1.0, 0.0)));
-    walls.push_back(world::MakeWall(id++, base + Eigen::Vector2d(0.004 * (k % 4), 0.0),
-                                    base + Eigen::Vector2d(0.0, 1.0 + 0.1 * (k % 3))));
-    walls.push_back(world::MakeWall(id++, base + Eigen::Vector2d(1.0, 0.0),
-                                    base + Eigen::Vector2d(1.5, 0.3 * (k % 5))));
+    walls.push_back(world_model::MakeWall(id++, base, base + Eigen::Vector2d(1.0, 0.0)));
+    walls.push_back(world_model::MakeWall(id++, base + Eigen::Vector2d(0.004 * (k % 4), 0.0),
+                                          base + Eigen::Vector2d(0.0, 1.0 + 0.1 * (k % 3))));
+    walls.push_back(world_model::MakeWall(id++, base + Eigen::Vector2d(1.0, 0.0),
+                                          base + Eigen::Vector2d(1.5, 0.3 * (k % 5))));
   }
-  const world::WorldModel world("pairs", walls, {{100, {0.0, 0.0}, false}}, {});
+  const world_model::WorldModel world("pairs", walls, {{100, {0.0, 0.0}, false}}, {});
   // Reference: the original rule, every pair of walls in order (i, j > i).
-  std::vector<world::Corner> expected = {{100, {0.0, 0.0}, false}};
+  std::vector<world_model::Corner> expected = {{100, {0.0, 0.0}, false}};
   int next_id = 101;
-  const double tolerance = world::CornerDerivation{}.join_tolerance_m;
-  const double min_sin = std::cos(world::CornerDerivation{}.angle_tolerance_rad);
+  const double tolerance = world_model::CornerDerivation{}.join_tolerance_m;
+  const double min_sin = std::cos(world_model::CornerDerivation{}.angle_tolerance_rad);
   for (size_t i = 0; i < walls.size(); ++i) {
     for (size_t j = i + 1; j < walls.size(); ++j) {
       const Eigen::Vector2d di = (walls[i].b - walls[i].a).normalized();
@@ -158,13 +158,13 @@ TEST(BadInputConfig, M4_CornersFromTheIndexMatchTryingEveryPair) {
 TEST(BadInputConfig, M4_WallsPerMapLimitIsVisibleAndChangeable) {
   TempDir dir;
   const std::string path = dir.Write("grid.xml", GridWorld(3));  // 24 walls
-  world::WorldLimits limits;
-  EXPECT_EQ(limits.max_walls, world::WorldLimits::kDefaultMaxWalls);
+  world_model::WorldLimits limits;
+  EXPECT_EQ(limits.max_walls, world_model::WorldLimits::kDefaultMaxWalls);
   limits.max_walls = 23;
-  ExpectRejected(path, [&](const std::string& p) { world::LoadWorldModel(p, limits); },
+  ExpectRejected(path, [&](const std::string& p) { world_model::LoadWorldModel(p, limits); },
                  {"more than 23 walls", "walls-per-map limit"});
   limits.max_walls = 24;
-  EXPECT_EQ(world::LoadWorldModel(path, limits).Walls().size(), 24u);
+  EXPECT_EQ(world_model::LoadWorldModel(path, limits).Walls().size(), 24u);
 
   const auto help = testing::RunCli({"simulate", "--help"});
   EXPECT_EQ(help.exit_code, 0) << help.output;
@@ -236,23 +236,25 @@ TEST(BadInputConfig, M9_CoordinatesAndRadiiBeyondTheBoundAreRejected) {
   ExpectRejected(box, LoadScenario, {"width_m", "must be from 0 to 100000"});
 
   // A library user may widen the bound; the world then still loads (linearly).
-  world::WorldLimits wide;
+  world_model::WorldLimits wide;
   wide.max_abs_coordinate_m = 1e9;
-  EXPECT_NO_THROW(world::LoadWorldModel(wall, wide));
+  EXPECT_NO_THROW(world_model::LoadWorldModel(wall, wide));
 }
 
 TEST(BadInputConfig, M9_VisibilityOfAVeryLongWallHasNoIntegerOverflow) {
   // 2e8 m long: 4e9 samples at 0.05 m, beyond int (the old count overflowed
   // and the wall vanished); only the part within range is sampled now.
-  world::WorldLimits wide;
+  world_model::WorldLimits wide;
   wide.max_abs_coordinate_m = 1e9;
-  const world::WorldModel world(
-      "long", {world::MakeWall(1, {-1e8, 0.0}, {1e8, 0.0}), world::MakeWall(2, {0, 0}, {0, 3})}, {},
-      {}, {}, wide);
-  const auto scene = world::Scene::FromWorld(world);
-  world::Visibility seen;
+  const world_model::WorldModel world(
+      "long",
+      {world_model::MakeWall(1, {-1e8, 0.0}, {1e8, 0.0}), world_model::MakeWall(2, {0, 0}, {0, 3})},
+      {}, {}, {}, wide);
+  const auto scene = world_model::Scene::FromWorld(world);
+  world_model::Visibility seen;
   const auto start = std::chrono::steady_clock::now();
-  world::ComputeVisibility(world, scene, {1.0, 1.5, 0.0}, world::VisibilityOptions{}, seen);
+  world_model::ComputeVisibility(world, scene, {1.0, 1.5, 0.0}, world_model::VisibilityOptions{},
+                                 seen);
   // A guard against sampling the whole wall (4e9 samples), not a speed test.
   EXPECT_LT(std::chrono::steady_clock::now() - start, testing::kGenerousTimeout);
   ASSERT_EQ(seen.walls.size(), 2u);
@@ -316,7 +318,7 @@ TEST(BadInputConfig, L2_AbsurdIterationCountsRatesAndDurationsAreRefused) {
   ExpectRejected(Mutated(dir, room, "traction_start_tick=\"0\"",
                          "traction_start_tick=\"9223372036854775807\""),
                  LoadScenario, {"traction_start_tick", "from 0 to 4294967295"});
-  localisation::LocaliserOptions options;
+  localisation_core::LocaliserOptions options;
   options.solver.bisection_iterations = 2000000000;
   EXPECT_THROW(options.Validate(), std::invalid_argument);
 }
@@ -371,7 +373,7 @@ TEST(BadInputConfig, L4_MissingExecutablesDurationsAndFoldersGetClearMessages) {
 
   std::filesystem::create_directory(dir / "folder.xml");
   try {
-    world::LoadWorldModel(dir / "folder.xml");
+    world_model::LoadWorldModel(dir / "folder.xml");
     ADD_FAILURE() << "a folder loaded as a world";
   } catch (const config::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();

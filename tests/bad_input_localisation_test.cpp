@@ -9,21 +9,21 @@
 #include <string>
 #include <vector>
 
-#include "child_process.hpp"
 #include "cli_runner.hpp"
 #include "localisation_feed.hpp"
-#include "pose_tracker.hpp"
-#include "scenario.hpp"
+#include "structloc/localisation_core/pose_tracker.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
-#include "world_model_xml.hpp"
 
 namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-using localisation::PoseTracker;
-using localisation::Rejection;
+using localisation_core::PoseTracker;
+using localisation_core::Rejection;
 
 constexpr int kDomain = testing::domains::kBadInputLocalisation;
 
@@ -33,10 +33,11 @@ Eigen::Matrix3d DiagonalCovariance() {
 
 // A tracker on the office map; Start() gives it odometry and a pose at t = 1 s.
 struct TrackerFixture {
-  world::WorldModel world = world::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"));
-  localisation::LocaliserOptions options =
-      localisation::LoadLocaliserOptions(testing::SourcePath("maps/params/office_sick.xml"));
-  PoseTracker tracker{world, options, localisation::TrackerOptions{}};
+  world_model::WorldModel world =
+      world_model::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"));
+  localisation_core::LocaliserOptions options =
+      localisation_core::LoadLocaliserOptions(testing::SourcePath("maps/params/office_sick.xml"));
+  PoseTracker tracker{world, options, localisation_core::TrackerOptions{}};
   std::vector<float> ranges;
 
   void Start() {
@@ -46,7 +47,7 @@ struct TrackerFixture {
   // A 180 deg scan at t = 1 s of `beams` 5 m readings.
   PoseTracker::ScanOutcome Scan(size_t beams, double time_increment) {
     ranges.assign(beams, 5.0f);
-    localisation::ScanInput scan;
+    localisation_core::ScanInput scan;
     scan.stamp = 1.0;
     scan.angle_min = -1.57;
     scan.angle_increment = 3.14 / static_cast<double>(beams - 1);
@@ -70,8 +71,9 @@ process::ChildProcess StartLocalisation(std::vector<std::string> extra, int doma
   return process::ChildProcess(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation", args);
 }
 
-simulation::Scenario Office(double seconds) {
-  auto scenario = simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+simulation_core::Scenario Office(double seconds) {
+  auto scenario =
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
   scenario.duration_s = seconds;
   return scenario;
 }
@@ -90,7 +92,7 @@ TEST(BadInputLocalisation, H4_InitialPoseCovarianceMustBePositiveDefinite) {
   EXPECT_FALSE(f.tracker.HasInitialPose());
   EXPECT_FALSE(f.tracker.SetInitialPose(1.0, {2, 6.5, 0}, DiagonalCovariance()).has_value());
   EXPECT_TRUE(f.tracker.HasInitialPose());
-  EXPECT_NE(std::string(localisation::ToString(Rejection::kInitialPoseInvalid))
+  EXPECT_NE(std::string(localisation_core::ToString(Rejection::kInitialPoseInvalid))
                 .find("symmetric positive definite"),
             std::string::npos);
 }
@@ -98,12 +100,12 @@ TEST(BadInputLocalisation, H4_InitialPoseCovarianceMustBePositiveDefinite) {
 TEST(BadInputLocalisation, M1_OdometryWithoutAUnitQuaternionOrWithAHeadingJumpIsRejected) {
   geometry_msgs::msg::Quaternion zero;
   zero.w(0.0);
-  EXPECT_TRUE(std::isnan(dds::YawFromQuaternion(zero)));
-  auto scaled = dds::ToQuaternion(0.7);
+  EXPECT_TRUE(std::isnan(dds_common::YawFromQuaternion(zero)));
+  auto scaled = dds_common::ToQuaternion(0.7);
   scaled.z(scaled.z() * 3);
   scaled.w(scaled.w() * 0.2);
-  EXPECT_TRUE(std::isnan(dds::YawFromQuaternion(scaled)));
-  EXPECT_NEAR(dds::YawFromQuaternion(dds::ToQuaternion(0.7)), 0.7, 1e-12);
+  EXPECT_TRUE(std::isnan(dds_common::YawFromQuaternion(scaled)));
+  EXPECT_NEAR(dds_common::YawFromQuaternion(dds_common::ToQuaternion(0.7)), 0.7, 1e-12);
 
   TrackerFixture f;
   ASSERT_FALSE(f.tracker.AddOdometry(1.0, {0, 0, 1.5}).has_value());
@@ -138,31 +140,33 @@ TEST(BadInputLocalisation, H4_M1_M11_HostileSamplesAreRejectedWithReasonsAndTrac
   testing::LocalisationFeed feed("hostile_feeder", kDomain);
   auto localisation = StartLocalisation({"--initial-pose", PoseArgument(scenario.initial_pose)});
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
-  feed.Play(scenario, [&](int k, const simulation::SimState& s, sensor_msgs::msg::LaserScan& scan) {
-    if (k == 30) {
-      // H4: a wrong pose with a positive diagonal that is not positive definite.
-      geometry_msgs::msg::PoseWithCovarianceStamped bad;
-      bad.header().stamp(scan.header().stamp());
-      bad.header().frame_id("map");
-      bad.pose().pose().position().x(s.truth.x + 0.3);
-      bad.pose().pose().position().y(s.truth.y);
-      bad.pose().pose().orientation(dds::ToQuaternion(s.truth.theta));
-      bad.pose().covariance()[0] = bad.pose().covariance()[7] = 1e-6;
-      bad.pose().covariance()[35] = 1e-6;
-      bad.pose().covariance()[1] = bad.pose().covariance()[6] = 1.0;
-      feed.InitialPoseWriter().Write(bad);
-    }
-    if (k % 5 == 0) {
-      // M1: an uninitialised orientation on every fifth odometry sample.
-      auto odom = simulator::ToOdometry(s, 0.0, testing::LocalisationFeed::kClockOffset);
-      odom.header().stamp(dds::ToRosTime(dds::FromRosTime(odom.header().stamp()) + 0.001));
-      odom.pose().pose().orientation(geometry_msgs::msg::Quaternion());
-      odom.pose().pose().orientation().w(0.0);
-      feed.OdometryWriter().Write(odom);
-    }
-    if (k % 7 == 0) scan.time_increment(1e30f);  // M11
-    return true;
-  });
+  feed.Play(scenario,
+            [&](int k, const simulation_core::SimState& s, sensor_msgs::msg::LaserScan& scan) {
+              if (k == 30) {
+                // H4: a wrong pose with a positive diagonal that is not positive definite.
+                geometry_msgs::msg::PoseWithCovarianceStamped bad;
+                bad.header().stamp(scan.header().stamp());
+                bad.header().frame_id("map");
+                bad.pose().pose().position().x(s.truth.x + 0.3);
+                bad.pose().pose().position().y(s.truth.y);
+                bad.pose().pose().orientation(dds_common::ToQuaternion(s.truth.theta));
+                bad.pose().covariance()[0] = bad.pose().covariance()[7] = 1e-6;
+                bad.pose().covariance()[35] = 1e-6;
+                bad.pose().covariance()[1] = bad.pose().covariance()[6] = 1.0;
+                feed.InitialPoseWriter().Write(bad);
+              }
+              if (k % 5 == 0) {
+                // M1: an uninitialised orientation on every fifth odometry sample.
+                auto odom = simulator::ToOdometry(s, 0.0, testing::LocalisationFeed::kClockOffset);
+                odom.header().stamp(
+                    dds_common::ToRosTime(dds_common::FromRosTime(odom.header().stamp()) + 0.001));
+                odom.pose().pose().orientation(geometry_msgs::msg::Quaternion());
+                odom.pose().pose().orientation().w(0.0);
+                feed.OdometryWriter().Write(odom);
+              }
+              if (k % 7 == 0) scan.time_increment(1e30f);  // M11
+              return true;
+            });
   const auto headline_while_fed = feed.Headline().second;
   // The rejections show in the diagnostics, published about once a second.
   const std::vector<std::string> reasons = {

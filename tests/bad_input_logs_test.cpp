@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "carmen_reader.hpp"
 #include "cli_runner.hpp"
-#include "map_canvas.hpp"
-#include "recorder.hpp"
-#include "replay.hpp"
-#include "scenario.hpp"
+#include "structloc/log_formats/carmen_reader.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/replay/replay.hpp"
+#include "structloc/simulation_core/recorder.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -39,8 +39,8 @@ constexpr const char* kRoomInitialPose = "1.5 1.5 0.3";
 const TempDir& RoomRecording() {
   static const TempDir dir;
   static const bool recorded = [] {
-    simulation::RecordScenario(
-        simulation::LoadScenario(testing::SourcePath("maps/scenarios/robustness_room.xml")),
+    simulation_core::RecordScenario(
+        simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/robustness_room.xml")),
         dir.Path());
     return true;
   }();
@@ -125,23 +125,24 @@ std::string RobotLaserLine(size_t declared, size_t values, double stamp,
 }
 
 struct ReadLog {
-  std::vector<logs::CarmenRecord> records;
-  logs::CarmenStats stats;
+  std::vector<log_formats::CarmenRecord> records;
+  log_formats::CarmenStats stats;
 };
 
-ReadLog Read(const std::string& path, const logs::CarmenLimits& limits = {}) {
-  logs::CarmenReader reader(path, limits);
+ReadLog Read(const std::string& path, const log_formats::CarmenLimits& limits = {}) {
+  log_formats::CarmenReader reader(path, limits);
   ReadLog result;
-  logs::CarmenRecord r;
+  log_formats::CarmenRecord r;
   while (reader.Next(r)) result.records.push_back(r);
   result.stats = reader.Stats();
   return result;
 }
 
-bool HasReason(const logs::CarmenStats& stats, const std::string& text) {
-  return std::any_of(
-      stats.malformed_lines.begin(), stats.malformed_lines.end(),
-      [&text](const logs::MalformedLine& m) { return m.reason.find(text) != std::string::npos; });
+bool HasReason(const log_formats::CarmenStats& stats, const std::string& text) {
+  return std::any_of(stats.malformed_lines.begin(), stats.malformed_lines.end(),
+                     [&text](const log_formats::MalformedLine& m) {
+                       return m.reason.find(text) != std::string::npos;
+                     });
 }
 
 std::string Describe(const CliResult& r) {
@@ -276,7 +277,7 @@ TEST(BadInputLogs, H3_LaserLineWithWrongBeamCountIsMalformedWithReason) {
   EXPECT_TRUE(HasReason(read.stats, "6 beams declared"));
   EXPECT_TRUE(HasReason(read.stats, "'0.000000'"));
   for (const auto& r : read.records) {
-    if (r.kind != logs::CarmenRecord::Kind::kScan) continue;
+    if (r.kind != log_formats::CarmenRecord::Kind::kScan) continue;
     EXPECT_EQ(r.ranges.size(), 5u);
     ASSERT_TRUE(r.laser_pose.has_value());
     EXPECT_DOUBLE_EQ(r.laser_pose->x, 0.2);  // the laser pose, not a shifted field
@@ -456,7 +457,7 @@ TEST(BadInputLogs, L4_NonFiniteRangeIsAnInvalidBeamNotADroppedScan) {
 
 TEST(BadInputLogs, L4_BeamLimitIsNamedAndChangeable) {
   const TempDir dir;
-  logs::CarmenLimits limits;
+  log_formats::CarmenLimits limits;
   limits.max_beams = 4;
   const auto read = Read(dir.Write("wide.clf", RobotLaserLine(5, 5, 0.1) + "\n"), limits);
   EXPECT_EQ(read.stats.malformed, 1u);

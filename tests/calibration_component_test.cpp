@@ -9,10 +9,10 @@
 #include <map>
 #include <mutex>
 
-#include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
-#include "scenario.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
@@ -25,16 +25,16 @@ constexpr int kDomain = testing::domains::kCalibrationComponent;
 
 TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
   const auto scenario =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/calibration_loop.xml"));
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/calibration_loop.xml"));
   const auto truth = scenario.TrueParameters();
   const testing::TempDir dir;
   const std::string out = dir / "calibration";
-  dds::Node observer(testing::TestNodeOptions("cal_observer", kDomain));
+  dds_common::Node observer(testing::TestNodeOptions("cal_observer", kDomain));
   std::mutex mutex;
   std::string calibration_state;
   const auto diagnostics_subscription =
       observer.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
+          dds_common::topics::kDiagnostics, [&](const diagnostic_msgs::msg::DiagnosticArray& a) {
             std::lock_guard<std::mutex> lock(mutex);
             for (const auto& s : a.status()) {
               if (s.name() == "structloc/calibration") calibration_state = s.message();
@@ -66,10 +66,10 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
       60s))
       << calibration.CapturedOutput();
   // A subscriber that joins only now.
-  dds::Node late(testing::TestNodeOptions("late_subscriber", kDomain));
+  dds_common::Node late(testing::TestNodeOptions("late_subscriber", kDomain));
   std::optional<structloc_msgs::msg::CalibrationResult> result;
   const auto result_subscription = late.Subscribe<structloc_msgs::msg::CalibrationResultPubSubType>(
-      dds::topics::kCalibration, [&](const structloc_msgs::msg::CalibrationResult& r) {
+      dds_common::topics::kCalibration, [&](const structloc_msgs::msg::CalibrationResult& r) {
         std::lock_guard<std::mutex> lock(mutex);
         result = r;
       });

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "calibration_recorder.hpp"
+#include "structloc/calibration_core/calibration_recorder.hpp"
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 namespace {
 
 EncoderSample Encoders(double t) {
@@ -80,4 +80,4 @@ TEST(CalibrationRecorder, RefusesImpossibleOptions) {
 }
 
 }  // namespace
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

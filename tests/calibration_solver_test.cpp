@@ -9,11 +9,11 @@
 #include <functional>
 #include <vector>
 
-#include "calibration_report_builder.hpp"
-#include "levenberg_marquardt.hpp"
-#include "observability_pruning.hpp"
+#include "structloc/calibration_core/calibration_report_builder.hpp"
+#include "structloc/calibration_core/levenberg_marquardt.hpp"
+#include "structloc/calibration_core/observability_pruning.hpp"
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 namespace {
 
 // y = a * exp(b * t) sampled without noise at t = 0, 0.1, ..., 1.9.
@@ -184,4 +184,4 @@ TEST(CalibrationReportBuilder, CovarianceIsTheInverseNormalMatrixScaledByTheResi
 }
 
 }  // namespace
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "child_process.hpp"
+#include "structloc/process/child_process.hpp"
 
 namespace structloc::testing {
 

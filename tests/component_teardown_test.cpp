@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "dds_test_support.hpp"
-#include "localisation_component.hpp"
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/localisation/localisation_component.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "test_domains.hpp"
-#include "world_model_xml.hpp"
 
 namespace structloc {
 namespace {
@@ -25,19 +25,20 @@ class Flood {
  public:
   explicit Flood(bool scans)
       : node_(testing::TestNodeOptions("flood", kDomain)),
-        odom_(node_.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
-        scan_(node_.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan)) {
+        odom_(node_.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)),
+        scan_(
+            node_.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan)) {
     thread_ = std::thread([this, scans] {
       double t = 1000.0;
       while (!stop_) {
         t += 0.01;
         nav_msgs::msg::Odometry odom;
-        odom.header().stamp(dds::ToRosTime(t));
-        odom.pose().pose().orientation(dds::ToQuaternion(0.0));
+        odom.header().stamp(dds_common::ToRosTime(t));
+        odom.pose().pose().orientation(dds_common::ToQuaternion(0.0));
         odom_.Write(odom);
         if (scans) {
           sensor_msgs::msg::LaserScan scan;
-          scan.header().stamp(dds::ToRosTime(t - 0.005));
+          scan.header().stamp(dds_common::ToRosTime(t - 0.005));
           scan.angle_min(-2.35f);
           scan.angle_increment(static_cast<float>(4.7 / 1080));
           scan.angle_max(2.35f);
@@ -58,9 +59,9 @@ class Flood {
   size_t MatchedScanReaders() const { return scan_.MatchedReaders(); }
 
  private:
-  dds::Node node_;
-  dds::TopicWriter<nav_msgs::msg::OdometryPubSubType> odom_;
-  dds::TopicWriter<sensor_msgs::msg::LaserScanPubSubType> scan_;
+  dds_common::Node node_;
+  dds_common::TopicWriter<nav_msgs::msg::OdometryPubSubType> odom_;
+  dds_common::TopicWriter<sensor_msgs::msg::LaserScanPubSubType> scan_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -77,13 +78,13 @@ struct Observed {
 // members, the way a component's does.
 class SlowSubscriber {
  public:
-  SlowSubscriber(dds::Node& node, Observed& observed)
+  SlowSubscriber(dds_common::Node& node, Observed& observed)
       : observed_(observed), received_(std::make_unique<std::vector<double>>()) {
     subscription_ = node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-        dds::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
+        dds_common::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
           observed_.in_callback = true;
           if (observed_.destroyed) ++observed_.calls_after_destruction;
-          received_->push_back(dds::FromRosTime(m.header().stamp()));
+          received_->push_back(dds_common::FromRosTime(m.header().stamp()));
           std::this_thread::sleep_for(std::chrono::milliseconds(1));
           ++observed_.calls;
           observed_.in_callback = false;
@@ -93,11 +94,11 @@ class SlowSubscriber {
  private:
   Observed& observed_;
   std::unique_ptr<std::vector<double>> received_;
-  dds::Subscription subscription_;  // last: destroyed first
+  dds_common::Subscription subscription_;  // last: destroyed first
 };
 
 TEST(ComponentTeardown, NoCallbackReachesASubscriberOnceItIsDestroyed) {
-  dds::Node node(testing::TestNodeOptions("subscriber", kDomain));
+  dds_common::Node node(testing::TestNodeOptions("subscriber", kDomain));
   Flood flood(false);
   for (int round = 0; round < 5; ++round) {
     Observed observed;
@@ -115,7 +116,7 @@ TEST(ComponentTeardown, NoCallbackReachesASubscriberOnceItIsDestroyed) {
 }
 
 TEST(ComponentTeardown, ALocalisationComponentDestroyedWhileScansArriveDoesNotCrash) {
-  dds::Node node(testing::TestNodeOptions("localisation", kDomain));
+  dds_common::Node node(testing::TestNodeOptions("localisation", kDomain));
   Flood flood(true);
   const std::string params = testing::SourcePath("maps/params/office_sick.xml");
   for (int round = 0; round < 3; ++round) {
@@ -123,10 +124,10 @@ TEST(ComponentTeardown, ALocalisationComponentDestroyedWhileScansArriveDoesNotCr
     options.initial_pose = geometry::Pose2D{19.5, 6.5, 0.2};
     auto component = std::make_unique<localisation::LocalisationComponent>(
         node,
-        std::make_unique<world::WorldModel>(
-            world::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"))),
-        localisation::LoadLocaliserOptions(params), localisation::LoadSessionOptions(params),
-        options);
+        std::make_unique<world_model::WorldModel>(
+            world_model::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"))),
+        localisation_core::LoadLocaliserOptions(params),
+        localisation_core::LoadSessionOptions(params), options);
     ASSERT_TRUE(testing::WaitUntil(
         [&] { return flood.MatchedOdometryReaders() > 0 && flood.MatchedScanReaders() > 0; },
         std::chrono::seconds(20)))

@@ -9,9 +9,9 @@
 #include <mutex>
 #include <sstream>
 
-#include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "structloc/process/child_process.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 #include "wait_until.hpp"
@@ -35,9 +35,9 @@ std::vector<std::string> Args(int domain, const std::string& qos = testing::Ship
 // Latest diagnostic key/values per component name.
 class DiagnosticsListener {
  public:
-  explicit DiagnosticsListener(dds::Node& node) {
+  explicit DiagnosticsListener(dds_common::Node& node) {
     subscription_ = node.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-        dds::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
+        dds_common::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
           std::lock_guard<std::mutex> lock(mutex_);
           for (const auto& s : a.status()) {
             for (const auto& kv : s.values()) latest_[s.name()][kv.key()] = kv.value();
@@ -55,11 +55,11 @@ class DiagnosticsListener {
  private:
   std::mutex mutex_;
   std::map<std::string, std::map<std::string, std::string>> latest_;
-  dds::Subscription subscription_;  // last: destroyed first
+  dds_common::Subscription subscription_;  // last: destroyed first
 };
 
 TEST(Components, ExchangeSamplesAndStopCleanly) {
-  dds::Node observer(testing::TestNodeOptions("observer", kDomain));
+  dds_common::Node observer(testing::TestNodeOptions("observer", kDomain));
   DiagnosticsListener diagnostics(observer);
   ChildProcess simulator(BinPath("structloc_simulator"), Args(kDomain));
   ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));

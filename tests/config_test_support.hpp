@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 #include "temp_dir.hpp"
 
 namespace structloc::testing {

@@ -7,10 +7,10 @@
 
 #include <cstdio>
 
-#include "localiser.hpp"
+#include "structloc/localisation_core/localiser.hpp"
 #include "synthetic_scans.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using geometry::kPi;
@@ -63,4 +63,4 @@ TEST(CovarianceHonesty, ErrorsLieWithinThreeSigmaOfTheReportedCovariance) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

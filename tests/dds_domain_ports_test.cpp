@@ -13,8 +13,8 @@
 #include <unistd.h>
 
 #include "dds_test_support.hpp"
-#include "domain_ports.hpp"
 #include "std_msgs/msg/HeaderPubSubTypes.h"
+#include "structloc/dds_common/domain_ports.hpp"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -42,8 +42,8 @@ class HeldPort {
 };
 
 std::optional<std::string> RoundTripOnce(int domain) {
-  dds::Node writer(testing::TestNodeOptions("ports_writer", domain));
-  dds::Node reader(testing::TestNodeOptions("ports_reader", domain));
+  dds_common::Node writer(testing::TestNodeOptions("ports_writer", domain));
+  dds_common::Node reader(testing::TestNodeOptions("ports_reader", domain));
   std_msgs::msg::Header sample;
   sample.frame_id("probe");
   auto received = testing::RoundTrip<std_msgs::msg::HeaderPubSubType>(
@@ -53,7 +53,7 @@ std::optional<std::string> RoundTripOnce(int domain) {
 }
 
 TEST(DdsDomainPorts, ASocketHoldingTheDiscoveryPortCutsParticipantsOff) {
-  const int discovery_port = dds::DomainPortRange(kDomain).first;
+  const int discovery_port = dds_common::DomainPortRange(kDomain).first;
   {
     HeldPort held(discovery_port);
     ASSERT_TRUE(held.Bound()) << "port " << discovery_port << " is busy already";
@@ -64,26 +64,26 @@ TEST(DdsDomainPorts, ASocketHoldingTheDiscoveryPortCutsParticipantsOff) {
 }
 
 TEST(DdsDomainPorts, SafeDomainsStayBelowTheEphemeralRange) {
-  const auto ephemeral = dds::EphemeralPortRange();
+  const auto ephemeral = dds_common::EphemeralPortRange();
   ASSERT_TRUE(ephemeral.has_value());
   std::printf("ephemeral ports here: %d-%d\n", ephemeral->first, ephemeral->second);
-  for (int domain = 0; domain <= dds::kMaxSafeDomainId; ++domain) {
-    EXPECT_FALSE(dds::DomainPortWarning(domain, std::make_pair(32768, 60999)).has_value())
+  for (int domain = 0; domain <= dds_common::kMaxSafeDomainId; ++domain) {
+    EXPECT_FALSE(dds_common::DomainPortWarning(domain, std::make_pair(32768, 60999)).has_value())
         << domain;
   }
   for (int domain : testing::domains::kAll) {
-    EXPECT_LT(dds::DomainPortRange(domain).second, ephemeral->first) << domain;
+    EXPECT_LT(dds_common::DomainPortRange(domain).second, ephemeral->first) << domain;
   }
 }
 
 TEST(DdsDomainPorts, DomainsInTheEphemeralRangeAreWarnedAbout) {
   for (int domain : {102, 110, 150, 214}) {
-    const auto warning = dds::DomainPortWarning(domain, std::make_pair(32768, 60999));
+    const auto warning = dds_common::DomainPortWarning(domain, std::make_pair(32768, 60999));
     ASSERT_TRUE(warning.has_value()) << domain;
     EXPECT_NE(warning->find("0..101"), std::string::npos) << *warning;
   }
-  EXPECT_EQ(dds::DomainPortRange(110).first, 34900);
-  EXPECT_FALSE(dds::DomainPortWarning(232, std::make_pair(32768, 60999)).has_value());
+  EXPECT_EQ(dds_common::DomainPortRange(110).first, 34900);
+  EXPECT_FALSE(dds_common::DomainPortWarning(232, std::make_pair(32768, 60999)).has_value());
 }
 
 }  // namespace

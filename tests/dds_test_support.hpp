@@ -10,7 +10,7 @@
 #include <string>
 #include <thread>
 
-#include "node.hpp"
+#include "structloc/dds_common/node.hpp"
 #include "test_paths.hpp"
 #include "wait_until.hpp"
 
@@ -20,8 +20,8 @@ inline std::string ShippedQos() {
   return SourcePath("qos/structloc_qos.xml");
 }
 
-inline dds::NodeOptions TestNodeOptions(const std::string& name, int domain) {
-  dds::NodeOptions options;
+inline dds_common::NodeOptions TestNodeOptions(const std::string& name, int domain) {
+  dds_common::NodeOptions options;
   options.name = name;
   options.domain_id = domain;
   options.qos_file = ShippedQos();
@@ -31,8 +31,9 @@ inline dds::NodeOptions TestNodeOptions(const std::string& name, int domain) {
 // Publishes `sample` on `topic` from `writer_node` until `reader_node`
 // receives one, and returns what arrived (nullopt on timeout).
 template <class PubSubType>
-std::optional<typename PubSubType::type> RoundTrip(dds::Node& writer_node, dds::Node& reader_node,
-                                                   const dds::TopicSpec& topic,
+std::optional<typename PubSubType::type> RoundTrip(dds_common::Node& writer_node,
+                                                   dds_common::Node& reader_node,
+                                                   const dds_common::TopicSpec& topic,
                                                    typename PubSubType::type sample) {
   std::mutex mutex;
   std::optional<typename PubSubType::type> received;

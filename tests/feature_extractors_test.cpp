@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "feature_kinds.hpp"
-#include "localiser.hpp"
 #include "office_scene.hpp"
+#include "structloc/localisation_core/feature_kinds.hpp"
+#include "structloc/localisation_core/localiser.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 std::vector<std::string> Kinds(const std::vector<std::unique_ptr<FeatureExtractor>>& extractors) {
@@ -124,4 +124,4 @@ TEST(FeatureKinds, ANewKindPlugsInWithoutChangingTheLocaliser) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -6,9 +6,9 @@
 #include <fstream>
 
 #include "config_test_support.hpp"
-#include "ray_cast.hpp"
-#include "visibility.hpp"
-#include "world_model_xml.hpp"
+#include "structloc/world_model/ray_cast.hpp"
+#include "structloc/world_model/visibility.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc {
 namespace {
@@ -51,7 +51,7 @@ TEST(WorldModel, EveryShippedMapLoads) {
   for (const auto& e :
        std::filesystem::directory_iterator(std::string(STRUCTLOC_SOURCE_DIR) + "/maps")) {
     if (e.path().extension() != ".xml") continue;
-    const auto world = world::LoadWorldModel(e.path().string());
+    const auto world = world_model::LoadWorldModel(e.path().string());
     EXPECT_FALSE(world.Name().empty());
     ++count;
   }
@@ -59,8 +59,8 @@ TEST(WorldModel, EveryShippedMapLoads) {
 }
 
 TEST(WorldModel, DerivesCornersWhereWallEndsMeetAtRightAngles) {
-  const auto world =
-      world::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) + "/maps/dead_end_corridor.xml");
+  const auto world = world_model::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) +
+                                                 "/maps/dead_end_corridor.xml");
   ASSERT_EQ(world.Walls().size(), 3u);
   ASSERT_EQ(world.Corners().size(), 2u);  // (0.1, 0.1) and (0.1, 2.21)
   EXPECT_TRUE(world.Corners()[0].derived);
@@ -70,8 +70,9 @@ TEST(WorldModel, DerivesCornersWhereWallEndsMeetAtRightAngles) {
   EXPECT_NEAR(std::abs(world.Walls()[1].line.alpha), 0.0, 1e-12);
   EXPECT_NEAR(world.Walls()[2].line.r, 2.21, 1e-12);
   // Walls at 45 degrees do not make a corner.
-  const auto skew = world::WorldModel(
-      "s", {world::MakeWall(0, {0, 0}, {1, 0}), world::MakeWall(1, {1, 0}, {2, 1})}, {}, {});
+  const auto skew = world_model::WorldModel(
+      "s", {world_model::MakeWall(0, {0, 0}, {1, 0}), world_model::MakeWall(1, {1, 0}, {2, 1})}, {},
+      {});
   EXPECT_TRUE(skew.Corners().empty());
 }
 
@@ -84,7 +85,7 @@ class BadWorldFile : public ::testing::TestWithParam<BadWorld> {};
 
 TEST_P(BadWorldFile, IsRejectedWithFileLineAndProblem) {
   testing::ExpectRejected(GetParam().text, GetParam().problem,
-                          [](const std::string& path) { world::LoadWorldModel(path); });
+                          [](const std::string& path) { world_model::LoadWorldModel(path); });
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -112,7 +113,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.tag); });
 
 TEST(RayCast, HandComputedRanges) {
-  world::Scene scene;
+  world_model::Scene scene;
   scene.segments.push_back({{2, -5}, {2, 5}});  // x = 2
   scene.segments.push_back({{-5, 3}, {5, 3}});  // y = 3
   scene.circles.push_back({{-3, 0}, 0.5});
@@ -130,24 +131,24 @@ TEST(RayCast, HandComputedRanges) {
 }
 
 TEST(Visibility, RangeOcclusionAndFieldOfView) {
-  const world::WorldModel world(
+  const world_model::WorldModel world(
       "v",
-      {world::MakeWall(0, {-5, 2}, {5, 2}), world::MakeWall(1, {-5, -6}, {5, -6}),
-       world::MakeWall(2, {-1, -1}, {1, -1}), world::MakeWall(3, {-1, -3}, {1, -3})},
+      {world_model::MakeWall(0, {-5, 2}, {5, 2}), world_model::MakeWall(1, {-5, -6}, {5, -6}),
+       world_model::MakeWall(2, {-1, -1}, {1, -1}), world_model::MakeWall(3, {-1, -3}, {1, -3})},
       {}, {{0, {3, 0}, 0.3}});
-  const world::Scene scene = world::Scene::FromWorld(world);
-  world::VisibilityOptions o;
+  const world_model::Scene scene = world_model::Scene::FromWorld(world);
+  world_model::VisibilityOptions o;
   o.min_range_m = 0.1;
   o.max_range_m = 4.0;
-  world::Visibility v;
-  world::ComputeVisibility(world, scene, {0, 0, 0}, o, v);
+  world_model::Visibility v;
+  world_model::ComputeVisibility(world, scene, {0, 0, 0}, o, v);
   std::vector<int> walls;
   for (const auto& w : v.walls) walls.push_back(w.index);
   // Wall 1 is beyond range, wall 3 hidden behind wall 2.
   EXPECT_EQ(walls, (std::vector<int>{0, 2}));
   EXPECT_EQ(v.cylinders, (std::vector<int>{0}));
   o.field_of_view_rad = kPi / 3;  // +-30 deg along +x: wall 0 only beyond range, so only the pillar
-  world::ComputeVisibility(world, scene, {0, 0, 0}, o, v);
+  world_model::ComputeVisibility(world, scene, {0, 0, 0}, o, v);
   EXPECT_TRUE(v.walls.empty());
   EXPECT_EQ(v.cylinders, (std::vector<int>{0}));
 }

@@ -295,7 +295,7 @@ class IdlRoundTrip : public ::testing::Test {
         reader_(TestNodeOptions("roundtrip_reader", kDomain)) {}
 
   template <class PubSubType>
-  void ExpectRoundTrip(const dds::TopicSpec& topic, const std::string& expected_type_name,
+  void ExpectRoundTrip(const dds_common::TopicSpec& topic, const std::string& expected_type_name,
                        const typename PubSubType::type& sample) {
     PubSubType type_support;
     EXPECT_EQ(type_support.getName(), expected_type_name);
@@ -304,56 +304,56 @@ class IdlRoundTrip : public ::testing::Test {
     EXPECT_TRUE(*received == sample) << "a field changed on the wire on " << topic.name;
   }
 
-  dds::Node writer_;
-  dds::Node reader_;
+  dds_common::Node writer_;
+  dds_common::Node reader_;
   Filler fill_;
 };
 
-dds::TopicSpec TestTopic(const std::string& name) {
+dds_common::TopicSpec TestTopic(const std::string& name) {
   return {"rt/structloc_test/" + name, "reliable_state"};
 }
 
 TEST_F(IdlRoundTrip, LaserScanOnRtScan) {
-  EXPECT_EQ(dds::topics::kScan.name, "rt/scan");
+  EXPECT_EQ(dds_common::topics::kScan.name, "rt/scan");
   const auto sample = fill_.LaserScan();
   ExpectRoundTrip<sensor_msgs::msg::LaserScanPubSubType>(
-      dds::topics::kScan, "sensor_msgs::msg::dds_::LaserScan_", sample);
+      dds_common::topics::kScan, "sensor_msgs::msg::dds_::LaserScan_", sample);
 }
 
 TEST_F(IdlRoundTrip, OdometryOnRtOdom) {
-  EXPECT_EQ(dds::topics::kOdom.name, "rt/odom");
+  EXPECT_EQ(dds_common::topics::kOdom.name, "rt/odom");
   ExpectRoundTrip<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kOdom, "nav_msgs::msg::dds_::Odometry_", fill_.Odometry());
+      dds_common::topics::kOdom, "nav_msgs::msg::dds_::Odometry_", fill_.Odometry());
 }
 
 TEST_F(IdlRoundTrip, PoseWithCovarianceStampedOnRtPoseAndInitialPose) {
-  EXPECT_EQ(dds::topics::kPose.name, "rt/pose");
-  EXPECT_EQ(dds::topics::kInitialPose.name, "rt/initialpose");
+  EXPECT_EQ(dds_common::topics::kPose.name, "rt/pose");
+  EXPECT_EQ(dds_common::topics::kInitialPose.name, "rt/initialpose");
   ExpectRoundTrip<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose, "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_",
+      dds_common::topics::kPose, "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_",
       fill_.PoseWithCovarianceStamped());
   ExpectRoundTrip<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kInitialPose, "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_",
+      dds_common::topics::kInitialPose, "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_",
       fill_.PoseWithCovarianceStamped());
 }
 
 TEST_F(IdlRoundTrip, TFMessageOnRtTf) {
-  EXPECT_EQ(dds::topics::kTf.name, "rt/tf");
+  EXPECT_EQ(dds_common::topics::kTf.name, "rt/tf");
   ExpectRoundTrip<tf2_msgs::msg::TFMessagePubSubType>(
-      dds::topics::kTf, "tf2_msgs::msg::dds_::TFMessage_", fill_.TFMessage());
+      dds_common::topics::kTf, "tf2_msgs::msg::dds_::TFMessage_", fill_.TFMessage());
 }
 
 TEST_F(IdlRoundTrip, DiagnosticArrayOnRtDiagnostics) {
-  EXPECT_EQ(dds::topics::kDiagnostics.name, "rt/diagnostics");
+  EXPECT_EQ(dds_common::topics::kDiagnostics.name, "rt/diagnostics");
   ExpectRoundTrip<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-      dds::topics::kDiagnostics, "diagnostic_msgs::msg::dds_::DiagnosticArray_",
+      dds_common::topics::kDiagnostics, "diagnostic_msgs::msg::dds_::DiagnosticArray_",
       fill_.DiagnosticArray());
 }
 
 TEST_F(IdlRoundTrip, TwistOnRtCmdVel) {
-  EXPECT_EQ(dds::topics::kCmdVel.name, "rt/cmd_vel");
+  EXPECT_EQ(dds_common::topics::kCmdVel.name, "rt/cmd_vel");
   ExpectRoundTrip<geometry_msgs::msg::TwistPubSubType>(
-      dds::topics::kCmdVel, "geometry_msgs::msg::dds_::Twist_", fill_.Twist());
+      dds_common::topics::kCmdVel, "geometry_msgs::msg::dds_::Twist_", fill_.Twist());
 }
 
 TEST_F(IdlRoundTrip, NestedRosTypesOnTheirOwn) {
@@ -388,17 +388,18 @@ TEST_F(IdlRoundTrip, NestedRosTypesOnTheirOwn) {
 }
 
 TEST_F(IdlRoundTrip, StructlocMessages) {
-  EXPECT_EQ(dds::topics::kWheelEncoders.name, "rt/wheel_encoders");
+  EXPECT_EQ(dds_common::topics::kWheelEncoders.name, "rt/wheel_encoders");
   ExpectRoundTrip<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds::topics::kWheelEncoders, "structloc_msgs::msg::dds_::WheelEncoders_",
+      dds_common::topics::kWheelEncoders, "structloc_msgs::msg::dds_::WheelEncoders_",
       fill_.WheelEncoders());
   ExpectRoundTrip<structloc_msgs::msg::ScanFeaturesPubSubType>(
-      dds::topics::kFeatures, "structloc_msgs::msg::dds_::ScanFeatures_", fill_.ScanFeatures());
+      dds_common::topics::kFeatures, "structloc_msgs::msg::dds_::ScanFeatures_",
+      fill_.ScanFeatures());
   ExpectRoundTrip<structloc_msgs::msg::LocalisationStatusPubSubType>(
-      dds::topics::kStatus, "structloc_msgs::msg::dds_::LocalisationStatus_",
+      dds_common::topics::kStatus, "structloc_msgs::msg::dds_::LocalisationStatus_",
       fill_.LocalisationStatus());
   ExpectRoundTrip<structloc_msgs::msg::CalibrationResultPubSubType>(
-      dds::topics::kCalibration, "structloc_msgs::msg::dds_::CalibrationResult_",
+      dds_common::topics::kCalibration, "structloc_msgs::msg::dds_::CalibrationResult_",
       fill_.CalibrationResult());
   ExpectRoundTrip<structloc_msgs::msg::WallFeaturePubSubType>(
       TestTopic("wall"), "structloc_msgs::msg::dds_::WallFeature_", fill_.WallFeature());

@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
-#include "install_layout.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/install_layout.hpp"
+#include "structloc/config/strict_xml.hpp"
 #include "temp_dir.hpp"
 
 namespace structloc {

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "child_process.hpp"
 #include "config_test_support.hpp"
-#include "launch_file.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/process/launch_file.hpp"
 #include "test_domains.hpp"
 #include "wait_until.hpp"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "child_process.hpp"
 #include "localisation_feed.hpp"
+#include "structloc/process/child_process.hpp"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -22,7 +22,8 @@ constexpr int kDomain = testing::domains::kLocalisationBadInput;
 constexpr double kOffset = testing::LocalisationFeed::kClockOffset;
 
 TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
-  auto scenario = simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+  auto scenario =
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
   scenario.duration_s = 8.0;
   testing::LocalisationFeed feed("bad_input_feeder", kDomain);
   const auto& p0 = scenario.initial_pose;
@@ -33,54 +34,55 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   int bad_sent = 0;
   size_t good_sent = 0;
-  feed.Play(scenario, [&](int k, const simulation::SimState& s, sensor_msgs::msg::LaserScan& scan) {
-    if (k % 3 != 0) {
-      ++good_sent;
-      return true;
-    }
-    // One bad input of each kind, in turn, instead of every third good scan.
-    ++bad_sent;
-    const double stamp = dds::FromRosTime(scan.header().stamp());
-    switch ((k / 3) % 9) {
-      case 0:
-        for (auto& r : scan.ranges()) r = std::nanf("");
-        return true;  // processed: every beam counted as non-finite, robot reported lost
-      case 1:
-        scan.ranges().clear();
-        return true;
-      case 2:
-        scan.ranges().resize(scan.ranges().size() / 2);
-        return true;
-      case 3:
-        scan.angle_increment(0.0f);
-        return true;
-      case 4:
-        scan.header().stamp(dds::ToRosTime(stamp - 5.0));
-        return true;
-      case 5:
-        scan.header().stamp(dds::ToRosTime(stamp + 3600.0));
-        return true;
-      case 6:
-        for (size_t i = 0; i < scan.ranges().size(); i += 2) {
-          scan.ranges()[i] = std::numeric_limits<float>::infinity();  // REP-117: no return
+  feed.Play(
+      scenario, [&](int k, const simulation_core::SimState& s, sensor_msgs::msg::LaserScan& scan) {
+        if (k % 3 != 0) {
+          ++good_sent;
+          return true;
         }
-        return true;
-      case 7: {
-        auto jump = simulator::ToOdometry(s, 0.0, kOffset);
-        jump.header().stamp(dds::ToRosTime(kOffset + s.time + 0.001));
-        jump.pose().pose().position().x(1e6);
-        feed.OdometryWriter().Write(jump);
-        return false;
-      }
-      default: {
-        auto nan = simulator::ToOdometry(s, 0.0, kOffset);
-        nan.header().stamp(dds::ToRosTime(kOffset + s.time + 0.002));
-        nan.pose().pose().position().y(std::nan(""));
-        feed.OdometryWriter().Write(nan);
-        return false;
-      }
-    }
-  });
+        // One bad input of each kind, in turn, instead of every third good scan.
+        ++bad_sent;
+        const double stamp = dds_common::FromRosTime(scan.header().stamp());
+        switch ((k / 3) % 9) {
+          case 0:
+            for (auto& r : scan.ranges()) r = std::nanf("");
+            return true;  // processed: every beam counted as non-finite, robot reported lost
+          case 1:
+            scan.ranges().clear();
+            return true;
+          case 2:
+            scan.ranges().resize(scan.ranges().size() / 2);
+            return true;
+          case 3:
+            scan.angle_increment(0.0f);
+            return true;
+          case 4:
+            scan.header().stamp(dds_common::ToRosTime(stamp - 5.0));
+            return true;
+          case 5:
+            scan.header().stamp(dds_common::ToRosTime(stamp + 3600.0));
+            return true;
+          case 6:
+            for (size_t i = 0; i < scan.ranges().size(); i += 2) {
+              scan.ranges()[i] = std::numeric_limits<float>::infinity();  // REP-117: no return
+            }
+            return true;
+          case 7: {
+            auto jump = simulator::ToOdometry(s, 0.0, kOffset);
+            jump.header().stamp(dds_common::ToRosTime(kOffset + s.time + 0.001));
+            jump.pose().pose().position().x(1e6);
+            feed.OdometryWriter().Write(jump);
+            return false;
+          }
+          default: {
+            auto nan = simulator::ToOdometry(s, 0.0, kOffset);
+            nan.header().stamp(dds_common::ToRosTime(kOffset + s.time + 0.002));
+            nan.pose().pose().position().y(std::nan(""));
+            feed.OdometryWriter().Write(nan);
+            return false;
+          }
+        }
+      });
   // Rejections are reported with their reasons (in the diagnostics, which
   // the component publishes about once a second: wait for them).
   const std::vector<std::string> reasons = {

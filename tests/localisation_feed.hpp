@@ -16,9 +16,9 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
-#include "ros_conversions.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
-#include "sim_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/simulator/sim_conversions.hpp"
 
 namespace structloc::testing {
 
@@ -28,23 +28,24 @@ class LocalisationFeed {
 
   LocalisationFeed(const std::string& name, int domain)
       : node_(TestNodeOptions(name, domain)),
-        scans_(node_.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan)),
-        odometry_(node_.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
+        scans_(
+            node_.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan)),
+        odometry_(node_.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)),
         initial_pose_(node_.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-            dds::topics::kInitialPose)) {
+            dds_common::topics::kInitialPose)) {
     pose_subscription_ = node_.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-        dds::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+        dds_common::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
           const auto& p = m.pose().pose();
           const geometry::Pose2D pose{p.position().x(), p.position().y(),
-                                      dds::YawFromQuaternion(p.orientation())};
+                                      dds_common::YawFromQuaternion(p.orientation())};
           bool finite = geometry::IsFinite(pose);
           for (double c : m.pose().covariance()) finite = finite && std::isfinite(c);
           std::lock_guard<std::mutex> lock(mutex_);
           non_finite_pose_ = non_finite_pose_ || !finite;
-          poses_.emplace_back(dds::FromRosTime(m.header().stamp()), pose);
+          poses_.emplace_back(dds_common::FromRosTime(m.header().stamp()), pose);
         });
     diagnostics_subscription_ = node_.Subscribe<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-        dds::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
+        dds_common::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
           std::lock_guard<std::mutex> lock(mutex_);
           for (const auto& s : a.status()) {
             if (s.name() != "structloc/localisation") continue;
@@ -63,12 +64,12 @@ class LocalisationFeed {
 
   // Called for every scan (index k from 1) before it is sent; it may change
   // the scan or send other samples itself. Return false to not send the scan.
-  using Hook = std::function<bool(int k, const simulation::SimState& state,
+  using Hook = std::function<bool(int k, const simulation_core::SimState& state,
                                   sensor_msgs::msg::LaserScan& scan)>;
 
   // Plays the scenario; returns the true pose of every scan sent, by stamp.
-  void Play(const simulation::Scenario& scenario, const Hook& hook) {
-    simulation::Simulation sim(scenario);
+  void Play(const simulation_core::Scenario& scenario, const Hook& hook) {
+    simulation_core::Simulation sim(scenario);
     for (int k = 100; k > 0; --k) {
       auto standing = simulator::ToOdometry(sim.State(), 0.0, kClockOffset - 0.01 * k);
       odometry_.Write(standing);
@@ -132,18 +133,19 @@ class LocalisationFeed {
     return false;
   }
 
-  dds::TopicWriter<sensor_msgs::msg::LaserScanPubSubType>& ScanWriter() { return scans_; }
-  dds::TopicWriter<nav_msgs::msg::OdometryPubSubType>& OdometryWriter() { return odometry_; }
-  dds::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>& InitialPoseWriter() {
+  dds_common::TopicWriter<sensor_msgs::msg::LaserScanPubSubType>& ScanWriter() { return scans_; }
+  dds_common::TopicWriter<nav_msgs::msg::OdometryPubSubType>& OdometryWriter() { return odometry_; }
+  dds_common::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>&
+  InitialPoseWriter() {
     return initial_pose_;
   }
-  dds::Node& Node() { return node_; }
+  dds_common::Node& Node() { return node_; }
 
  private:
-  dds::Node node_;
-  dds::TopicWriter<sensor_msgs::msg::LaserScanPubSubType> scans_;
-  dds::TopicWriter<nav_msgs::msg::OdometryPubSubType> odometry_;
-  dds::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType> initial_pose_;
+  dds_common::Node node_;
+  dds_common::TopicWriter<sensor_msgs::msg::LaserScanPubSubType> scans_;
+  dds_common::TopicWriter<nav_msgs::msg::OdometryPubSubType> odometry_;
+  dds_common::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType> initial_pose_;
   std::mutex mutex_;
   std::vector<std::pair<double, geometry::Pose2D>> poses_;
   std::map<double, geometry::Pose2D> truth_;
@@ -153,8 +155,8 @@ class LocalisationFeed {
   std::vector<std::string> messages_;
   std::map<std::string, std::string> values_;
   // Last: destroyed first, before what their callbacks write.
-  dds::Subscription pose_subscription_;
-  dds::Subscription diagnostics_subscription_;
+  dds_common::Subscription pose_subscription_;
+  dds_common::Subscription diagnostics_subscription_;
 };
 
 }  // namespace structloc::testing

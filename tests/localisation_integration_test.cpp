@@ -9,12 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "child_process.hpp"
 #include "dds_test_support.hpp"
-#include "live_evaluator.hpp"
-#include "recorder.hpp"
-#include "replay.hpp"
-#include "scenario.hpp"
+#include "structloc/evaluation/live_evaluator.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/replay/replay.hpp"
+#include "structloc/simulation_core/recorder.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 
@@ -27,8 +27,8 @@ constexpr double kDeg = 180.0 / geometry::kPi;
 
 TEST(LocalisationIntegration, OfficeOverDdsMeetsTheAccuracyBarAndIsNeverLost) {
   const auto scenario =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
-  dds::Node observer(testing::TestNodeOptions("evaluator", kDomain));
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+  dds_common::Node observer(testing::TestNodeOptions("evaluator", kDomain));
   evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
   const testing::TempDir temp;
   const std::string state = temp / "pose_state";
@@ -58,10 +58,10 @@ TEST(LocalisationIntegration, OfficeOverDdsMeetsTheAccuracyBarAndIsNeverLost) {
 
 TEST(LocalisationIntegration, TheSameScenarioReplayedOfflineGivesTheSameAccuracy) {
   const auto scenario =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
   const testing::TempDir temp;
   const std::string dir = temp / "office";
-  simulation::RecordScenario(scenario, dir);
+  simulation_core::RecordScenario(scenario, dir);
   replay::ReplayOptions o;
   o.map_path = testing::SourcePath("maps/office_floor.xml");
   o.log_path = dir + "/run.clf";

@@ -6,10 +6,10 @@
 #include <csignal>
 #include <filesystem>
 
-#include "child_process.hpp"
 #include "dds_test_support.hpp"
-#include "live_evaluator.hpp"
-#include "scenario.hpp"
+#include "structloc/evaluation/live_evaluator.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 
@@ -21,10 +21,10 @@ constexpr int kDomain = testing::domains::kLocalisationRestart;
 
 TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto scenario =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
   const testing::TempDir temp;
   const std::string state = temp / "pose_state";
-  dds::Node observer(testing::TestNodeOptions("restart_observer", kDomain));
+  dds_common::Node observer(testing::TestNodeOptions("restart_observer", kDomain));
   evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
   const std::vector<std::string> common = {
       "--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--state-file", state};
@@ -62,7 +62,7 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto estimate = evaluator.Estimate();
   const auto truth = evaluator.Truth();
   const double resumed = estimate[poses_before].stamp;
-  std::vector<logs::StampedPose> after;
+  std::vector<log_formats::StampedPose> after;
   for (size_t i = poses_before; i < estimate.size(); ++i) {
     if (estimate[i].stamp > resumed + 1.0) after.push_back(estimate[i]);
   }

@@ -35,7 +35,7 @@ TEST(LocaliserAllocation, SteadyStateUpdateDoesNotAllocate) {
   for (const auto& [beams, fov] :
        {std::pair{300, 2 * geometry::kPi}, {1081, 1.5 * geometry::kPi}}) {
     testing::OfficeScene office(fov);
-    localisation::Localiser localiser(office.world, office.options);
+    localisation_core::Localiser localiser(office.world, office.options);
     std::mt19937 rng(5);
     std::vector<testing::SyntheticScan> scans;
     for (int i = 0; i < 10; ++i) scans.push_back(office.Scan(beams, rng));

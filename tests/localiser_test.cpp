@@ -8,12 +8,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "localiser.hpp"
+#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 #include "temp_dir.hpp"
-#include "world_model_xml.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using geometry::kPi;
@@ -111,10 +111,10 @@ TEST(LocaliserOptions, MissingUnknownAndInvalidKeysAreErrorsNamingTheKey) {
 class LocaliserFixture : public ::testing::Test {
  protected:
   LocaliserFixture()
-      : world_(world::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"))),
-        scene_(world::Scene::FromWorld(world_)) {}
-  world::WorldModel world_;
-  world::Scene scene_;
+      : world_(world_model::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"))),
+        scene_(world_model::Scene::FromWorld(world_)) {}
+  world_model::WorldModel world_;
+  world_model::Scene scene_;
   Pose2D truth_{1.0, 0.9, 0.0};
 };
 
@@ -251,4 +251,4 @@ TEST_F(LocaliserFixture, KohonenStrategyMatchesTheSameWallsDeterministically) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -4,23 +4,24 @@
 
 #include <string>
 
-#include "localiser.hpp"
+#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
-#include "world_model_xml.hpp"
 
 namespace structloc::testing {
 
 struct OfficeScene {
-  world::WorldModel world;
-  world::Scene scene;
-  localisation::LocaliserOptions options;
+  world_model::WorldModel world;
+  world_model::Scene scene;
+  localisation_core::LocaliserOptions options;
   geometry::Pose2D truth{19.5, 6.5, 0.2};  // robot base in the east hall
 
   explicit OfficeScene(double field_of_view_rad)
-      : world(world::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) + "/maps/office_floor.xml")),
-        scene(world::Scene::FromWorld(world)),
-        options(localisation::LoadLocaliserOptions(std::string(STRUCTLOC_SOURCE_DIR) +
-                                                   "/maps/params/office_sick.xml")) {
+      : world(world_model::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) +
+                                          "/maps/office_floor.xml")),
+        scene(world_model::Scene::FromWorld(world)),
+        options(localisation_core::LoadLocaliserOptions(std::string(STRUCTLOC_SOURCE_DIR) +
+                                                        "/maps/params/office_sick.xml")) {
     options.visibility.field_of_view_rad = field_of_view_rad;
   }
 
@@ -30,8 +31,8 @@ struct OfficeScene {
     return CastScan(scene, sensor, {beams, options.visibility.field_of_view_rad, 30.0, 0.01}, rng);
   }
 
-  localisation::UpdateInput Input(const SyntheticScan& scan) const {
-    localisation::UpdateInput in;
+  localisation_core::UpdateInput Input(const SyntheticScan& scan) const {
+    localisation_core::UpdateInput in;
     in.scan = scan.View();
     in.odometry_pose = {truth.x + 0.03, truth.y - 0.02, truth.theta + 0.01};
     in.odometry_covariance = Eigen::Vector3d(0.0025, 0.0025, 0.001).asDiagonal();

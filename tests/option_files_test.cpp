@@ -13,10 +13,10 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
-#include "robot_parameters.hpp"
-#include "scenario.hpp"
-#include "scenario_options.hpp"
-#include "strict_number.hpp"
+#include "structloc/config/strict_number.hpp"
+#include "structloc/kinematics/robot_parameters.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/simulation_core/scenario_options.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -162,27 +162,27 @@ TEST(RobotFile, WrittenFileHoldsEveryKeyAndLoadsBackExactly) {
 }
 
 TEST(ScenarioFile, EveryShippedFileLoadsEveryAttributeIntoItsMember) {
-  const simulation::ScenarioLimits limits;
+  const simulation_core::ScenarioLimits limits;
   for (const auto& path : ShippedFiles("maps/scenarios")) {
-    const auto s = simulation::LoadScenario(path);
+    const auto s = simulation_core::LoadScenario(path);
     const auto doc = Parse(path);
     const auto& root = *doc->RootElement();
-    ExpectAttributesLoaded(simulation::ScenarioAttributes(limits), s, root, path);
-    ExpectAttributesLoaded(simulation::TrueRobotAttributes(s.nominal.traction_counter_bits),
+    ExpectAttributesLoaded(simulation_core::ScenarioAttributes(limits), s, root, path);
+    ExpectAttributesLoaded(simulation_core::TrueRobotAttributes(s.nominal.traction_counter_bits),
                            s.errors, *root.FirstChildElement("true_robot"), path);
-    ExpectAttributesLoaded(simulation::InitialPoseAttributes(limits.world), s.initial_pose,
+    ExpectAttributesLoaded(simulation_core::InitialPoseAttributes(limits.world), s.initial_pose,
                            *root.FirstChildElement("initial_pose"), path);
-    ExpectAttributesLoaded(simulation::LaserAttributes(limits), s.laser,
+    ExpectAttributesLoaded(simulation_core::LaserAttributes(limits), s.laser,
                            *root.FirstChildElement("laser"), path);
-    ExpectAttributesLoaded(simulation::PathAttributes(), s.path, *root.FirstChildElement("path"),
-                           path);
+    ExpectAttributesLoaded(simulation_core::PathAttributes(), s.path,
+                           *root.FirstChildElement("path"), path);
     size_t person = 0;
     if (const auto* obstacles = root.FirstChildElement("obstacles")) {
       for (const auto* p = obstacles->FirstChildElement("person"); p != nullptr;
            p = p->NextSiblingElement("person")) {
         ASSERT_LT(person, s.people.size()) << path;
-        ExpectAttributesLoaded(simulation::PersonAttributes(limits.world), s.people[person++], *p,
-                               path);
+        ExpectAttributesLoaded(simulation_core::PersonAttributes(limits.world), s.people[person++],
+                               *p, path);
       }
     }
     EXPECT_EQ(person, s.people.size()) << path;
@@ -238,16 +238,16 @@ TEST(ScenarioFile, AnOutOfRangeValueNamesFileLineSectionAndKey) {
            {"obstacles/person", "speed_m_s", "-1", "person: speed_m_s must be > 0"},
        }) {
     const std::string path = ScenarioWith(dir, c.where, c.key, c.value);
-    const auto what = Problem([&] { simulation::LoadScenario(path); });
+    const auto what = Problem([&] { simulation_core::LoadScenario(path); });
     EXPECT_EQ(what.rfind(path + ":", 0), 0u) << what;
     EXPECT_NE(what.find(c.problem), std::string::npos) << c.key << "=" << c.value << ": " << what;
   }
 }
 
 TEST(ScenarioFile, TractionStartTickIsBoundedByTheRobotsCounter) {
-  EXPECT_NO_THROW(simulation::TrueRobotAttributes(8).Validate({1.0, 1.0, 0.0, 0.0, 255}));
+  EXPECT_NO_THROW(simulation_core::TrueRobotAttributes(8).Validate({1.0, 1.0, 0.0, 0.0, 255}));
   try {
-    simulation::TrueRobotAttributes(8).Validate({1.0, 1.0, 0.0, 0.0, 256});
+    simulation_core::TrueRobotAttributes(8).Validate({1.0, 1.0, 0.0, 0.0, 256});
     ADD_FAILURE() << "256 accepted for an 8-bit counter";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "true_robot: traction_start_tick must be in [0, 255], not 256");

@@ -5,7 +5,7 @@
 
 #include <sstream>
 
-#include "option_table.hpp"
+#include "structloc/config/option_table.hpp"
 #include "temp_dir.hpp"
 
 namespace structloc::config {

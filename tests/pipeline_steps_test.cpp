@@ -7,14 +7,14 @@
 #include <limits>
 #include <random>
 
-#include "corner_extraction.hpp"
-#include "cylinder_extraction.hpp"
-#include "deskew.hpp"
-#include "line_fit.hpp"
-#include "pose_solver.hpp"
-#include "prefilter.hpp"
+#include "structloc/localisation_core/corner_extraction.hpp"
+#include "structloc/localisation_core/cylinder_extraction.hpp"
+#include "structloc/localisation_core/deskew.hpp"
+#include "structloc/localisation_core/line_fit.hpp"
+#include "structloc/localisation_core/pose_solver.hpp"
+#include "structloc/localisation_core/prefilter.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using geometry::kPi;
@@ -277,4 +277,4 @@ TEST(PoseSolvers, WeightedSolverDropsAGrossOutlier) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

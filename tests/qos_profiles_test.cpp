@@ -7,7 +7,7 @@
 #include <regex>
 
 #include "dds_test_support.hpp"
-#include "qos_profiles.hpp"
+#include "structloc/dds_common/qos_profiles.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 
@@ -26,8 +26,8 @@ using eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
 constexpr int kDomain = testing::domains::kQosProfiles;
 
 TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
-  dds::Node node(testing::TestNodeOptions("qos_test", kDomain));  // loads the file
-  const auto qos = dds::QosProfiles::Load(testing::ShippedQos());
+  dds_common::Node node(testing::TestNodeOptions("qos_test", kDomain));  // loads the file
+  const auto qos = dds_common::QosProfiles::Load(testing::ShippedQos());
   for (const auto* name : {"structloc_localhost", "structloc_network"}) {
     const auto pq = qos.Participant(name);
     EXPECT_EQ(pq.wire_protocol().builtin.discovery_config.leaseDuration.seconds, 3) << name;
@@ -72,7 +72,7 @@ TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
     EXPECT_EQ(w.history().depth, e.depth) << e.profile;
     EXPECT_EQ(r.history().depth, e.depth) << e.profile;
   }
-  EXPECT_THROW(qos.Writer(*pub, "no_such_profile"), dds::QosError);
+  EXPECT_THROW(qos.Writer(*pub, "no_such_profile"), dds_common::QosError);
   participant->delete_contained_entities();
   factory->delete_participant(participant);
 }
@@ -104,9 +104,9 @@ TEST_P(BrokenQos, IsRejectedNamingFileLineAndProblem) {
   const testing::TempDir temp;
   const std::string path = BrokenCopy(temp, c.tag, c.from, c.to);
   try {
-    dds::QosProfiles::Load(path);
+    dds_common::QosProfiles::Load(path);
     ADD_FAILURE() << "a broken profile file was accepted: " << c.tag;
-  } catch (const dds::QosError& e) {
+  } catch (const dds_common::QosError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(path), std::string::npos) << what;
     EXPECT_NE(what.find(c.expected_problem), std::string::npos) << what;
@@ -128,7 +128,8 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.tag); });
 
 TEST(QosProfiles, MissingFileIsAnError) {
-  EXPECT_THROW(dds::QosProfiles::Load("/nonexistent/structloc_qos.xml"), dds::QosError);
+  EXPECT_THROW(dds_common::QosProfiles::Load("/nonexistent/structloc_qos.xml"),
+               dds_common::QosError);
 }
 
 }  // namespace

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "child_process.hpp"
-#include "odometry_calibration.hpp"
-#include "replay.hpp"
+#include "structloc/calibration_core/odometry_calibration.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/replay/replay.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -68,14 +68,14 @@ TEST(RealData, TricycleDatasetImprovesDeadReckoningAgainstTheTracker) {
       {testing::SourcePath("components/calibration_core/convert_tricycle_dataset.sh"), data, dir});
   ASSERT_EQ(convert.WaitExit(30s), 0) << convert.CapturedOutput();
   const auto nominal = kinematics::LoadRobotParameters(dir + "/nominal.xml");
-  const auto encoders = calibration::ReadEncodersCsv(dir + "/encoders.csv");
-  const auto fixes = calibration::ReadFixesCsv(dir + "/fixes.csv");
-  calibration::CalibrationOptions o;
+  const auto encoders = calibration_core::ReadEncodersCsv(dir + "/encoders.csv");
+  const auto fixes = calibration_core::ReadFixesCsv(dir + "/fixes.csv");
+  calibration_core::CalibrationOptions o;
   o.estimate.fill(true);  // steering gain and sensor mounting included
-  const auto r = calibration::Calibrate(encoders, fixes.fixes, nominal, o);
+  const auto r = calibration_core::Calibrate(encoders, fixes.fixes, nominal, o);
   ASSERT_TRUE(r.success);
-  const double before = calibration::DeadReckoningRms(encoders, fixes.fixes, nominal);
-  const double after = calibration::DeadReckoningRms(encoders, fixes.fixes, r.parameters);
+  const double before = calibration_core::DeadReckoningRms(encoders, fixes.fixes, nominal);
+  const double after = calibration_core::DeadReckoningRms(encoders, fixes.fixes, r.parameters);
   std::printf(
       "real tricycle: sensor dead-reckoning RMS vs tracker %.2f m nominal -> %.3f m calibrated "
       "(%.0fx); residual RMS %.2f -> %.2f\n",

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "recorder.hpp"
-#include "simulation.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/kinematics/tricycle.hpp"
+#include "structloc/simulation_core/recorder.hpp"
+#include "structloc/simulation_core/simulation.hpp"
 #include "temp_dir.hpp"
-#include "tricycle.hpp"
 
 namespace structloc {
 namespace {
@@ -54,8 +54,8 @@ TEST(Encoders, TickDeltaAcrossTheCounterWrap) {
   EXPECT_EQ(p.TickDelta(65530u, 10u), 16);
 }
 
-simulation::Scenario Office() {
-  return simulation::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+simulation_core::Scenario Office() {
+  return simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
 }
 
 TEST(Simulation, DeadReckoningWithTheTrueParametersReproducesTheGroundTruth) {
@@ -66,7 +66,7 @@ TEST(Simulation, DeadReckoningWithTheTrueParametersReproducesTheGroundTruth) {
   // with the true parameters must agree with the truth to numerical precision.
   scenario.nominal.traction_ticks_per_rev = 1e9;
   scenario.nominal.steering_rad_per_tick = 1e-9;
-  simulation::Simulation sim(scenario);
+  simulation_core::Simulation sim(scenario);
   kinematics::DeadReckoning with_true(scenario.TrueParameters(), scenario.initial_pose);
   with_true.Add(sim.State().traction_ticks, static_cast<double>(sim.State().steering_ticks));
   while (!sim.Finished()) {
@@ -83,7 +83,7 @@ TEST(Simulation, OnePercentRadiusErrorDriftsAsPredictedOnAStraightRun) {
   scenario.errors = {};
   scenario.errors.wheel_radius_scale = 1.01;
   scenario.path.waypoints = {{12.0, 6.5}};
-  simulation::Simulation sim(scenario);
+  simulation_core::Simulation sim(scenario);
   while (!sim.Finished()) sim.Step();
   const auto& s = sim.State();
   const double travelled = s.truth.x - scenario.initial_pose.x;
@@ -96,7 +96,7 @@ TEST(Simulation, OnePercentRadiusErrorDriftsAsPredictedOnAStraightRun) {
 TEST(Simulation, EncodersAreQuantisedAndWrap) {
   auto scenario = Office();  // starts 7296 ticks below the 32-bit wrap
   scenario.duration_s = 5.0;
-  simulation::Simulation sim(scenario);
+  simulation_core::Simulation sim(scenario);
   bool wrapped = false;
   uint64_t last = sim.State().traction_ticks;
   while (!sim.Finished()) {
@@ -111,17 +111,17 @@ TEST(Simulation, EncodersAreQuantisedAndWrap) {
 
 TEST(Simulation, TheSkewOfAScanTakenAt1MetrePerSecondMatchesTheAnalyticDisplacement) {
   auto scenario =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"));
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"));
   scenario.errors = {};
   scenario.laser.noise_std_m = 0;
   scenario.laser.spurious_probability = 0;
   scenario.laser.mixed_pixel_probability = 0;
   scenario.laser.blocked_sectors.clear();
-  scenario.path.mode = simulation::PathSpec::Mode::kCmdVel;
+  scenario.path.mode = simulation_core::PathSpec::Mode::kCmdVel;
   scenario.initial_pose = {5.0, 1.155, kPi};  // facing the end wall at x = 0.1, centred
-  simulation::Simulation sim(scenario);
+  simulation_core::Simulation sim(scenario);
   sim.CommandVelocity(1.0, 0.0);
-  std::optional<simulation::SimScan> scan;
+  std::optional<simulation_core::SimScan> scan;
   for (int i = 0; i < 300 && !scan; ++i) {
     sim.Step();
     scan = sim.TakeScan();
@@ -152,10 +152,10 @@ TEST(Simulation, SameScenarioAndSeedGiveBitForBitTheSameRecording) {
   scenario.duration_s = 3.0;
   const testing::TempDir temp;
   const std::string a = temp / "a", b = temp / "b", c = temp / "c";
-  simulation::RecordScenario(scenario, a);
-  simulation::RecordScenario(scenario, b);
+  simulation_core::RecordScenario(scenario, a);
+  simulation_core::RecordScenario(scenario, b);
   scenario.seed += 1;
-  simulation::RecordScenario(scenario, c);
+  simulation_core::RecordScenario(scenario, c);
   auto read = [](const std::string& p) {
     std::ifstream in(p);
     std::stringstream ss;
@@ -174,7 +174,7 @@ TEST(Simulation, RecordingHasTheDocumentedFormats) {
   scenario.duration_s = 2.0;
   const testing::TempDir temp;
   const std::string dir = temp / "office";
-  const auto summary = simulation::RecordScenario(scenario, dir);
+  const auto summary = simulation_core::RecordScenario(scenario, dir);
   EXPECT_EQ(summary.scans, 20);  // 10 Hz
   std::ifstream clf(dir + "/run.clf");
   std::string line;
@@ -212,7 +212,7 @@ TEST(Scenarios, EveryShippedScenarioAndRobotFileLoads) {
   int count = 0;
   for (const auto& e : std::filesystem::directory_iterator(testing::SourcePath("maps/scenarios"))) {
     if (e.path().extension() != ".xml") continue;
-    const auto s = simulation::LoadScenario(e.path().string());
+    const auto s = simulation_core::LoadScenario(e.path().string());
     EXPECT_FALSE(s.name.empty());
     ++count;
   }
@@ -235,7 +235,7 @@ TEST(Scenarios, BrokenScenarioNamesFileLineAndProblem) {
   }
   std::ofstream(path) << text;
   try {
-    simulation::LoadScenario(path);
+    simulation_core::LoadScenario(path);
     ADD_FAILURE() << "accepted beams=-5";
   } catch (const config::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find(path + ":"), std::string::npos) << e.what();

@@ -9,13 +9,13 @@
 #include <cstdio>
 #include <mutex>
 
-#include "child_process.hpp"
 #include "dds_test_support.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
-#include "ros_conversions.hpp"
-#include "scenario.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
-#include "sim_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/simulator/sim_conversions.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
 #include "test_domains.hpp"
 #include "wait_until.hpp"
@@ -27,7 +27,7 @@ using namespace std::chrono_literals;
 constexpr int kDomain = testing::domains::kSimulatorComponent;
 
 TEST(SimConversions, LaserScanCarriesGeometryTimingAndSpecialValues) {
-  simulation::SimScan scan;
+  simulation_core::SimScan scan;
   scan.stamp = 2.5;
   scan.angle_min = -1.0;
   scan.angle_increment = 0.01;
@@ -37,12 +37,12 @@ TEST(SimConversions, LaserScanCarriesGeometryTimingAndSpecialValues) {
   scan.range_max = 30;
   scan.ranges = {1.0f, std::numeric_limits<float>::infinity(), 2.0f};
   const auto msg = simulator::ToLaserScan(scan, 100.0);
-  EXPECT_DOUBLE_EQ(dds::FromRosTime(msg.header().stamp()), 102.5);
+  EXPECT_DOUBLE_EQ(dds_common::FromRosTime(msg.header().stamp()), 102.5);
   EXPECT_EQ(msg.header().frame_id(), "laser");
   EXPECT_FLOAT_EQ(msg.angle_max(), -0.98f);
   EXPECT_FLOAT_EQ(msg.time_increment(), 1e-4f);
   EXPECT_TRUE(std::isinf(msg.ranges()[1]));
-  simulation::SimState state;
+  simulation_core::SimState state;
   state.time = 1.0;
   state.odometry = {1, 2, 0.5};
   state.traction_ticks = 5;
@@ -50,7 +50,7 @@ TEST(SimConversions, LaserScanCarriesGeometryTimingAndSpecialValues) {
   const auto odom = simulator::ToOdometry(state, 10.0, 100.0);
   EXPECT_EQ(odom.header().frame_id(), "odom");
   EXPECT_EQ(odom.child_frame_id(), "base_link");
-  EXPECT_NEAR(dds::YawFromQuaternion(odom.pose().pose().orientation()), 0.5, 1e-12);
+  EXPECT_NEAR(dds_common::YawFromQuaternion(odom.pose().pose().orientation()), 0.5, 1e-12);
   EXPECT_GT(odom.pose().covariance()[0], 0.0);
   const auto enc = simulator::ToWheelEncoders(state, p, 4294967295u, 100.0);
   EXPECT_NEAR(enc.traction_angle_increment_rad(), 6 * 2 * geometry::kPi / p.traction_ticks_per_rev,
@@ -86,28 +86,30 @@ bool Increasing(const std::vector<double>& s) {
 }
 
 TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) {
-  dds::Node observer(testing::TestNodeOptions("observer", kDomain));
+  dds_common::Node observer(testing::TestNodeOptions("observer", kDomain));
   StampLog scans, odom, truth, encoders;
   std::mutex scan_mutex;
   double time_increment = 0.0;
   size_t beams = 0;
   const auto scan_subscription = observer.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
-      dds::topics::kScan, [&](const sensor_msgs::msg::LaserScan& m) {
-        scans.Add(dds::FromRosTime(m.header().stamp()));
+      dds_common::topics::kScan, [&](const sensor_msgs::msg::LaserScan& m) {
+        scans.Add(dds_common::FromRosTime(m.header().stamp()));
         std::lock_guard<std::mutex> lock(scan_mutex);
         time_increment = m.time_increment();
         beams = m.ranges().size();
       });
   const auto odom_subscription = observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kOdom,
-      [&](const nav_msgs::msg::Odometry& m) { odom.Add(dds::FromRosTime(m.header().stamp())); });
+      dds_common::topics::kOdom, [&](const nav_msgs::msg::Odometry& m) {
+        odom.Add(dds_common::FromRosTime(m.header().stamp()));
+      });
   const auto truth_subscription = observer.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kGroundTruth,
-      [&](const nav_msgs::msg::Odometry& m) { truth.Add(dds::FromRosTime(m.header().stamp())); });
+      dds_common::topics::kGroundTruth, [&](const nav_msgs::msg::Odometry& m) {
+        truth.Add(dds_common::FromRosTime(m.header().stamp()));
+      });
   const auto encoder_subscription =
       observer.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-          dds::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
-            encoders.Add(dds::FromRosTime(m.header().stamp()));
+          dds_common::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
+            encoders.Add(dds_common::FromRosTime(m.header().stamp()));
           });
   const auto start = std::chrono::steady_clock::now();
   process::ChildProcess sim(
@@ -126,7 +128,7 @@ TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) 
   // the scenario's end. The clock offset is a whole second taken when the
   // clock started, so it is the first odometry stamp rounded down.
   const double duration_s =
-      simulation::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"))
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"))
           .duration_s;
   const auto reached_end = [&](StampLog& log, double before_end_s) {
     const auto first = odom.Get(), stamps = log.Get();

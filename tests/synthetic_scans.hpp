@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "localiser.hpp"
-#include "ray_cast.hpp"
-#include "world_model.hpp"
+#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/world_model/ray_cast.hpp"
+#include "structloc/world_model/world_model.hpp"
 
 namespace structloc::testing {
 
@@ -25,8 +25,8 @@ struct SyntheticScan {
   double angle_min = 0.0;
   double angle_increment = 0.0;
   double max_range_m = 30.0;
-  localisation::ScanView View() const {
-    localisation::ScanView v;
+  localisation_core::ScanView View() const {
+    localisation_core::ScanView v;
     v.ranges = ranges.data();
     v.count = ranges.size();
     v.angle_min = angle_min;
@@ -37,7 +37,7 @@ struct SyntheticScan {
   }
 };
 
-inline SyntheticScan CastScan(const world::Scene& scene, const geometry::Pose2D& sensor,
+inline SyntheticScan CastScan(const world_model::Scene& scene, const geometry::Pose2D& sensor,
                               const ScanSpec& spec, std::mt19937& rng) {
   SyntheticScan scan;
   const bool full = spec.field_of_view_rad >= 2.0 * geometry::kPi - 1e-9;
@@ -58,7 +58,7 @@ inline SyntheticScan CastScan(const world::Scene& scene, const geometry::Pose2D&
 }
 
 // Fraction of beams whose nearest surface is in `clutter` rather than `world`.
-inline double ClutterFraction(const world::Scene& world, const world::Scene& clutter,
+inline double ClutterFraction(const world_model::Scene& world, const world_model::Scene& clutter,
                               const geometry::Pose2D& sensor, const ScanSpec& spec) {
   int hits = 0;
   const bool full = spec.field_of_view_rad >= 2.0 * geometry::kPi - 1e-9;
@@ -77,8 +77,8 @@ inline double ClutterFraction(const world::Scene& world, const world::Scene& clu
 }
 
 // An axis-aligned box as four segments.
-inline world::Scene Box(const Eigen::Vector2d& centre, double w, double h, double angle) {
-  world::Scene s;
+inline world_model::Scene Box(const Eigen::Vector2d& centre, double w, double h, double angle) {
+  world_model::Scene s;
   const Eigen::Rotation2Dd rot(angle);
   const Eigen::Vector2d c[4] = {{-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
   for (int i = 0; i < 4; ++i) {
@@ -91,8 +91,8 @@ inline world::Scene Box(const Eigen::Vector2d& centre, double w, double h, doubl
 // unmodelled clutter covering about `clutter_fraction` of the beams seen
 // from the returned true sensor pose.
 struct RandomRoom {
-  world::WorldModel world;
-  world::Scene scene;  // world + clutter
+  world_model::WorldModel world;
+  world_model::Scene scene;  // world + clutter
   geometry::Pose2D truth;
 };
 
@@ -105,17 +105,17 @@ inline RandomRoom MakeRandomRoom(std::mt19937& rng, const ScanSpec& spec, double
   auto at = [&](double x, double y) {
     return Eigen::Vector2d(origin + rot * Eigen::Vector2d(x, y));
   };
-  std::vector<world::Wall> walls = {
-      world::MakeWall(0, at(0, 0), at(w, 0)), world::MakeWall(1, at(w, 0), at(w, h)),
-      world::MakeWall(2, at(w, h), at(0, h)), world::MakeWall(3, at(0, h), at(0, 0))};
-  std::vector<world::Cylinder> pillars;
+  std::vector<world_model::Wall> walls = {
+      world_model::MakeWall(0, at(0, 0), at(w, 0)), world_model::MakeWall(1, at(w, 0), at(w, h)),
+      world_model::MakeWall(2, at(w, h), at(0, h)), world_model::MakeWall(3, at(0, h), at(0, 0))};
+  std::vector<world_model::Cylinder> pillars;
   const int n_pillars = 1 + static_cast<int>(2.0 * u(rng));
   for (int i = 0; i < n_pillars; ++i) {
     pillars.push_back(
         {i, at(1.0 + (w - 2.0) * u(rng), 1.0 + (h - 2.0) * u(rng)), 0.15 + 0.2 * u(rng)});
   }
-  world::WorldModel model("random_room", walls, {}, pillars);
-  world::Scene scene = world::Scene::FromWorld(model);
+  world_model::WorldModel model("random_room", walls, {}, pillars);
+  world_model::Scene scene = world_model::Scene::FromWorld(model);
   // The robot: inside, at least 0.8 m from walls and pillars.
   geometry::Pose2D truth;
   for (int attempt = 0; attempt < 1000; ++attempt) {
@@ -126,7 +126,7 @@ inline RandomRoom MakeRandomRoom(std::mt19937& rng, const ScanSpec& spec, double
     truth = {p.x(), p.y(), geometry::kPi * (2.0 * u(rng) - 1.0)};
     break;
   }
-  world::Scene clutter;
+  world_model::Scene clutter;
   for (int attempt = 0;
        attempt < 200 && ClutterFraction(scene, clutter, truth, spec) < clutter_fraction;
        ++attempt) {

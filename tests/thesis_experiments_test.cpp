@@ -7,11 +7,11 @@
 
 #include <cstdio>
 
-#include "localiser.hpp"
+#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
-#include "world_model_xml.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using geometry::kPi;
@@ -41,8 +41,8 @@ Stats Compute(const std::vector<Pose2D>& poses) {
 // of 300 beams over 2 pi with 5 mm range noise; the estimate overwrites the
 // odometry as in the thesis.
 Stats Repeatability(const std::string& params) {
-  const auto world = world::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"));
-  const auto scene = world::Scene::FromWorld(world);
+  const auto world = world_model::LoadWorldModel(testing::SourcePath("maps/dead_end_corridor.xml"));
+  const auto scene = world_model::Scene::FromWorld(world);
   Localiser localiser(world, LoadLocaliserOptions(testing::SourcePath(params)));
   const Pose2D truth{1.0, 0.9, 0.0};
   std::mt19937 rng(2024);
@@ -85,10 +85,10 @@ TEST(ThesisRepeatability, DeadEndCorridorBeatsTheThesisTable7) {
 // Two perpendicular walls; an unmodelled box 0.6 m in front of wall 2 hides
 // `fraction` of it as seen from the robot.
 TEST(ThesisRobustness, AnUnmodelledBoxHidingWall2NeverMakesItDiverge) {
-  const auto world = world::LoadWorldModel(testing::SourcePath("maps/robustness_room.xml"));
+  const auto world = world_model::LoadWorldModel(testing::SourcePath("maps/robustness_room.xml"));
   const Pose2D truth{1.5, 1.5, 0.3};
   for (double fraction : {0.0, 0.3, 0.6, 0.8, 1.0}) {
-    world::Scene scene = world::Scene::FromWorld(world);
+    world_model::Scene scene = world_model::Scene::FromWorld(world);
     if (fraction > 0) {
       // The box face at y = 0.6 covers the rays to wall 2 (y = 0) for x in [0, 3 fraction].
       const double y = 0.6, k = (truth.y - y) / truth.y;
@@ -144,4 +144,4 @@ TEST(ThesisRobustness, AnUnmodelledBoxHidingWall2NeverMakesItDiverge) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

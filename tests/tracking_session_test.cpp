@@ -8,11 +8,11 @@
 #include <random>
 
 #include "office_scene.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/localisation_core/tracking_session.hpp"
 #include "temp_dir.hpp"
-#include "tracking_session.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 const std::string kParams = std::string(STRUCTLOC_SOURCE_DIR) + "/maps/params/office_sick.xml";
@@ -311,4 +311,4 @@ TEST(SessionInbox, ListenersOnlyLeaveInputsAndTheNewestScanWins) {
 }
 
 }  // namespace
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

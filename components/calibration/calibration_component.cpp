@@ -1,5 +1,5 @@
 // Calibration component (see header).
-#include "calibration_component.hpp"
+#include "structloc/calibration/calibration_component.hpp"
 
 #include <unistd.h>
 
@@ -9,10 +9,10 @@
 #include <optional>
 #include <sstream>
 
-#include "calibration_conversions.hpp"
-#include "diagnostics.hpp"
-#include "output_file.hpp"
-#include "recording_writers.hpp"
+#include "structloc/calibration/calibration_conversions.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
 
 namespace structloc::calibration {
 namespace {
@@ -27,7 +27,7 @@ void CheckFixTopic(const std::string& topic) {
                                 "' contains a space or control character" + hint);
     }
   }
-  namespace t = dds::topics;
+  namespace t = dds_common::topics;
   for (const auto* other :
        {&t::kScan, &t::kOdom, &t::kWheelEncoders, &t::kGroundTruth, &t::kCmdVel, &t::kTf,
         &t::kFeatures, &t::kStatus, &t::kCalibration, &t::kDiagnostics}) {
@@ -68,23 +68,24 @@ void CalibrationComponentOptions::Validate() const {
   if (!out_dir.empty()) PrepareOutputFolder(out_dir);
 }
 
-CalibrationComponent::CalibrationComponent(dds::Node& node,
+CalibrationComponent::CalibrationComponent(dds_common::Node& node,
                                            const CalibrationComponentOptions& options)
     : options_(options),
       result_(node.CreateWriter<structloc_msgs::msg::CalibrationResultPubSubType>(
-          dds::topics::kCalibration)),
+          dds_common::topics::kCalibration)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)),
-      recorder_(RecorderOptions{options.record_s, options.calibration.max_encoder_gap_s}) {
+          dds_common::topics::kDiagnostics)),
+      recorder_(calibration_core::RecorderOptions{options.record_s,
+                                                  options.calibration.max_encoder_gap_s}) {
   encoders_subscription_ = node.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds::topics::kWheelEncoders, [this](const structloc_msgs::msg::WheelEncoders& m) {
+      dds_common::topics::kWheelEncoders, [this](const structloc_msgs::msg::WheelEncoders& m) {
         const auto sample = FromWheelEncoders(m);
         std::lock_guard<std::mutex> lock(mutex_);
         recorder_.AddEncoders(sample);
       });
   // Fixes RELIABLE (the reliable_state profile): none may be lost.
   fixes_subscription_ = node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      {options_.fix_topic, dds::qos_profiles::kReliableState},
+      {options_.fix_topic, dds_common::qos_profiles::kReliableState},
       [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
         const auto fix = FromPoseFix(m);
         std::lock_guard<std::mutex> lock(mutex_);
@@ -96,12 +97,12 @@ CalibrationComponent::CalibrationComponent(dds::Node& node,
   } else {
     length << "until stopped";
   }
-  std::cout << "calibration: recording " << dds::topics::kWheelEncoders.name << " and "
+  std::cout << "calibration: recording " << dds_common::topics::kWheelEncoders.name << " and "
             << options_.fix_topic << " for " << length.str() << std::endl;
 }
 
 void CalibrationComponent::Step() {
-  const double now = dds::WallClockSeconds();
+  const double now = dds_common::WallClockSeconds();
   bool due = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -125,7 +126,7 @@ void CalibrationComponent::Stop() {
 }
 
 void CalibrationComponent::Estimate(bool stopped_early) {
-  Recording recording;
+  calibration_core::Recording recording;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     recording = recorder_.Finish();
@@ -133,9 +134,9 @@ void CalibrationComponent::Estimate(bool stopped_early) {
   }
   const auto& encoders = recording.encoders;
   const auto& fixes = recording.fixes;
-  CalibrationReport report;
+  calibration_core::CalibrationReport report;
   try {
-    report = Calibrate(encoders, fixes, options_.nominal, options_.calibration);
+    report = calibration_core::Calibrate(encoders, fixes, options_.nominal, options_.calibration);
   } catch (const std::exception& e) {
     report.success = false;
     report.failure = e.what();
@@ -143,13 +144,13 @@ void CalibrationComponent::Estimate(bool stopped_early) {
   std::ostringstream text;
   text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from "
        << encoders.size() << " encoder samples and " << fixes.size() << " fixes";
-  for (int k = 0; k < kParameterCount; ++k) {
+  for (int k = 0; k < calibration_core::kParameterCount; ++k) {
     if (!report.estimated[static_cast<size_t>(k)]) continue;
     const auto& p = report.parameters;
     const double v[] = {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
                         p.sensor.x,     p.sensor.y,      p.sensor.theta};
-    text << "\n  " << ParameterName(static_cast<Parameter>(k)) << " " << v[k] << " +- "
-         << report.standard_deviation[static_cast<size_t>(k)];
+    text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
+         << " " << v[k] << " +- " << report.standard_deviation[static_cast<size_t>(k)];
   }
   for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
   if (!report.success && !report.failure.empty()) text << "\n  FAILED: " << report.failure;
@@ -171,15 +172,16 @@ void CalibrationComponent::Estimate(bool stopped_early) {
   }
 }
 
-std::string CalibrationComponent::WriteResults(const std::vector<EncoderSample>& encoders,
-                                               const std::vector<Fix>& fixes,
-                                               const CalibrationReport& report) const {
+std::string CalibrationComponent::WriteResults(
+    const std::vector<calibration_core::EncoderSample>& encoders,
+    const std::vector<calibration_core::Fix>& fixes,
+    const calibration_core::CalibrationReport& report) const {
   if (options_.out_dir.empty()) return "";
   try {
-    logs::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
+    log_formats::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
     for (const auto& s : encoders)
       enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
-    logs::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
+    log_formats::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
     for (const auto& f : fixes)
       fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
     std::optional<config::OutputFile> robot;
@@ -205,14 +207,15 @@ std::string CalibrationComponent::WriteResults(const std::vector<EncoderSample>&
 
 void CalibrationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
-  dds::HealthReport report;
-  RecorderStats stats;
+  dds_common::HealthReport report;
+  calibration_core::RecorderStats stats;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stats = recorder_.Stats();
     report.message = recorder_.Finished() ? outcome_ : "recording";
   }
-  if (stats.gaps > 0 || stats.encoders_out_of_order > 0) report.level = dds::HealthLevel::kWarn;
+  if (stats.gaps > 0 || stats.encoders_out_of_order > 0)
+    report.level = dds_common::HealthLevel::kWarn;
   if (stats.gaps > 0) {
     report.message += "; " + std::to_string(stats.gaps) + " gaps in the encoder stream";
   }
@@ -222,7 +225,7 @@ void CalibrationComponent::PublishDiagnostics(double now) {
                    {"largest_encoder_gap_s", std::to_string(stats.largest_gap_s)},
                    {"encoders_out_of_order", std::to_string(stats.encoders_out_of_order)},
                    {"fixes_rejected", std::to_string(stats.fixes_rejected)}};
-  diagnostics_.Write(dds::ToDiagnosticArray("calibration", report, now));
+  diagnostics_.Write(dds_common::ToDiagnosticArray("calibration", report, now));
 }
 
 }  // namespace structloc::calibration

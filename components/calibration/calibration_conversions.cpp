@@ -1,20 +1,20 @@
 // Calibration message conversions (see header).
-#include "calibration_conversions.hpp"
+#include "structloc/calibration/calibration_conversions.hpp"
 
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 
 namespace structloc::calibration {
 
-EncoderSample FromWheelEncoders(const structloc_msgs::msg::WheelEncoders& msg) {
-  return {dds::FromRosTime(msg.header().stamp()), msg.traction_ticks(),
+calibration_core::EncoderSample FromWheelEncoders(const structloc_msgs::msg::WheelEncoders& msg) {
+  return {dds_common::FromRosTime(msg.header().stamp()), msg.traction_ticks(),
           static_cast<double>(msg.steering_ticks())};
 }
 
-Fix FromPoseFix(const geometry_msgs::msg::PoseWithCovarianceStamped& msg) {
-  Fix f;
-  f.t = dds::FromRosTime(msg.header().stamp());
+calibration_core::Fix FromPoseFix(const geometry_msgs::msg::PoseWithCovarianceStamped& msg) {
+  calibration_core::Fix f;
+  f.t = dds_common::FromRosTime(msg.header().stamp());
   const auto& p = msg.pose().pose();
-  f.pose = {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())};
+  f.pose = {p.position().x(), p.position().y(), dds_common::YawFromQuaternion(p.orientation())};
   const auto& c = msg.pose().covariance();
   f.variance = {c[0], c[7], c[35]};
   f.has_variance = f.variance.allFinite() && (f.variance.array() > 0).all();
@@ -22,23 +22,24 @@ Fix FromPoseFix(const geometry_msgs::msg::PoseWithCovarianceStamped& msg) {
 }
 
 namespace {
-structloc_msgs::msg::RobotParameters ToMsg(const std::array<double, kParameterCount>& v) {
+structloc_msgs::msg::RobotParameters ToMsg(
+    const std::array<double, calibration_core::kParameterCount>& v) {
   structloc_msgs::msg::RobotParameters p;
-  p.wheel_radius_m(v[kWheelRadius]);
-  p.axle_distance_m(v[kAxleDistance]);
-  p.steering_offset_rad(v[kSteeringOffset]);
-  p.steering_rad_per_tick(v[kSteeringGain]);
-  p.sensor_x_m(v[kSensorX]);
-  p.sensor_y_m(v[kSensorY]);
-  p.sensor_theta_rad(v[kSensorTheta]);
+  p.wheel_radius_m(v[calibration_core::kWheelRadius]);
+  p.axle_distance_m(v[calibration_core::kAxleDistance]);
+  p.steering_offset_rad(v[calibration_core::kSteeringOffset]);
+  p.steering_rad_per_tick(v[calibration_core::kSteeringGain]);
+  p.sensor_x_m(v[calibration_core::kSensorX]);
+  p.sensor_y_m(v[calibration_core::kSensorY]);
+  p.sensor_theta_rad(v[calibration_core::kSensorTheta]);
   return p;
 }
 }  // namespace
 
-structloc_msgs::msg::CalibrationResult ToCalibrationResult(const CalibrationReport& r,
-                                                           double stamp) {
+structloc_msgs::msg::CalibrationResult ToCalibrationResult(
+    const calibration_core::CalibrationReport& r, double stamp) {
   structloc_msgs::msg::CalibrationResult msg;
-  msg.header().stamp(dds::ToRosTime(stamp));
+  msg.header().stamp(dds_common::ToRosTime(stamp));
   msg.success(r.success);
   const auto& p = r.parameters;
   msg.parameters(ToMsg({p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,

@@ -1,9 +1,9 @@
 // structloc_calibration: entry point of the odometry-calibration component.
-#include "calibration_component.hpp"
+#include "structloc/calibration/calibration_component.hpp"
 
 int main(int argc, char** argv) {
   namespace cal = structloc::calibration;
-  return structloc::dds::RunComponent(
+  return structloc::dds_common::RunComponent(
       argc, argv, "calibration",
       {{"robot", true,
         "nominal robot parameters (default: maps/robots/tricycle.xml in structloc's data folder)"},
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
        {"exit-when-done", false,
         "exit after publishing the result (exit code 1 when the calibration failed or could not "
         "be written)"}},
-      [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
         cal::CalibrationComponentOptions o;
         o.robot_path = cli.PathOr("robot", "maps/robots/tricycle.xml");
         o.nominal = structloc::kinematics::LoadRobotParameters(o.robot_path);
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
         }
         o.exit_when_done = cli.Has("exit-when-done");
         if (auto list = cli.Get("estimate")) {
-          o.calibration.estimate = cal::ParseParameterList(*list);
+          o.calibration.estimate = structloc::calibration_core::ParseParameterList(*list);
         }
         o.Validate();
         return std::make_unique<cal::CalibrationComponent>(node, o);

@@ -1,5 +1,5 @@
 // Calibration input files (see header).
-#include "calibration_data.hpp"
+#include "structloc/calibration_core/calibration_data.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 namespace {
 
 constexpr double kMaxFixCoordinate_m = 1e5;  // as the world model's bound
@@ -175,4 +175,4 @@ FixesFile ReadFixesCsv(const std::string& path) {
   return file;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

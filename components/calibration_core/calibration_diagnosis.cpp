@@ -1,12 +1,12 @@
 // Likely causes of a failed calibration (see header).
-#include "calibration_diagnosis.hpp"
+#include "structloc/calibration_core/calibration_diagnosis.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
 #include <sstream>
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 namespace {
 
 std::string Text(double value, int digits = 4) {
@@ -121,4 +121,4 @@ std::vector<std::string> LikelyCauses(const std::vector<EncoderSample>& encoders
   return causes;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

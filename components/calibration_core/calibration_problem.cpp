@@ -1,14 +1,14 @@
 // The calibration's least-squares problem (see header).
-#include "calibration_problem.hpp"
+#include "structloc/calibration_core/calibration_problem.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "tricycle.hpp"
+#include "structloc/kinematics/tricycle.hpp"
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 kinematics::RobotParameters WithValues(const kinematics::RobotParameters& base,
                                        const ParameterValues& values) {
@@ -139,4 +139,4 @@ Eigen::VectorXd CalibrationProblem::Whitened(const ParameterValues& values) cons
   return r;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

@@ -1,10 +1,10 @@
 // Calibration recorder (see header).
-#include "calibration_recorder.hpp"
+#include "structloc/calibration_core/calibration_recorder.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 CalibrationRecorder::CalibrationRecorder(const RecorderOptions& options) : options_(options) {
   if (!(options_.record_s >= 0)) throw std::invalid_argument("record_s must be >= 0");
@@ -62,4 +62,4 @@ RecorderStats CalibrationRecorder::Stats() const {
   return s;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

@@ -1,5 +1,5 @@
 // The calibration report from a fit (see header).
-#include "calibration_report_builder.hpp"
+#include "structloc/calibration_core/calibration_report_builder.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "calibration_diagnosis.hpp"
+#include "structloc/calibration_core/calibration_diagnosis.hpp"
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 Eigen::MatrixXd RobustCovariance(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& weights,
                                  double cost) {
@@ -116,4 +116,4 @@ CalibrationReport Judge(CalibrationReport report, const std::vector<EncoderSampl
   return report;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

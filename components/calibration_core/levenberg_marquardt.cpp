@@ -1,10 +1,10 @@
 // Robust Levenberg-Marquardt (see header).
-#include "levenberg_marquardt.hpp"
+#include "structloc/calibration_core/levenberg_marquardt.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 Eigen::VectorXd HuberWeights(const Eigen::VectorXd& residuals, double k, int block_size) {
   Eigen::VectorXd w(residuals.size());
@@ -76,4 +76,4 @@ LevenbergMarquardtResult MinimiseRobustly(const ResidualFunction& residual,
   return s;
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

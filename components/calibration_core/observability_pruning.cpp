@@ -1,10 +1,10 @@
 // Observability pruning (see header).
-#include "observability_pruning.hpp"
+#include "structloc/calibration_core/observability_pruning.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 std::optional<Parameter> LeastObservable(const ParameterValues& standard_deviation,
                                          const ParameterMask& active,
@@ -55,4 +55,4 @@ std::string NotObservableWarning(Parameter p) {
          ": kept at its nominal value";
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

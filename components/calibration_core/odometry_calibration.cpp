@@ -1,6 +1,6 @@
 // Odometry calibration (see header): checks the inputs, builds the problem,
 // fits the observable parameters and judges the result.
-#include "odometry_calibration.hpp"
+#include "structloc/calibration_core/odometry_calibration.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -8,14 +8,14 @@
 #include <optional>
 #include <stdexcept>
 
-#include "calibration_problem.hpp"
-#include "calibration_report_builder.hpp"
-#include "levenberg_marquardt.hpp"
-#include "observability_pruning.hpp"
-#include "strict_xml.hpp"
-#include "tricycle.hpp"
+#include "structloc/calibration_core/calibration_problem.hpp"
+#include "structloc/calibration_core/calibration_report_builder.hpp"
+#include "structloc/calibration_core/levenberg_marquardt.hpp"
+#include "structloc/calibration_core/observability_pruning.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/kinematics/tricycle.hpp"
 
-namespace structloc::calibration {
+namespace structloc::calibration_core {
 
 const char* ParameterName(Parameter p) {
   static const char* names[] = {"wheel_radius",          "axle_distance", "steering_offset",
@@ -255,4 +255,4 @@ std::string TrajectoryAdvice() {
          "them observable; a straight line alone says nothing about the axle distance.\n";
 }
 
-}  // namespace structloc::calibration
+}  // namespace structloc::calibration_core

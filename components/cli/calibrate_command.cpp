@@ -8,37 +8,37 @@
 #include <cstdio>
 #include <iostream>
 
-#include "command_line.hpp"
-#include "odometry_calibration.hpp"
-#include "output_file.hpp"
+#include "structloc/calibration_core/odometry_calibration.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
 namespace {
 
-std::array<double, calibration::kParameterCount> Values(const kinematics::RobotParameters& p) {
+std::array<double, calibration_core::kParameterCount> Values(const kinematics::RobotParameters& p) {
   return {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
           p.sensor.x,     p.sensor.y,      p.sensor.theta};
 }
 
-void PrintReport(const calibration::CalibrationReport& report,
-                 const calibration::CalibrationOptions& options,
+void PrintReport(const calibration_core::CalibrationReport& report,
+                 const calibration_core::CalibrationOptions& options,
                  const kinematics::RobotParameters& nominal) {
   const auto nominal_values = Values(nominal);
   const auto values = Values(report.parameters);
   const bool estimated_any =
       std::find(report.estimated.begin(), report.estimated.end(), true) != report.estimated.end();
-  for (int k = 0; k < calibration::kParameterCount && report.iterations > 0; ++k) {
-    const auto param = static_cast<calibration::Parameter>(k);
+  for (int k = 0; k < calibration_core::kParameterCount && report.iterations > 0; ++k) {
+    const auto param = static_cast<calibration_core::Parameter>(k);
     const size_t i = static_cast<size_t>(k);
     if (report.estimated[i]) {
-      std::printf("  %-22s %.8g +- %.2g %s   (nominal %.8g)\n", calibration::ParameterName(param),
-                  values[i], report.standard_deviation[i], calibration::ParameterUnit(param),
-                  nominal_values[i]);
+      std::printf("  %-22s %.8g +- %.2g %s   (nominal %.8g)\n",
+                  calibration_core::ParameterName(param), values[i], report.standard_deviation[i],
+                  calibration_core::ParameterUnit(param), nominal_values[i]);
     } else if (options.estimate[i]) {
       std::printf("  %-22s NOT OBSERVABLE: kept nominal %.8g %s\n",
-                  calibration::ParameterName(param), nominal_values[i],
-                  calibration::ParameterUnit(param));
+                  calibration_core::ParameterName(param), nominal_values[i],
+                  calibration_core::ParameterUnit(param));
     }
   }
   if (report.correlation.rows() > 1) {
@@ -78,23 +78,25 @@ int CalibrateCommand(const Invocation& inv) {
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     if (cli.Has("advice")) {
-      std::cout << calibration::TrajectoryAdvice();
+      std::cout << calibration_core::TrajectoryAdvice();
       return 0;
     }
-    calibration::CalibrationOptions options;
-    if (auto list = cli.Get("estimate")) options.estimate = calibration::ParseParameterList(*list);
+    calibration_core::CalibrationOptions options;
+    if (auto list = cli.Get("estimate"))
+      options.estimate = calibration_core::ParseParameterList(*list);
     const std::string robot_path = cli.Required("robot");
     const std::string encoders_path = cli.Required("encoders");
     const std::string fixes_path = cli.Required("fixes");
     config::OutputFile out(cli.Required("out"), {robot_path, encoders_path, fixes_path});
     const auto nominal = kinematics::LoadRobotParameters(robot_path);
     const auto encoders =
-        calibration::ReadEncodersCsv(encoders_path, nominal.traction_counter_bits);
-    const auto fixes = calibration::ReadFixesCsv(fixes_path);
-    const auto report = calibration::Calibrate(encoders, fixes.fixes, nominal, options);
+        calibration_core::ReadEncodersCsv(encoders_path, nominal.traction_counter_bits);
+    const auto fixes = calibration_core::ReadFixesCsv(fixes_path);
+    const auto report = calibration_core::Calibrate(encoders, fixes.fixes, nominal, options);
     std::printf("%zu encoder samples, %zu fixes (%s), %zu fix intervals used, %zu skipped\n",
-                encoders.size(), fixes.fixes.size(), calibration::DescribeDropped(fixes).c_str(),
-                report.intervals_used, report.intervals_skipped);
+                encoders.size(), fixes.fixes.size(),
+                calibration_core::DescribeDropped(fixes).c_str(), report.intervals_used,
+                report.intervals_skipped);
     PrintReport(report, options, nominal);
     if (!report.success) {
       std::cerr << "structloc calibrate: calibration FAILED: " << report.failure << "\n";

@@ -8,12 +8,12 @@
 #include <iostream>
 #include <thread>
 
-#include "child_process.hpp"
-#include "command_line.hpp"
-#include "install_layout.hpp"
-#include "live_evaluator.hpp"
-#include "map_canvas.hpp"
-#include "scenario.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/install_layout.hpp"
+#include "structloc/evaluation/live_evaluator.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -41,14 +41,15 @@ int DemoCommand(const Invocation& inv) {
     const int domain = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
     const double time_scale = cli.NumberIn("time-scale", 2.0, 0.01, 1000.0);
     const std::string share = config::ShareDirectory();
-    const auto scenario = simulation::LoadScenario(share + "/maps/scenarios/office_people.xml");
+    const auto scenario =
+        simulation_core::LoadScenario(share + "/maps/scenarios/office_people.xml");
     const std::string png = cli.GetOr("out", "structloc_demo/fig44_office.png");
     rendering::MapCanvas::CheckPictureName(png);
     std::filesystem::create_directories(std::filesystem::path(png).parent_path());
 
-    dds::NodeOptions node_options{"demo_observer", domain, share + "/qos/structloc_qos.xml",
-                                  "structloc_localhost"};
-    dds::Node node(node_options);
+    dds_common::NodeOptions node_options{"demo_observer", domain, share + "/qos/structloc_qos.xml",
+                                         "structloc_localhost"};
+    dds_common::Node node(node_options);
     evaluation::LiveEvaluator evaluator(node, scenario.initial_pose);
     const auto& p = scenario.initial_pose;
     std::cout

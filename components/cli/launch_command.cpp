@@ -3,10 +3,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "install_layout.hpp"
-#include "launch_runner.hpp"
-#include "strict_number.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/install_layout.hpp"
+#include "structloc/config/strict_number.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/process/launch_runner.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <string>
 
-#include "command_line.hpp"
-#include "install_layout.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/install_layout.hpp"
 #include "subcommands.hpp"
 
 namespace {

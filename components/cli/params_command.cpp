@@ -5,13 +5,13 @@
 // any of the three kinds loads (the kind from its root element).
 #include <iostream>
 
-#include "command_line.hpp"
-#include "localiser_options.hpp"
-#include "robot_parameters.hpp"
-#include "scenario_options.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/kinematics/robot_parameters.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/simulation_core/scenario_options.hpp"
 #include "subcommands.hpp"
-#include "tracking_session_options.hpp"
 
 namespace structloc::cli {
 namespace {
@@ -20,12 +20,12 @@ namespace {
 void Check(const std::string& path) {
   const std::string root = config::XmlFile::Load(path).Root().Name();
   if (root == "localisation_params") {
-    localisation::LoadLocaliserOptions(path);
-    localisation::LoadSessionOptions(path);
+    localisation_core::LoadLocaliserOptions(path);
+    localisation_core::LoadSessionOptions(path);
   } else if (root == "robot") {
     kinematics::LoadRobotParameters(path);
   } else if (root == "scenario") {
-    simulation::LoadScenario(path);
+    simulation_core::LoadScenario(path);
   } else {
     throw config::ConfigError(path + ": root element is <" + root +
                               ">, expected <localisation_params>, <robot> or <scenario>");
@@ -52,8 +52,8 @@ int ParamsCommand(const Invocation& inv) {
     }
     const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario");
     if (all || cli.Has("localiser")) {
-      localisation::PrintLocaliserOptions(std::cout);
-      localisation::PrintSessionOptions(std::cout);
+      localisation_core::PrintLocaliserOptions(std::cout);
+      localisation_core::PrintSessionOptions(std::cout);
     }
     if (all || cli.Has("robot")) {
       std::cout << (all ? "\n" : "");
@@ -61,7 +61,7 @@ int ParamsCommand(const Invocation& inv) {
     }
     if (all || cli.Has("scenario")) {
       std::cout << (all ? "\n" : "");
-      simulation::PrintScenarioOptions(std::cout);
+      simulation_core::PrintScenarioOptions(std::cout);
     }
     return 0;
   } catch (const config::ConfigError& e) {

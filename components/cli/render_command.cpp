@@ -4,10 +4,10 @@
 // work, and an existing picture is replaced only when the new one is complete.
 #include <iostream>
 
-#include "command_line.hpp"
-#include "map_canvas.hpp"
-#include "output_file.hpp"
-#include "simulation.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/simulation_core/simulation.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -24,10 +24,10 @@ int RenderCommand(const Invocation& inv) {
     rendering::MapCanvas::CheckPictureName(out_path);
     const std::string scenario_path = cli.Required("scenario");
     const double at = cli.Number("time", 0.0);
-    const auto scenario = simulation::LoadScenario(scenario_path);
+    const auto scenario = simulation_core::LoadScenario(scenario_path);
     config::OutputFile out(out_path, {scenario_path});
-    simulation::Simulation sim(scenario);
-    std::optional<simulation::SimScan> scan;
+    simulation_core::Simulation sim(scenario);
+    std::optional<simulation_core::SimScan> scan;
     std::vector<Eigen::Vector2d> driven{scenario.initial_pose.Translation()};
     while (!sim.Finished()) {
       driven.push_back(sim.Step().truth.Translation());
@@ -42,7 +42,7 @@ int RenderCommand(const Invocation& inv) {
     rendering::MapCanvas canvas(scenario.world->Bounds(), 40.0);
     canvas.DrawWorld(*scenario.world);
     canvas.DrawObstacles(scenario.obstacles, rendering::colours::kObstacle);
-    world::Scene people;
+    world_model::Scene people;
     people.circles = sim.People();
     canvas.DrawObstacles(people, rendering::colours::kPerson);
     std::vector<Eigen::Vector2d> planned{scenario.initial_pose.Translation()};

@@ -5,9 +5,9 @@
 #include <iostream>
 #include <string>
 
-#include "command_line.hpp"
-#include "replay.hpp"
-#include "strict_number.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/strict_number.hpp"
+#include "structloc/replay/replay.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -39,13 +39,13 @@ int ReplayCommand(const Invocation& inv) {
       {"no-map", false, "pass odometry through (parse, filter and time only)"},
       {"max-beams", true,
        "most beams per laser line; lines with more are malformed (default " +
-           std::to_string(logs::CarmenLimits{}.max_beams) + ")"},
+           std::to_string(log_formats::CarmenLimits{}.max_beams) + ")"},
       {"max-lines", true,
        "most lines read from the log before giving up (default " +
-           std::to_string(logs::CarmenLimits{}.max_lines) + ")"},
+           std::to_string(log_formats::CarmenLimits{}.max_lines) + ")"},
       {"max-walls", true,
        "refuse maps with more walls than this (default " +
-           std::to_string(world::WorldLimits::kDefaultMaxWalls) + ")"},
+           std::to_string(world_model::WorldLimits::kDefaultMaxWalls) + ")"},
   };
   bool progress_shown = false;  // a "\r" progress line that a message must not continue
   const auto end_progress_line = [&progress_shown] {

@@ -1,10 +1,10 @@
 // Implementation of the strict command-line parser.
-#include "command_line.hpp"
-#include "install_layout.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/install_layout.hpp"
 
 #include <sstream>
 
-#include "strict_number.hpp"
+#include "structloc/config/strict_number.hpp"
 
 namespace structloc::config {
 namespace {

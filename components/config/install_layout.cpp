@@ -1,5 +1,5 @@
 // Run-time lookup of the executable's folder and the shared data (see header).
-#include "install_layout.hpp"
+#include "structloc/config/install_layout.hpp"
 
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 namespace structloc::config {
 

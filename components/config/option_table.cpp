@@ -1,6 +1,6 @@
 // Number ranges of the option tables: membership and the wording used in
 // messages and listings.
-#include "option_table.hpp"
+#include "structloc/config/option_table.hpp"
 
 #include <cstdio>
 

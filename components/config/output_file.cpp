@@ -1,5 +1,5 @@
 // OutputFile (see header).
-#include "output_file.hpp"
+#include "structloc/config/output_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 namespace structloc::config {
 namespace {

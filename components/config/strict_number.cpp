@@ -1,5 +1,5 @@
 // Strict number parsing (see header).
-#include "strict_number.hpp"
+#include "structloc/config/strict_number.hpp"
 
 #include <cerrno>
 #include <cmath>

@@ -1,11 +1,11 @@
 // Implementation of the strict XML reader: parsing, typed attributes, errors with file:line.
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "strict_number.hpp"
+#include "structloc/config/strict_number.hpp"
 
 namespace structloc::config {
 

@@ -3,7 +3,7 @@
 // topic profiles) and lists their profiles; exit 2 when any file is broken.
 #include <iostream>
 
-#include "qos_profiles.hpp"
+#include "structloc/dds_common/qos_profiles.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 2 || std::string(argv[1]) == "--help") {
@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   int result = 0;
   for (int i = 1; i < argc; ++i) {
     try {
-      const auto qos = structloc::dds::QosProfiles::Load(argv[i]);
+      const auto qos = structloc::dds_common::QosProfiles::Load(argv[i]);
       for (const auto& p : qos.ParticipantProfiles()) {
         const auto pq = qos.Participant(p);
         std::cout << "participant " << p << " lease "

@@ -1,11 +1,11 @@
 // Shared component main loop (see header).
-#include "component_runtime.hpp"
+#include "structloc/dds_common/component_runtime.hpp"
 
 #include <iostream>
 
-#include "shutdown_signal.hpp"
+#include "structloc/process/shutdown_signal.hpp"
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 std::vector<config::OptionSpec> StandardOptions() {
   return {
       {"domain", true,
@@ -88,4 +88,4 @@ int RunComponent(int argc, char** argv, const std::string& name,
   }
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

@@ -1,9 +1,9 @@
 // HealthReport -> DiagnosticArray conversion.
-#include "diagnostics.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
 
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 
 const char* ToString(HealthLevel level) {
   switch (level) {
@@ -39,4 +39,4 @@ diagnostic_msgs::msg::DiagnosticArray ToDiagnosticArray(const std::string& compo
   return array;
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

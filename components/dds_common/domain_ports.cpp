@@ -1,9 +1,9 @@
 // Domain port arithmetic and the ephemeral-range check (see header).
-#include "domain_ports.hpp"
+#include "structloc/dds_common/domain_ports.hpp"
 
 #include <fstream>
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 
 std::pair<int, int> DomainPortRange(int domain_id) {
   const int base = 7400 + kPortsPerDomain * domain_id;
@@ -31,4 +31,4 @@ std::optional<std::string> DomainPortWarning(int domain_id,
          std::to_string(kMaxSafeDomainId) + ".";
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

@@ -1,15 +1,15 @@
 // Node: participant creation from a validated QoS file, and clean teardown.
-#include "node.hpp"
+#include "structloc/dds_common/node.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include <iostream>
 #include <sstream>
 
-#include "domain_ports.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/dds_common/domain_ports.hpp"
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 
 Node::Node(const NodeOptions& options)
     : options_(options),
@@ -65,4 +65,4 @@ std::string Node::EndpointReport() const {
   return out.str();
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

@@ -1,12 +1,12 @@
 // PeerMonitor (see header).
-#include "peer_monitor.hpp"
+#include "structloc/dds_common/peer_monitor.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 
 #include <iostream>
 #include <sstream>
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 
 using eprosima::fastdds::dds::QosPolicyId_t;
 
@@ -85,4 +85,4 @@ std::vector<std::string> PeerMonitor::Problems() const {
   return out;
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

@@ -1,15 +1,15 @@
 // QoS profile validation and lookup (see qos_profiles.hpp).
-#include "qos_profiles.hpp"
+#include "structloc/dds_common/qos_profiles.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include <map>
 
-#include "strict_number.hpp"
-#include "strict_xml.hpp"
-#include "topics.hpp"
+#include "structloc/config/strict_number.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/dds_common/topics.hpp"
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 namespace {
 
 using eprosima::fastrtps::types::ReturnCode_t;
@@ -198,4 +198,4 @@ eprosima::fastdds::dds::DataReaderQos QosProfiles::Reader(
       &eprosima::fastdds::dds::Subscriber::get_datareader_qos_from_profile);
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

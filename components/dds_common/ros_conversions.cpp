@@ -1,10 +1,10 @@
 // ROS 2 field conversions (see header).
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 
 #include <cmath>
 #include <cstdint>
 
-namespace structloc::dds {
+namespace structloc::dds_common {
 
 builtin_interfaces::msg::Time ToRosTime(double seconds) {
   builtin_interfaces::msg::Time t;
@@ -41,4 +41,4 @@ double YawFromQuaternion(const geometry_msgs::msg::Quaternion& q) {
                     1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
 }
 
-}  // namespace structloc::dds
+}  // namespace structloc::dds_common

@@ -1,39 +1,39 @@
 // Live evaluation over DDS (see header).
-#include "live_evaluator.hpp"
+#include "structloc/evaluation/live_evaluator.hpp"
 
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
-#include "map_canvas.hpp"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
-#include "world_model_xml.hpp"
 
 namespace structloc::evaluation {
 namespace {
-logs::StampedPose Stamped(const builtin_interfaces::msg::Time& t,
-                          const geometry_msgs::msg::Pose& p) {
-  return {dds::FromRosTime(t),
-          {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
+log_formats::StampedPose Stamped(const builtin_interfaces::msg::Time& t,
+                                 const geometry_msgs::msg::Pose& p) {
+  return {dds_common::FromRosTime(t),
+          {p.position().x(), p.position().y(), dds_common::YawFromQuaternion(p.orientation())}};
 }
 }  // namespace
 
-LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_pose)
+LiveEvaluator::LiveEvaluator(dds_common::Node& node, const geometry::Pose2D& initial_pose)
     : node_(node), initial_pose_(initial_pose) {
   subscriptions_.push_back(node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kGroundTruth, [this](const nav_msgs::msg::Odometry& m) {
+      dds_common::topics::kGroundTruth, [this](const nav_msgs::msg::Odometry& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         truth_.push_back(Stamped(m.header().stamp(), m.pose().pose()));
         snapshot_.sim_time_s = truth_.back().stamp - truth_.front().stamp;
       }));
   subscriptions_.push_back(node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
+      dds_common::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         auto s = Stamped(m.header().stamp(), m.pose().pose());
         s.pose = geometry::Compose(initial_pose_, s.pose);
         odometry_.push_back(s);
       }));
   subscriptions_.push_back(node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-      dds::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+      dds_common::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         estimate_.push_back(Stamped(m.header().stamp(), m.pose().pose()));
         ++snapshot_.poses;
@@ -52,7 +52,7 @@ LiveEvaluator::LiveEvaluator(dds::Node& node, const geometry::Pose2D& initial_po
         }
       }));
   subscriptions_.push_back(node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
-      dds::topics::kStatus, [this](const structloc_msgs::msg::LocalisationStatus& s) {
+      dds_common::topics::kStatus, [this](const structloc_msgs::msg::LocalisationStatus& s) {
         std::lock_guard<std::mutex> lock(mutex_);
         snapshot_.matched_features = 0;
         snapshot_.expected_features = 0;
@@ -70,15 +70,15 @@ LiveSnapshot LiveEvaluator::Snapshot() {
   std::lock_guard<std::mutex> lock(mutex_);
   return snapshot_;
 }
-std::vector<logs::StampedPose> LiveEvaluator::Truth() {
+std::vector<log_formats::StampedPose> LiveEvaluator::Truth() {
   std::lock_guard<std::mutex> lock(mutex_);
   return truth_;
 }
-std::vector<logs::StampedPose> LiveEvaluator::Estimate() {
+std::vector<log_formats::StampedPose> LiveEvaluator::Estimate() {
   std::lock_guard<std::mutex> lock(mutex_);
   return estimate_;
 }
-std::vector<logs::StampedPose> LiveEvaluator::OdometryInMap() {
+std::vector<log_formats::StampedPose> LiveEvaluator::OdometryInMap() {
   std::lock_guard<std::mutex> lock(mutex_);
   return odometry_;
 }
@@ -96,10 +96,10 @@ replay::TrajectoryError LiveEvaluator::OdometryError() {
 
 void LiveEvaluator::RenderFigure(const std::string& map_path, const std::string& png_path,
                                  const std::string& title) {
-  const auto world = world::LoadWorldModel(map_path);
+  const auto world = world_model::LoadWorldModel(map_path);
   rendering::MapCanvas canvas(world.Bounds(), 40.0);
   canvas.DrawWorld(world);
-  auto points = [](const std::vector<logs::StampedPose>& poses) {
+  auto points = [](const std::vector<log_formats::StampedPose>& poses) {
     std::vector<Eigen::Vector2d> out;
     for (const auto& p : poses) out.push_back(p.pose.Translation());
     return out;

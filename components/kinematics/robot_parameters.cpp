@@ -1,8 +1,8 @@
 // Robot parameter file reading, writing and validation, all from the one
 // declaration of its keys.
-#include "robot_parameters.hpp"
+#include "structloc/kinematics/robot_parameters.hpp"
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 namespace structloc::kinematics {
 

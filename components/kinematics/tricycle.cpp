@@ -1,5 +1,5 @@
 // Tricycle kinematics and dead reckoning (see header).
-#include "tricycle.hpp"
+#include "structloc/kinematics/tricycle.hpp"
 
 #include <cmath>
 

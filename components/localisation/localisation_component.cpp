@@ -1,36 +1,38 @@
 // Localisation component (see header).
-#include "localisation_component.hpp"
+#include "structloc/localisation/localisation_component.hpp"
 
 #include <iostream>
 
-#include "diagnostics.hpp"
-#include "localisation_conversions.hpp"
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/localisation/localisation_conversions.hpp"
 
 namespace structloc::localisation {
 
-LocalisationComponent::LocalisationComponent(dds::Node& node,
-                                             std::unique_ptr<world::WorldModel> world,
-                                             const LocaliserOptions& localiser_options,
-                                             const SessionOptions& session_options,
-                                             const LocalisationComponentOptions& options)
+LocalisationComponent::LocalisationComponent(
+    dds_common::Node& node, std::unique_ptr<world_model::WorldModel> world,
+    const localisation_core::LocaliserOptions& localiser_options,
+    const localisation_core::SessionOptions& session_options,
+    const LocalisationComponentOptions& options)
     : options_(options),
       world_(std::move(world)),
       pose_(node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds::topics::kPose)),
-      tf_(node.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds::topics::kTf)),
-      features_(
-          node.CreateWriter<structloc_msgs::msg::ScanFeaturesPubSubType>(dds::topics::kFeatures)),
+          dds_common::topics::kPose)),
+      tf_(node.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds_common::topics::kTf)),
+      features_(node.CreateWriter<structloc_msgs::msg::ScanFeaturesPubSubType>(
+          dds_common::topics::kFeatures)),
       status_(node.CreateWriter<structloc_msgs::msg::LocalisationStatusPubSubType>(
-          dds::topics::kStatus)),
+          dds_common::topics::kStatus)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)),
+          dds_common::topics::kDiagnostics)),
       node_(node),
-      started_s_(dds::WallClockSeconds()),
-      session_(world_.get(), localiser_options, session_options, Scheduling::kNewestWins) {
+      started_s_(dds_common::WallClockSeconds()),
+      session_(world_.get(), localiser_options, session_options,
+               localisation_core::Scheduling::kNewestWins) {
   if (options_.initial_pose) {
-    session_.ExpectInitialPose(*options_.initial_pose,
-                               TrackingSession::InitialPoseWhen::kAtFirstOdometry);
+    session_.ExpectInitialPose(
+        *options_.initial_pose,
+        localisation_core::TrackingSession::InitialPoseWhen::kAtFirstOdometry);
     std::cout << "localisation: initial pose from the command line" << std::endl;
   } else if (!options_.state_file.empty()) {
     try {
@@ -46,25 +48,25 @@ LocalisationComponent::LocalisationComponent(dds::Node& node,
     }
   }
   if (session_.WaitingForInitialPose()) {
-    std::cout << "localisation: waiting for an initial pose on " << dds::topics::kInitialPose.name
-              << std::endl;
+    std::cout << "localisation: waiting for an initial pose on "
+              << dds_common::topics::kInitialPose.name << std::endl;
   }
   worker_ = std::thread([this] { Worker(); });
   // The listeners only copy into the inbox and notify.
   scan_subscription_ = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
-      dds::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) {
-        inbox_.OfferScan(ToSessionScan(m), dds::WallClockSeconds());
+      dds_common::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) {
+        inbox_.OfferScan(ToSessionScan(m), dds_common::WallClockSeconds());
       });
   odometry_subscription_ = node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
-      dds::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
+      dds_common::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {
         const auto odom = FromOdometry(m);
-        inbox_.OfferOdometry(odom.stamp, odom.pose, dds::WallClockSeconds());
+        inbox_.OfferOdometry(odom.stamp, odom.pose, dds_common::WallClockSeconds());
       });
   initial_pose_subscription_ =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds::topics::kInitialPose,
+          dds_common::topics::kInitialPose,
           [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
-            InitialPoseInput in;
+            localisation_core::InitialPoseInput in;
             const auto p = FromPoseWithCovariance(m, &in.covariance);
             in.stamp = p.stamp;
             in.pose = p.pose;
@@ -82,9 +84,9 @@ void LocalisationComponent::Stop() {
 }
 
 void LocalisationComponent::Worker() {
-  SessionInputs inputs;
+  localisation_core::SessionInputs inputs;
   while (inbox_.WaitAndTake(std::chrono::milliseconds(20), inputs)) {
-    const double now = dds::WallClockSeconds();
+    const double now = dds_common::WallClockSeconds();
     if (inputs.scan_arrived_s == 0.0) inputs.scan_arrived_s = now;
     geometry_msgs::msg::PoseWithCovarianceStamped pose;
     tf2_msgs::msg::TFMessage tf;
@@ -92,12 +94,12 @@ void LocalisationComponent::Worker() {
     structloc_msgs::msg::LocalisationStatus status;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
-      if (session_.Apply(inputs, dds::topics::kInitialPose.name) > 0) {
-        std::cout << "localisation: initial pose set from " << dds::topics::kInitialPose.name
+      if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
+        std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
                   << std::endl;
       }
       const auto report = session_.Next(now);
-      if (!report || report->kind != ScanReport::Kind::kTracked) continue;
+      if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;
       const auto& r = *report->result;
       pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
       tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
@@ -114,9 +116,9 @@ void LocalisationComponent::Worker() {
 }
 
 void LocalisationComponent::Step() {
-  const double now = dds::WallClockSeconds();
+  const double now = dds_common::WallClockSeconds();
   if (!options_.state_file.empty()) {
-    std::optional<SessionState> state;
+    std::optional<localisation_core::SessionState> state;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
       state = session_.StateToSave(now);
@@ -132,36 +134,37 @@ void LocalisationComponent::Step() {
   if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);
 }
 
-dds::HealthReport LocalisationComponent::Health(double now) {
-  dds::HealthReport report;
+dds_common::HealthReport LocalisationComponent::Health(double now) {
+  dds_common::HealthReport report;
   // A source silent for a while is a warning; for long, an error.
   auto silence = [&](double since, const std::string& what) {
     const double silent = now - since;
-    report.level =
-        silent > options_.silent_error_after_s ? dds::HealthLevel::kError : dds::HealthLevel::kWarn;
+    report.level = silent > options_.silent_error_after_s ? dds_common::HealthLevel::kError
+                                                          : dds_common::HealthLevel::kWarn;
     report.message = what + " for " + std::to_string(silent).substr(0, 4) + " s";
   };
   const double last_scan_s = inbox_.LastScanArrival();
   const double last_odometry_s = inbox_.LastOdometryArrival();
   const auto peer_problems = node_.PeerProblems();
   if (!peer_problems.empty()) {
-    report.level = dds::HealthLevel::kError;
+    report.level = dds_common::HealthLevel::kError;
     report.message = peer_problems.front();
   } else if (last_odometry_s == 0.0) {
-    silence(started_s_, "no odometry on " + dds::topics::kOdom.name + " yet");
+    silence(started_s_, "no odometry on " + dds_common::topics::kOdom.name + " yet");
   } else if (!session_.HasInitialPose()) {
-    report.level = dds::HealthLevel::kWarn;
-    report.message = "no initial pose: publish one on " + dds::topics::kInitialPose.name +
+    report.level = dds_common::HealthLevel::kWarn;
+    report.message = "no initial pose: publish one on " + dds_common::topics::kInitialPose.name +
                      " or pass --initial-pose";
   } else if (now - std::max(last_scan_s, started_s_) > options_.scan_timeout_s) {
     silence(std::max(last_scan_s, started_s_),
-            last_scan_s == 0.0 ? "no scans on " + dds::topics::kScan.name + " yet"
-                               : "no scans on " + dds::topics::kScan.name);
+            last_scan_s == 0.0 ? "no scans on " + dds_common::topics::kScan.name + " yet"
+                               : "no scans on " + dds_common::topics::kScan.name);
   } else if (now - last_odometry_s > options_.scan_timeout_s) {
-    silence(last_odometry_s, "no odometry on " + dds::topics::kOdom.name);
+    silence(last_odometry_s, "no odometry on " + dds_common::topics::kOdom.name);
   } else if (session_.Lost()) {
     // Dead reckoning for a while is normal (a corridor, a crowd); for long it is not.
-    report.level = session_.LostTooLong(now) ? dds::HealthLevel::kError : dds::HealthLevel::kWarn;
+    report.level = session_.LostTooLong(now) ? dds_common::HealthLevel::kError
+                                             : dds_common::HealthLevel::kWarn;
     report.message = "lost (dead reckoning) for " +
                      std::to_string(session_.LostFor(now)).substr(0, 4) +
                      " s: " + session_.LostReason();
@@ -174,7 +177,7 @@ dds::HealthReport LocalisationComponent::Health(double now) {
 void LocalisationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
   std::unique_lock<std::mutex> lock(session_mutex_);
-  dds::HealthReport report = Health(now);
+  dds_common::HealthReport report = Health(now);
   const auto stats = session_.Stats();
   const auto problem = session_.LastProblem(now, options_.problem_hold_s);
   report.values = {
@@ -189,8 +192,10 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   lock.unlock();
   for (size_t i = 0; i < stats.rejected.size(); ++i) {
     if (stats.rejected[i] > 0) {
-      report.values.emplace_back(std::string("rejected: ") + ToString(static_cast<Rejection>(i)),
-                                 std::to_string(stats.rejected[i]));
+      report.values.emplace_back(
+          std::string("rejected: ") +
+              localisation_core::ToString(static_cast<localisation_core::Rejection>(i)),
+          std::to_string(stats.rejected[i]));
     }
   }
   if (const uint64_t overflow = inbox_.OdometryOverflow()) {
@@ -202,10 +207,10 @@ void LocalisationComponent::PublishDiagnostics(double now) {
                             report.message.substr(0, report.message.find(" for "));
   if (state != last_logged_state_) {
     last_logged_state_ = state;
-    std::cout << "localisation: " << dds::ToString(report.level) << " " << report.message
+    std::cout << "localisation: " << dds_common::ToString(report.level) << " " << report.message
               << std::endl;
   }
-  diagnostics_.Write(dds::ToDiagnosticArray("localisation", report, now));
+  diagnostics_.Write(dds_common::ToDiagnosticArray("localisation", report, now));
 }
 
 }  // namespace structloc::localisation

@@ -1,13 +1,13 @@
 // Message conversions of the localisation component (see header).
-#include "localisation_conversions.hpp"
+#include "structloc/localisation/localisation_conversions.hpp"
 
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 
 namespace structloc::localisation {
 
-ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg) {
-  ScanInput s;
-  s.stamp = dds::FromRosTime(msg.header().stamp());
+localisation_core::ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg) {
+  localisation_core::ScanInput s;
+  s.stamp = dds_common::FromRosTime(msg.header().stamp());
   s.angle_min = msg.angle_min();
   s.angle_max = msg.angle_max();
   s.angle_increment = msg.angle_increment();
@@ -19,8 +19,8 @@ ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg) {
   return s;
 }
 
-SessionScan ToSessionScan(const sensor_msgs::msg::LaserScan& msg) {
-  SessionScan s;
+localisation_core::SessionScan ToSessionScan(const sensor_msgs::msg::LaserScan& msg) {
+  localisation_core::SessionScan s;
   s.geometry = FromLaserScan(msg);
   s.geometry.ranges = nullptr;
   s.geometry.count = 0;
@@ -30,8 +30,8 @@ SessionScan ToSessionScan(const sensor_msgs::msg::LaserScan& msg) {
 
 StampedPose2D FromOdometry(const nav_msgs::msg::Odometry& msg) {
   const auto& p = msg.pose().pose();
-  return {dds::FromRosTime(msg.header().stamp()),
-          {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
+  return {dds_common::FromRosTime(msg.header().stamp()),
+          {p.position().x(), p.position().y(), dds_common::YawFromQuaternion(p.orientation())}};
 }
 
 StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianceStamped& msg,
@@ -43,18 +43,18 @@ StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianc
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) (*covariance)(r, k) = c[static_cast<size_t>(idx[r] * 6 + idx[k])];
   }
-  return {dds::FromRosTime(msg.header().stamp()),
-          {p.position().x(), p.position().y(), dds::YawFromQuaternion(p.orientation())}};
+  return {dds_common::FromRosTime(msg.header().stamp()),
+          {p.position().x(), p.position().y(), dds_common::YawFromQuaternion(p.orientation())}};
 }
 
 geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
-    const TrackedPose& t, const dds::FrameIds& frames) {
+    const localisation_core::TrackedPose& t, const dds_common::FrameIds& frames) {
   geometry_msgs::msg::PoseWithCovarianceStamped msg;
-  msg.header().stamp(dds::ToRosTime(t.stamp));
+  msg.header().stamp(dds_common::ToRosTime(t.stamp));
   msg.header().frame_id(frames.map);
   msg.pose().pose().position().x(t.pose.x);
   msg.pose().pose().position().y(t.pose.y);
-  msg.pose().pose().orientation(dds::ToQuaternion(t.pose.theta));
+  msg.pose().pose().orientation(dds_common::ToQuaternion(t.pose.theta));
   auto& c = msg.pose().covariance();
   const int idx[3] = {0, 1, 5};
   for (int r = 0; r < 3; ++r) {
@@ -65,29 +65,29 @@ geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
 }
 
 tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp,
-                                       const dds::FrameIds& frames) {
+                                       const dds_common::FrameIds& frames) {
   geometry_msgs::msg::TransformStamped t;
-  t.header().stamp(dds::ToRosTime(stamp));
+  t.header().stamp(dds_common::ToRosTime(stamp));
   t.header().frame_id(frames.map);
   t.child_frame_id(frames.odom);
   t.transform().translation().x(m.x);
   t.transform().translation().y(m.y);
-  t.transform().rotation(dds::ToQuaternion(m.theta));
+  t.transform().rotation(dds_common::ToQuaternion(m.theta));
   tf2_msgs::msg::TFMessage msg;
   msg.transforms().push_back(t);
   return msg;
 }
 
-structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, double stamp,
-                                                 const dds::FrameIds& frames) {
+structloc_msgs::msg::ScanFeatures ToScanFeatures(const localisation_core::LocalisationResult& r,
+                                                 double stamp, const dds_common::FrameIds& frames) {
   structloc_msgs::msg::ScanFeatures msg;
-  msg.header().stamp(dds::ToRosTime(stamp));
+  msg.header().stamp(dds_common::ToRosTime(stamp));
   msg.header().frame_id(frames.laser);
   for (const auto& kind : r.features) {
     structloc_msgs::msg::FeatureSet set;
     set.kind(kind.kind);
     for (const auto& m : kind.matches) {
-      if (kind.shape == FeatureShape::kLine) {
+      if (kind.shape == localisation_core::FeatureShape::kLine) {
         structloc_msgs::msg::WallFeature f;
         f.r_m(m.r_m);
         f.alpha_rad(m.alpha_rad);
@@ -111,15 +111,16 @@ structloc_msgs::msg::ScanFeatures ToScanFeatures(const LocalisationResult& r, do
   return msg;
 }
 
-structloc_msgs::msg::LocalisationStatus ToStatus(const LocalisationResult& r,
-                                                 const TrackerStats& stats, uint64_t dropped,
-                                                 double stamp, const dds::FrameIds& frames) {
+structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::LocalisationResult& r,
+                                                 const localisation_core::TrackerStats& stats,
+                                                 uint64_t dropped, double stamp,
+                                                 const dds_common::FrameIds& frames) {
   structloc_msgs::msg::LocalisationStatus s;
-  s.header().stamp(dds::ToRosTime(stamp));
+  s.header().stamp(dds_common::ToRosTime(stamp));
   s.header().frame_id(frames.map);
   s.quality(r.quality);
   s.lost(r.lost);
-  s.lost_reason(r.lost ? ToString(r.lost_reason) : "");
+  s.lost_reason(r.lost ? localisation_core::ToString(r.lost_reason) : "");
   for (const auto& kind : r.features) {
     structloc_msgs::msg::FeatureCount c;
     c.kind(kind.kind);

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <iostream>
 
-#include "localisation_component.hpp"
-#include "strict_number.hpp"
-#include "world_model_xml.hpp"
+#include "structloc/config/strict_number.hpp"
+#include "structloc/localisation/localisation_component.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
@@ -20,20 +20,20 @@ int main(int argc, char** argv) {
       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
       {"max-walls", true,
        "refuse maps with more walls than this (default " +
-           std::to_string(structloc::world::WorldLimits::kDefaultMaxWalls) + ")"}};
-  const auto frame_options = structloc::dds::FrameIdOptions();
+           std::to_string(structloc::world_model::WorldLimits::kDefaultMaxWalls) + ")"}};
+  const auto frame_options = structloc::dds_common::FrameIdOptions();
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
-  return structloc::dds::RunComponent(
+  return structloc::dds_common::RunComponent(
       argc, argv, "localisation", specs,
-      [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
-        structloc::world::WorldLimits limits;
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
+        structloc::world_model::WorldLimits limits;
         limits.max_walls = static_cast<size_t>(
             cli.IntegerIn("max-walls", static_cast<long long>(limits.max_walls), 1, 100000000));
         const std::string map = cli.PathOr("map", "maps/office_floor.xml");
         std::cout << "localisation: loading map " << map << std::endl;
         const auto started = std::chrono::steady_clock::now();
-        auto world = std::make_unique<structloc::world::WorldModel>(
-            structloc::world::LoadWorldModel(map, limits));
+        auto world = std::make_unique<structloc::world_model::WorldModel>(
+            structloc::world_model::LoadWorldModel(map, limits));
         std::cout
             << "localisation: map has " << world->Walls().size() << " walls, "
             << world->Corners().size() << " corners, " << world->Cylinders().size()
@@ -41,10 +41,10 @@ int main(int argc, char** argv) {
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
             << " s)" << std::endl;
         const std::string params_path = cli.PathOr("params", "maps/params/office_sick.xml");
-        const auto params = loc::LoadLocaliserOptions(params_path);
-        const auto session = loc::LoadSessionOptions(params_path);
+        const auto params = structloc::localisation_core::LoadLocaliserOptions(params_path);
+        const auto session = structloc::localisation_core::LoadSessionOptions(params_path);
         loc::LocalisationComponentOptions options;
-        options.frames = structloc::dds::FrameIdsFrom(cli);
+        options.frames = structloc::dds_common::FrameIdsFrom(cli);
         options.state_file = cli.GetOr("state-file", "");
         if (auto text = cli.Get("initial-pose")) {
           const auto pose = structloc::config::ParseNumberList(*text, 3);
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
             throw ConfigError("--initial-pose must be exactly three numbers \"X Y THETA\", got '" +
                               *text + "'");
           }
-          const double bound = structloc::world::WorldLimits::kDefaultMaxAbsCoordinateM;
+          const double bound = structloc::world_model::WorldLimits::kDefaultMaxAbsCoordinateM;
           if (std::abs((*pose)[0]) > bound || std::abs((*pose)[1]) > bound) {
             throw ConfigError("--initial-pose must lie within " +
                               std::to_string(static_cast<long long>(bound)) +

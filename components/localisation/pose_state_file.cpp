@@ -1,12 +1,12 @@
 // Saved pose file (see header).
-#include "pose_state_file.hpp"
+#include "structloc/localisation/pose_state_file.hpp"
 
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
 
-#include "output_file.hpp"
+#include "structloc/config/output_file.hpp"
 
 namespace structloc::localisation {
 

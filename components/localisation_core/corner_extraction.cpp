@@ -1,10 +1,10 @@
 // Corner extraction (see header).
-#include "corner_extraction.hpp"
+#include "structloc/localisation_core/corner_extraction.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 PointCluster PointSums::ToCluster(int index, int window_points, double sigma_floor_m) const {
   PointCluster c;
@@ -65,4 +65,4 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

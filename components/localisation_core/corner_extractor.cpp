@@ -1,10 +1,10 @@
 // Feature kind "corners" (see header): the extractor and the kind's options block.
-#include "corner_extractor.hpp"
+#include "structloc/localisation_core/corner_extractor.hpp"
 
 #include <cmath>
 #include <optional>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
@@ -86,4 +86,4 @@ void CornerExtractor::Extract(const ExtractionInput& in, Measurements& all,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

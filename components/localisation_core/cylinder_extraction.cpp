@@ -1,10 +1,10 @@
 // Cylinder extraction (see header).
-#include "cylinder_extraction.hpp"
+#include "structloc/localisation_core/cylinder_extraction.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void CylinderWork::Reserve(size_t points, size_t expected) {
   sums.reserve(expected);
@@ -138,4 +138,4 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,7 +1,7 @@
 // Feature kind "cylinders" (see header): the extractor and the kind's options block.
-#include "cylinder_extractor.hpp"
+#include "structloc/localisation_core/cylinder_extractor.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
@@ -65,4 +65,4 @@ void CylinderExtractor::Extract(const ExtractionInput& in, Measurements& all,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

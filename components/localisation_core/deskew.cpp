@@ -1,9 +1,9 @@
 // De-skewing (see header).
-#include "deskew.hpp"
+#include "structloc/localisation_core/deskew.hpp"
 
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void BeamMotion::Reserve(size_t n) {
   x.reserve(n);
@@ -68,4 +68,4 @@ void Deskew(const BeamMotion& motion, ScanPoints& points) {
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,12 +1,12 @@
 // Expected features (see header).
-#include "expected_features.hpp"
+#include "structloc/localisation_core/expected_features.hpp"
 
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
-std::vector<WallLineModel> GroupCollinearWalls(const world::WorldModel& world, double r_tolerance_m,
-                                               double alpha_tolerance_rad) {
+std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& world,
+                                               double r_tolerance_m, double alpha_tolerance_rad) {
   std::vector<WallLineModel> lines;
   for (size_t i = 0; i < world.Walls().size(); ++i) {
     const auto& w = world.Walls()[i];
@@ -30,11 +30,11 @@ void ExpectedFeatures::Reserve(size_t l, size_t c, size_t y) {
   cylinders.reserve(y);
 }
 
-void ComputeExpectedFeatures(const world::WorldModel& world,
+void ComputeExpectedFeatures(const world_model::WorldModel& world,
                              const std::vector<WallLineModel>& lines,
                              const std::vector<int>& wall_line_of,
-                             const world::Visibility& visibility, const geometry::Pose2D& pose,
-                             ExpectedFeatures& out) {
+                             const world_model::Visibility& visibility,
+                             const geometry::Pose2D& pose, ExpectedFeatures& out) {
   out.walls.clear();
   out.corners.clear();
   out.cylinders.clear();
@@ -77,4 +77,4 @@ void ComputeExpectedFeatures(const world::WorldModel& world,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

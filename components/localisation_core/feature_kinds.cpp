@@ -1,11 +1,11 @@
 // The list of feature kinds (see header).
-#include "feature_kinds.hpp"
+#include "structloc/localisation_core/feature_kinds.hpp"
 
-#include "corner_extractor.hpp"
-#include "cylinder_extractor.hpp"
-#include "wall_extractor.hpp"
+#include "structloc/localisation_core/corner_extractor.hpp"
+#include "structloc/localisation_core/cylinder_extractor.hpp"
+#include "structloc/localisation_core/wall_extractor.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 std::vector<FeatureKind> FeatureKinds() {
   // Walls first: the corners' redundancy rule reads the walls' measurements.
@@ -21,4 +21,4 @@ std::vector<std::unique_ptr<FeatureExtractor>> MakeFeatureExtractors(
   return extractors;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,9 +1,9 @@
 // Kohonen clustering (see header).
-#include "kohonen_clustering.hpp"
+#include "structloc/localisation_core/kohonen_clustering.hpp"
 
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 namespace {
 struct Neuron {
@@ -90,4 +90,4 @@ void AssignWindowsByKohonen(const std::vector<WindowLine>& windows,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

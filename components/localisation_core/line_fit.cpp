@@ -1,7 +1,7 @@
 // Sliding least-squares line fit (see header).
-#include "line_fit.hpp"
+#include "structloc/localisation_core/line_fit.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 LineEstimate FitLine(const LineSums& s, double ox, double oy) {
   LineEstimate e;
@@ -61,4 +61,4 @@ void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,5 +1,5 @@
 // The whole position update (see header).
-#include "localiser.hpp"
+#include "structloc/localisation_core/localiser.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -9,9 +9,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "feature_kinds.hpp"
+#include "structloc/localisation_core/feature_kinds.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -79,7 +79,7 @@ int LocalisationResult::Matched() const {
 namespace {
 
 std::vector<std::unique_ptr<FeatureExtractor>> ValidatedExtractors(
-    const world::WorldModel& world, const LocaliserOptions& options) {
+    const world_model::WorldModel& world, const LocaliserOptions& options) {
   options.Validate();  // before any buffer is sized by the options
   // Walls bound the collinear wall lines from above.
   return MakeFeatureExtractors(options,
@@ -89,14 +89,14 @@ std::vector<std::unique_ptr<FeatureExtractor>> ValidatedExtractors(
 
 }  // namespace
 
-Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& options)
+Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOptions& options)
     : Localiser(world, options, ValidatedExtractors(world, options)) {}
 
-Localiser::Localiser(const world::WorldModel& world, const LocaliserOptions& options,
+Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOptions& options,
                      std::vector<std::unique_ptr<FeatureExtractor>> extractors)
     : world_(world),
       options_(options),
-      scene_(world::Scene::FromWorld(world)),
+      scene_(world_model::Scene::FromWorld(world)),
       lines_(GroupCollinearWalls(world)),
       extractors_(std::move(extractors)) {
   options_.Validate();
@@ -137,13 +137,13 @@ void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose) {
                           v.refresh_angle_rad)) {
     return;
   }
-  world::VisibilityOptions o;
+  world_model::VisibilityOptions o;
   o.min_range_m = options_.prefilter.min_range_m;
   o.max_range_m = options_.prefilter.max_range_m;
   o.field_of_view_rad = v.field_of_view_rad;
   o.min_visible_length_m = v.min_visible_length_m;
   o.max_incidence_rad = v.max_incidence_rad;
-  world::ComputeVisibility(world_, scene_, sensor_pose, o, visibility_);
+  world_model::ComputeVisibility(world_, scene_, sensor_pose, o, visibility_);
   visibility_pose_ = sensor_pose;
   visibility_valid_ = true;
 }
@@ -339,4 +339,4 @@ void Localiser::FinishResult(const UpdateInput& input, const geometry::Pose2D& s
   r.quality = r.lost ? 0.0 : q;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

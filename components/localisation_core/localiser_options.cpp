@@ -1,14 +1,14 @@
 // Localiser options declared once (key, range, unit, description; the struct
 // members hold the defaults), and the checks that span several options. Each
 // feature kind declares its own blocks in its own file (feature_kinds.hpp).
-#include "localiser_options.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
 
 #include <stdexcept>
 
-#include "feature_kinds.hpp"
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/localisation_core/feature_kinds.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 namespace {
 
@@ -141,4 +141,4 @@ LocaliserOptions LoadLocaliserOptions(const std::string& path) {
   return o;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

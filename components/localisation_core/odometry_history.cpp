@@ -1,9 +1,9 @@
 // Odometry history ring buffer (see header).
-#include "odometry_history.hpp"
+#include "structloc/localisation_core/odometry_history.hpp"
 
 #include <stdexcept>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 OdometryHistory::OdometryHistory(size_t capacity) : samples_(capacity) {
   if (capacity < 2) throw std::invalid_argument("odometry history: capacity must be >= 2");
@@ -57,4 +57,4 @@ std::optional<geometry::Pose2D> OdometryHistory::AtOrExtrapolated(
       geometry::WrapAngle(a.pose.theta + f * geometry::WrapAngle(b.pose.theta - a.pose.theta))};
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

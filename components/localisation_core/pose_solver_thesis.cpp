@@ -3,9 +3,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "pose_solver.hpp"
+#include "structloc/localisation_core/pose_solver.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 // theta = circular mean of alpha_W - alpha_R over the walls (EQ 9); the
@@ -160,4 +160,4 @@ void SolveBisection(const SolveInput& in, const SolverOptions& o, SolveOutput& o
   out.covariance = info.inverse();
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

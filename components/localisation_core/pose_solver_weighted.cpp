@@ -2,9 +2,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "pose_solver.hpp"
+#include "structloc/localisation_core/pose_solver.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void SolveOutput::Reserve(size_t walls, size_t points) {
   wall_residual.reserve(walls);
@@ -152,4 +152,4 @@ void Solve(const SolveInput& input, const SolverOptions& options, SolveOutput& o
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

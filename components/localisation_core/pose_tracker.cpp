@@ -1,11 +1,11 @@
 // Pose tracking around the Localiser (see header).
-#include "pose_tracker.hpp"
+#include "structloc/localisation_core/pose_tracker.hpp"
 
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 const char* ToString(Rejection r) {
   switch (r) {
@@ -54,8 +54,8 @@ uint64_t TrackerStats::Rejected() const {
   return n;
 }
 
-PoseTracker::PoseTracker(const world::WorldModel& world, const LocaliserOptions& localiser_options,
-                         const TrackerOptions& options)
+PoseTracker::PoseTracker(const world_model::WorldModel& world,
+                         const LocaliserOptions& localiser_options, const TrackerOptions& options)
     : localiser_(world, localiser_options), options_(options), history_(4096) {
   options_.Validate();
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
@@ -225,4 +225,4 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   return out;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,7 +1,7 @@
 // Prefilter steps (see header) and beam direction tables.
-#include "prefilter.hpp"
+#include "structloc/localisation_core/prefilter.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void BeamDirections::Update(const ScanView& scan) {
   if (scan.count == count_ && scan.angle_min == angle_min_ &&
@@ -99,4 +99,4 @@ void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& s
   stats.kept = w;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,7 +1,7 @@
 // Session inbox (see header).
-#include "session_inbox.hpp"
+#include "structloc/localisation_core/session_inbox.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void SessionInputs::Clear() {
   scan.reset();
@@ -80,4 +80,4 @@ uint64_t SessionInbox::OdometryOverflow() const {
   return odometry_overflow_;
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

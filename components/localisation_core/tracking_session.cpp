@@ -1,12 +1,12 @@
 // Tracking session (see header).
-#include "tracking_session.hpp"
+#include "structloc/localisation_core/tracking_session.hpp"
 
 #include <algorithm>
 #include <chrono>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
-TrackingSession::TrackingSession(const world::WorldModel* world,
+TrackingSession::TrackingSession(const world_model::WorldModel* world,
                                  const LocaliserOptions& localiser_options,
                                  const SessionOptions& options, Scheduling scheduling)
     : options_(options), scheduling_(scheduling) {
@@ -248,4 +248,4 @@ std::optional<SessionState> TrackingSession::StateToSave(double now) {
   return SessionState{tracker_->MapToOdom(), latest->covariance.diagonal()};
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

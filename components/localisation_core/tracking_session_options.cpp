@@ -1,14 +1,14 @@
 // Tracking-session options declared once (key, range, unit, description; the
 // struct members hold the defaults) for the <tracking> block of a
 // <localisation_params> file (see header).
-#include "tracking_session_options.hpp"
+#include "structloc/localisation_core/tracking_session_options.hpp"
 
 #include <stdexcept>
 
-#include "localiser_options.hpp"
-#include "option_table.hpp"
+#include "structloc/config/option_table.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
@@ -78,4 +78,4 @@ SessionOptions LoadSessionOptions(const std::string& path) {
   return SessionOptionFile().Load(file);
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,10 +1,10 @@
 // Wall clustering by expectation (see header).
-#include "wall_clustering.hpp"
+#include "structloc/localisation_core/wall_clustering.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 
 void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
                                 const ExpectedFeatures& expected, const geometry::Pose2D& pose,
@@ -128,4 +128,4 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,7 +1,7 @@
 // Feature kind "walls" (see header): the extractor and the kind's options blocks.
-#include "wall_extractor.hpp"
+#include "structloc/localisation_core/wall_extractor.hpp"
 
-namespace structloc::localisation {
+namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
@@ -83,4 +83,4 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
   }
 }
 
-}  // namespace structloc::localisation
+}  // namespace structloc::localisation_core

@@ -1,5 +1,5 @@
 // CARMEN log reader (see header).
-#include "carmen_reader.hpp"
+#include "structloc/log_formats/carmen_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "log_fields.hpp"
+#include "structloc/log_formats/log_fields.hpp"
 
-namespace structloc::logs {
+namespace structloc::log_formats {
 
 void FlaserGeometry(size_t n, double* start, double* res) {
   const double deg = geometry::kPi / 180.0;
@@ -328,4 +328,4 @@ bool CarmenReader::Next(CarmenRecord& record) {
   return false;
 }
 
-}  // namespace structloc::logs
+}  // namespace structloc::log_formats

@@ -1,12 +1,12 @@
 // Log field parsing (see header).
-#include "log_fields.hpp"
+#include "structloc/log_formats/log_fields.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
-namespace structloc::logs {
+namespace structloc::log_formats {
 
 std::vector<std::string_view> SplitFields(std::string_view line) {
   std::vector<std::string_view> fields;
@@ -62,4 +62,4 @@ std::optional<int64_t> ParseInteger(std::string_view token) {
   return value;
 }
 
-}  // namespace structloc::logs
+}  // namespace structloc::log_formats

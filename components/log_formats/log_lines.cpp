@@ -1,5 +1,5 @@
 // LogLines (see header).
-#include "log_lines.hpp"
+#include "structloc/log_formats/log_lines.hpp"
 
 #include <zlib.h>
 
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace structloc::logs {
+namespace structloc::log_formats {
 namespace {
 
 constexpr size_t kChunkBytes = 1 << 16;
@@ -86,4 +86,4 @@ bool LogLines::Next(std::string& line, bool& too_long) {
   return started;
 }
 
-}  // namespace structloc::logs
+}  // namespace structloc::log_formats

@@ -1,11 +1,11 @@
 // Recording writers (see header).
-#include "recording_writers.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
 
 #include <cmath>
 #include <iomanip>
 #include <stdexcept>
 
-namespace structloc::logs {
+namespace structloc::log_formats {
 namespace {
 
 void Check(std::ostream& out, const std::string& path) {
@@ -111,4 +111,4 @@ void FixesCsvWriter::Close() {
   file_.Commit();
 }
 
-}  // namespace structloc::logs
+}  // namespace structloc::log_formats

@@ -1,5 +1,5 @@
 // TUM trajectory reader (see header).
-#include "tum_reader.hpp"
+#include "structloc/log_formats/tum_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace structloc::logs {
+namespace structloc::log_formats {
 
 std::vector<StampedPose> ReadTum(const std::string& path) {
   std::error_code error;
@@ -51,4 +51,4 @@ const StampedPose* Nearest(const std::vector<StampedPose>& sorted, double stamp,
   return best;
 }
 
-}  // namespace structloc::logs
+}  // namespace structloc::log_formats

@@ -1,5 +1,5 @@
 // ChildProcess implementation (see header).
-#include "child_process.hpp"
+#include "structloc/process/child_process.hpp"
 
 #include <fcntl.h>
 #include <linux/close_range.h>

@@ -1,5 +1,5 @@
 // Launch XML reader (see header).
-#include "launch_file.hpp"
+#include "structloc/process/launch_file.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <regex>
 #include <set>
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 namespace structloc::process {
 namespace {

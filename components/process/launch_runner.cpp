@@ -1,10 +1,10 @@
 // Launch runner (see header).
-#include "launch_runner.hpp"
+#include "structloc/process/launch_runner.hpp"
 
 #include <iostream>
 #include <memory>
 
-#include "child_process.hpp"
+#include "structloc/process/child_process.hpp"
 
 namespace structloc::process {
 

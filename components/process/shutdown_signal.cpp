@@ -1,5 +1,5 @@
 // ShutdownSignal: synchronous signal collection (see header).
-#include "shutdown_signal.hpp"
+#include "structloc/process/shutdown_signal.hpp"
 
 #include <pthread.h>
 #include <signal.h>

@@ -1,5 +1,5 @@
 // MapCanvas drawing (see header).
-#include "map_canvas.hpp"
+#include "structloc/rendering/map_canvas.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-#include "strict_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
 
 namespace structloc::rendering {
 namespace {
@@ -51,7 +51,7 @@ cv::Point MapCanvas::ToPixel(const Eigen::Vector2d& p) const {
           ToPixelInt(image_.rows - margin_ - kTitleBand - (p.y() - bounds_[1]) * scale_)};
 }
 
-void MapCanvas::DrawWorld(const world::WorldModel& world) {
+void MapCanvas::DrawWorld(const world_model::WorldModel& world) {
   for (const auto& w : world.Walls())
     cv::line(image_, ToPixel(w.a), ToPixel(w.b), colours::kWall, 3);
   for (const auto& c : world.Cylinders()) {
@@ -64,7 +64,7 @@ void MapCanvas::DrawWorld(const world::WorldModel& world) {
   }
 }
 
-void MapCanvas::DrawObstacles(const world::Scene& obstacles, const cv::Scalar& colour) {
+void MapCanvas::DrawObstacles(const world_model::Scene& obstacles, const cv::Scalar& colour) {
   for (const auto& s : obstacles.segments) cv::line(image_, ToPixel(s.a), ToPixel(s.b), colour, 2);
   for (const auto& c : obstacles.circles) {
     cv::circle(image_, ToPixel(c.centre), std::max(2, ToPixelInt(c.radius * scale_)), colour, 2,

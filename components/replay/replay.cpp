@@ -1,5 +1,5 @@
 // Offline replay (see header).
-#include "replay.hpp"
+#include "structloc/replay/replay.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,20 +8,20 @@
 #include <memory>
 #include <sstream>
 
-#include "localiser_options.hpp"
-#include "map_canvas.hpp"
-#include "output_file.hpp"
-#include "prefilter.hpp"
-#include "recording_writers.hpp"
-#include "strict_xml.hpp"
-#include "tracking_session.hpp"
-#include "world_model_xml.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/prefilter.hpp"
+#include "structloc/localisation_core/tracking_session.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::replay {
 namespace {
 
-using localisation::ScanReport;
-using localisation::TrackingSession;
+using localisation_core::ScanReport;
+using localisation_core::TrackingSession;
 
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -44,36 +44,36 @@ class Replayer {
     if (!o.plot_path.empty()) rendering::MapCanvas::CheckPictureName(o.plot_path);
     RefuseSameOutputs();
     if (!o.no_map)
-      world_ =
-          std::make_unique<world::WorldModel>(world::LoadWorldModel(o.map_path, o.world_limits));
+      world_ = std::make_unique<world_model::WorldModel>(
+          world_model::LoadWorldModel(o.map_path, o.world_limits));
     if (!o.params_path.empty()) {
-      params_ = localisation::LoadLocaliserOptions(o.params_path);
-      session_options_ = localisation::LoadSessionOptions(o.params_path);
+      params_ = localisation_core::LoadLocaliserOptions(o.params_path);
+      session_options_ = localisation_core::LoadSessionOptions(o.params_path);
     }
     if (!o.truth_path.empty()) {
-      truth_ = logs::ReadTum(o.truth_path);
+      truth_ = log_formats::ReadTum(o.truth_path);
       if (truth_.empty()) {
         throw std::runtime_error(o.truth_path +
                                  ": no poses in it (TUM lines \"t x y z qx qy qz qw\")");
       }
     }
-    reader_ = std::make_unique<logs::CarmenReader>(o.log_path, o.limits);
+    reader_ = std::make_unique<log_formats::CarmenReader>(o.log_path, o.limits);
     StartSession();
     const std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
-    out_ = std::make_unique<logs::TumWriter>(o.out_tum, inputs);
+    out_ = std::make_unique<log_formats::TumWriter>(o.out_tum, inputs);
     if (!o.fixes_path.empty()) {
-      fixes_ = std::make_unique<logs::FixesCsvWriter>(o.fixes_path, true, inputs);
+      fixes_ = std::make_unique<log_formats::FixesCsvWriter>(o.fixes_path, true, inputs);
     }
     if (!o.plot_path.empty()) plot_ = std::make_unique<config::OutputFile>(o.plot_path, inputs);
   }
 
   ReplayReport Run() {
     report_.no_map = o_.no_map;
-    logs::CarmenRecord r;
+    log_formats::CarmenRecord r;
     size_t records = 0;
     while (reader_->Next(r)) {
       ++records;
-      if (r.kind == logs::CarmenRecord::Kind::kOdometry) {
+      if (r.kind == log_formats::CarmenRecord::Kind::kOdometry) {
         session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
       } else {
         if (r.robot_pose) session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
@@ -114,10 +114,10 @@ class Replayer {
   // that the session starts with its final options.
   void StartSession() {
     report_.sensor_mount = params_.sensor_mount;
-    logs::CarmenReader ahead(o_.log_path, o_.limits);
-    logs::CarmenRecord r;
+    log_formats::CarmenReader ahead(o_.log_path, o_.limits);
+    log_formats::CarmenRecord r;
     while (ahead.Next(r)) {
-      if (r.kind != logs::CarmenRecord::Kind::kScan) continue;
+      if (r.kind != log_formats::CarmenRecord::Kind::kScan) continue;
       if (r.laser_pose && r.robot_pose) {
         report_.sensor_mount = geometry::Between(*r.robot_pose, *r.laser_pose);
         params_.sensor_mount = report_.sensor_mount;
@@ -126,12 +126,12 @@ class Replayer {
     }
     params_.max_beams = std::max(params_.max_beams, 4096);
     session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
-                                                 localisation::Scheduling::kInOrder);
+                                                 localisation_core::Scheduling::kInOrder);
     session_->ExpectInitialPose(*o_.initial_pose, TrackingSession::InitialPoseWhen::kAtFirstScan);
   }
 
-  localisation::SessionScan ToSessionScan(const logs::CarmenRecord& rec) const {
-    localisation::SessionScan scan;
+  localisation_core::SessionScan ToSessionScan(const log_formats::CarmenRecord& rec) const {
+    localisation_core::SessionScan scan;
     scan.geometry.stamp = rec.stamp;
     scan.geometry.angle_min = rec.start_angle;
     scan.geometry.angle_increment = rec.angular_resolution;
@@ -152,7 +152,7 @@ class Replayer {
   void Handle(const ScanReport& report) {
     const auto& scan = report.scan;
     if (!report.odometry) {
-      ++report_.scans_rejected[localisation::ToString(report.rejection)];
+      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
       return;
     }
     if (!have_first_odometry_) {
@@ -169,7 +169,7 @@ class Replayer {
     }
     times_us_.push_back(report.update_us);
     if (report.kind != ScanReport::Kind::kTracked) {
-      ++report_.scans_rejected[localisation::ToString(report.rejection)];
+      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
       return;
     }
     const auto& r = *report.result;
@@ -183,10 +183,10 @@ class Replayer {
     }
   }
 
-  void PassThrough(const localisation::SessionScan& scan, const ScanReport& report,
+  void PassThrough(const localisation_core::SessionScan& scan, const ScanReport& report,
                    const geometry::Pose2D& pose) {
     // Still exercise parsing, filtering and timing on every scan.
-    localisation::ScanView view;
+    localisation_core::ScanView view;
     view.ranges = scan.ranges.data();
     view.count = scan.ranges.size();
     view.angle_min = scan.geometry.angle_min;
@@ -195,7 +195,7 @@ class Replayer {
     const auto t0 = std::chrono::steady_clock::now();
     if (view.count > 0 && view.angle_increment != 0.0) {
       directions_.Update(view);
-      localisation::PrefilterStats stats;
+      localisation_core::PrefilterStats stats;
       RangeGate(view, directions_, params_.prefilter, points_, stats);
       RejectUnsupported(params_.prefilter, points_, keep_, stats);
       Thin(params_.prefilter, points_, stats);
@@ -204,14 +204,14 @@ class Replayer {
     times_us_.push_back(
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
     if (report.kind == ScanReport::Kind::kRejected) {
-      ++report_.scans_rejected[localisation::ToString(report.rejection)];
+      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
       return;
     }
     ++report_.scans_used;
     Emit(scan, pose);
   }
 
-  void Emit(const localisation::SessionScan& scan, const geometry::Pose2D& pose) {
+  void Emit(const localisation_core::SessionScan& scan, const geometry::Pose2D& pose) {
     const double stamp = scan.geometry.stamp;
     out_->Pose(stamp, pose);
     report_.estimate.push_back({stamp, pose});
@@ -256,7 +256,7 @@ class Replayer {
     }
   }
 
-  void Plot(const std::vector<logs::StampedPose>& truth) {
+  void Plot(const std::vector<log_formats::StampedPose>& truth) {
     Eigen::Vector4d bounds(INFINITY, INFINITY, -INFINITY, -INFINITY);
     auto grow = [&bounds](const Eigen::Vector2d& p) {
       bounds[0] = std::min(bounds[0], p.x());
@@ -269,7 +269,7 @@ class Replayer {
       grow({b[0], b[1]});
       grow({b[2], b[3]});
     }
-    auto path = [&grow](const std::vector<logs::StampedPose>& poses) {
+    auto path = [&grow](const std::vector<log_formats::StampedPose>& poses) {
       std::vector<Eigen::Vector2d> out;
       for (const auto& p : poses) {
         out.push_back(p.pose.Translation());
@@ -302,26 +302,26 @@ class Replayer {
   }
 
   ReplayOptions o_;
-  std::unique_ptr<world::WorldModel> world_;
-  std::vector<logs::StampedPose> truth_;
-  std::unique_ptr<logs::CarmenReader> reader_;
-  std::unique_ptr<logs::TumWriter> out_;
-  std::unique_ptr<logs::FixesCsvWriter> fixes_;
+  std::unique_ptr<world_model::WorldModel> world_;
+  std::vector<log_formats::StampedPose> truth_;
+  std::unique_ptr<log_formats::CarmenReader> reader_;
+  std::unique_ptr<log_formats::TumWriter> out_;
+  std::unique_ptr<log_formats::FixesCsvWriter> fixes_;
   std::unique_ptr<config::OutputFile> plot_;
-  localisation::LocaliserOptions params_;
-  localisation::SessionOptions session_options_;
+  localisation_core::LocaliserOptions params_;
+  localisation_core::SessionOptions session_options_;
   std::unique_ptr<TrackingSession> session_;
-  std::vector<logs::StampedPose> odometry_only_;
+  std::vector<log_formats::StampedPose> odometry_only_;
   geometry::Pose2D first_odometry_;
   bool have_first_odometry_ = false;
   ReplayReport report_;
   std::vector<double> times_us_;
   size_t features_ = 0;
   std::vector<Eigen::Vector2d> scan_points_;
-  localisation::BeamDirections directions_;
-  localisation::ScanPoints points_;
+  localisation_core::BeamDirections directions_;
+  localisation_core::ScanPoints points_;
   std::vector<unsigned char> keep_;
-  std::vector<localisation::WindowLine> windows_;
+  std::vector<localisation_core::WindowLine> windows_;
 };
 
 }  // namespace

@@ -1,17 +1,17 @@
 // Trajectory comparison (see header).
-#include "trajectory_error.hpp"
+#include "structloc/replay/trajectory_error.hpp"
 
 #include <cmath>
 
 namespace structloc::replay {
 
-TrajectoryError CompareTrajectories(const std::vector<logs::StampedPose>& estimate,
-                                    const std::vector<logs::StampedPose>& truth,
+TrajectoryError CompareTrajectories(const std::vector<log_formats::StampedPose>& estimate,
+                                    const std::vector<log_formats::StampedPose>& truth,
                                     double tolerance_s) {
   TrajectoryError e;
   double sum_p = 0.0, sum_h = 0.0;
   for (const auto& p : estimate) {
-    const auto* t = logs::Nearest(truth, p.stamp, tolerance_s);
+    const auto* t = log_formats::Nearest(truth, p.stamp, tolerance_s);
     if (t == nullptr) continue;
     const double d = (p.pose.Translation() - t->pose.Translation()).norm();
     const double h = geometry::WrapAngle(p.pose.theta - t->pose.theta);

@@ -1,20 +1,20 @@
 // Offline recorder (see header).
-#include "recorder.hpp"
+#include "structloc/simulation_core/recorder.hpp"
 
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 
-#include "recording_writers.hpp"
-#include "simulation.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
+#include "structloc/simulation_core/simulation.hpp"
 
-namespace structloc::simulation {
+namespace structloc::simulation_core {
 
 RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out_dir) {
   std::filesystem::create_directories(out_dir);
-  logs::CarmenWriter clf(out_dir + "/run.clf");
-  logs::TumWriter truth(out_dir + "/truth.tum");
-  logs::EncodersCsvWriter encoders(out_dir + "/encoders.csv");
+  log_formats::CarmenWriter clf(out_dir + "/run.clf");
+  log_formats::TumWriter truth(out_dir + "/truth.tum");
+  log_formats::EncodersCsvWriter encoders(out_dir + "/encoders.csv");
   clf.Comment("scenario " + scenario.name + ", seed " + std::to_string(scenario.seed));
   Simulation sim(scenario);
   // ROBOTLASER1 lines carry no beam timing: this PARAM lets our replay de-skew.
@@ -34,7 +34,7 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
       ++summary.odometry_lines;
     }
     if (auto scan = sim.TakeScan()) {
-      logs::CarmenLaser laser;
+      log_formats::CarmenLaser laser;
       laser.start_angle = scan->angle_min;
       laser.angular_resolution = scan->angle_increment;
       laser.field_of_view = scan->angle_increment * static_cast<double>(scan->ranges.size() - 1);
@@ -68,4 +68,4 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
   return summary;
 }
 
-}  // namespace structloc::simulation
+}  // namespace structloc::simulation_core

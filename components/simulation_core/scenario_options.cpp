@@ -1,10 +1,10 @@
 // Scenario attributes declared once (see scenario_options.hpp).
-#include "scenario_options.hpp"
+#include "structloc/simulation_core/scenario_options.hpp"
 
 #include <algorithm>
 #include <cstdint>
 
-namespace structloc::simulation {
+namespace structloc::simulation_core {
 
 using config::OptionTable;
 using config::Range;
@@ -12,7 +12,7 @@ using config::Range;
 namespace {
 
 // A map-frame coordinate within the world limits.
-Range Coordinate(const world::WorldLimits& limits) {
+Range Coordinate(const world_model::WorldLimits& limits) {
   return Range::Closed(-limits.max_abs_coordinate_m, limits.max_abs_coordinate_m);
 }
 
@@ -53,7 +53,7 @@ OptionTable<TrueRobotErrors> TrueRobotAttributes(int traction_counter_bits) {
   return t;
 }
 
-OptionTable<geometry::Pose2D> InitialPoseAttributes(const world::WorldLimits& limits) {
+OptionTable<geometry::Pose2D> InitialPoseAttributes(const world_model::WorldLimits& limits) {
   using P = geometry::Pose2D;
   OptionTable<P> t("initial_pose", "the robot base (rear-axle middle) at the start, map frame");
   t.Number("x", &P::x, Coordinate(limits), "m", "map frame");
@@ -106,7 +106,7 @@ OptionTable<PathSpec> PathAttributes() {
   return t;
 }
 
-OptionTable<Person> PersonAttributes(const world::WorldLimits& limits) {
+OptionTable<Person> PersonAttributes(const world_model::WorldLimits& limits) {
   OptionTable<Person> t("person", "an unmodelled person walking its waypoints in a loop");
   t.Number("radius_m", &Person::radius_m, Range::LeftOpen(0, limits.max_radius_m), "m",
            "seen by the laser as a cylinder");
@@ -135,4 +135,4 @@ void PrintScenarioOptions(std::ostream& out) {
       << "See maps/scenarios/README.md.\n";
 }
 
-}  // namespace structloc::simulation
+}  // namespace structloc::simulation_core

@@ -3,19 +3,19 @@
 // file references are read here.
 #include <filesystem>
 
-#include "scenario.hpp"
-#include "scenario_options.hpp"
-#include "strict_xml.hpp"
-#include "world_model_xml.hpp"
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/simulation_core/scenario_options.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
-namespace structloc::simulation {
+namespace structloc::simulation_core {
 namespace {
 
 using config::AttributeReader;
 using config::XmlFile;
 
 // A map-frame coordinate within the world limits (the message names the bound).
-double Coordinate(AttributeReader& a, const char* name, const world::WorldLimits& limits) {
+double Coordinate(AttributeReader& a, const char* name, const world_model::WorldLimits& limits) {
   return a.DoubleIn(name, -limits.max_abs_coordinate_m, limits.max_abs_coordinate_m);
 }
 
@@ -27,7 +27,7 @@ double Size(AttributeReader& a, const char* name, double limit) {
 }
 
 std::vector<Eigen::Vector2d> ReadWaypoints(const XmlFile& file, const tinyxml2::XMLElement& parent,
-                                           const world::WorldLimits& limits) {
+                                           const world_model::WorldLimits& limits) {
   config::RequireChildNames(file, parent, {"waypoint"});
   std::vector<Eigen::Vector2d> points;
   for (const auto* w = parent.FirstChildElement(); w != nullptr; w = w->NextSiblingElement()) {
@@ -77,8 +77,8 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
     AttributeReader a(file, e);
     s.world_path = Resolve(path, a.String("file"));
     a.Finish();
-    s.world =
-        std::make_shared<world::WorldModel>(world::LoadWorldModel(s.world_path, geometry_limits));
+    s.world = std::make_shared<world_model::WorldModel>(
+        world_model::LoadWorldModel(s.world_path, geometry_limits));
   }
   {
     const auto& e = Required(file, root, "robot");
@@ -162,4 +162,4 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
   return s;
 }
 
-}  // namespace structloc::simulation
+}  // namespace structloc::simulation_core

@@ -1,10 +1,10 @@
 // The simulation (see header).
-#include "simulation.hpp"
+#include "structloc/simulation_core/simulation.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace structloc::simulation {
+namespace structloc::simulation_core {
 namespace {
 
 constexpr double kMaxSteering = 80.0 * geometry::kPi / 180.0;
@@ -43,7 +43,7 @@ Simulation::Simulation(const Scenario& scenario)
   state_.truth = scenario.initial_pose;
   segment_start_ = scenario.initial_pose.Translation();
   // What the laser sees: built once; only the people's circles move each step.
-  scene_ = world::Scene::FromWorld(*scenario.world);
+  scene_ = world_model::Scene::FromWorld(*scenario.world);
   scene_.Add(scenario.obstacles);
   static_circles_ = scene_.circles.size();
   MovePeople(0.0);
@@ -77,7 +77,7 @@ void Simulation::CommandVelocity(double linear, double angular) {
   cmd_angular_ = angular;
 }
 
-std::vector<world::Circle> Simulation::People() const {
+std::vector<world_model::Circle> Simulation::People() const {
   return {scene_.circles.begin() + static_cast<std::ptrdiff_t>(static_circles_),
           scene_.circles.end()};
 }
@@ -213,7 +213,8 @@ void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D&
   }
 }
 
-float Simulation::Measure(const world::Scene& scene, const geometry::Pose2D& laser_pose, int beam) {
+float Simulation::Measure(const world_model::Scene& scene, const geometry::Pose2D& laser_pose,
+                          int beam) {
   const auto& l = scenario_.laser;
   const double bearing = scan_.angle_min + beam * scan_.angle_increment;
   for (const auto& [from, to] : l.blocked_sectors) {
@@ -252,4 +253,4 @@ std::optional<SimScan> Simulation::TakeScan() {
   return out;
 }
 
-}  // namespace structloc::simulation
+}  // namespace structloc::simulation_core

@@ -1,5 +1,5 @@
 // structloc_simulator: entry point of the simulator component.
-#include "simulator_component.hpp"
+#include "structloc/simulator/simulator_component.hpp"
 
 int main(int argc, char** argv) {
   using structloc::config::ConfigError;
@@ -13,12 +13,12 @@ int main(int argc, char** argv) {
       {"wait-for-subscribers", true,
        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
        "0)"}};
-  const auto frame_options = structloc::dds::FrameIdOptions();
+  const auto frame_options = structloc::dds_common::FrameIdOptions();
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
-  return structloc::dds::RunComponent(
+  return structloc::dds_common::RunComponent(
       argc, argv, "simulator", specs,
-      [](structloc::dds::Node& node, const structloc::config::CommandLine& cli) {
-        auto scenario = structloc::simulation::LoadScenario(
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
+        auto scenario = structloc::simulation_core::LoadScenario(
             cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
         if (cli.Has("seed")) {
           const long long seed = cli.Integer("seed", 0);
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
           throw ConfigError("--time-scale must be in [0, 1000]");
         }
         options.exit_when_done = cli.Has("exit-when-done");
-        options.frames = structloc::dds::FrameIdsFrom(cli);
+        options.frames = structloc::dds_common::FrameIdsFrom(cli);
         options.wait_for_subscribers = static_cast<int>(cli.Integer("wait-for-subscribers", 0));
         if (options.wait_for_subscribers < 0)
           throw ConfigError("--wait-for-subscribers must be >= 0");

@@ -1,14 +1,14 @@
 // Simulation -> message conversions (see header).
-#include "sim_conversions.hpp"
+#include "structloc/simulator/sim_conversions.hpp"
 
-#include "ros_conversions.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 
 namespace structloc::simulator {
 
-sensor_msgs::msg::LaserScan ToLaserScan(const simulation::SimScan& scan, double offset,
-                                        const dds::FrameIds& frames) {
+sensor_msgs::msg::LaserScan ToLaserScan(const simulation_core::SimScan& scan, double offset,
+                                        const dds_common::FrameIds& frames) {
   sensor_msgs::msg::LaserScan msg;
-  msg.header().stamp(dds::ToRosTime(offset + scan.stamp));
+  msg.header().stamp(dds_common::ToRosTime(offset + scan.stamp));
   msg.header().frame_id(frames.laser);
   msg.angle_min(static_cast<float>(scan.angle_min));
   msg.angle_increment(static_cast<float>(scan.angle_increment));
@@ -26,18 +26,18 @@ namespace {
 nav_msgs::msg::Odometry PoseMessage(const geometry::Pose2D& p, double stamp,
                                     const std::string& frame, const std::string& child_frame) {
   nav_msgs::msg::Odometry msg;
-  msg.header().stamp(dds::ToRosTime(stamp));
+  msg.header().stamp(dds_common::ToRosTime(stamp));
   msg.header().frame_id(frame);
   msg.child_frame_id(child_frame);
   msg.pose().pose().position().x(p.x);
   msg.pose().pose().position().y(p.y);
-  msg.pose().pose().orientation(dds::ToQuaternion(p.theta));
+  msg.pose().pose().orientation(dds_common::ToQuaternion(p.theta));
   return msg;
 }
 }  // namespace
 
-nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distance_m, double offset,
-                                   const dds::FrameIds& frames) {
+nav_msgs::msg::Odometry ToOdometry(const simulation_core::SimState& s, double distance_m,
+                                   double offset, const dds_common::FrameIds& frames) {
   auto msg = PoseMessage(s.odometry, offset + s.time, frames.odom, frames.base_link);
   msg.twist().twist().linear().x(s.odom_linear);
   msg.twist().twist().angular().z(s.odom_angular);
@@ -50,17 +50,17 @@ nav_msgs::msg::Odometry ToOdometry(const simulation::SimState& s, double distanc
   return msg;
 }
 
-nav_msgs::msg::Odometry ToGroundTruth(const simulation::SimState& s, double offset,
-                                      const dds::FrameIds& frames) {
+nav_msgs::msg::Odometry ToGroundTruth(const simulation_core::SimState& s, double offset,
+                                      const dds_common::FrameIds& frames) {
   return PoseMessage(s.truth, offset + s.time, frames.map, frames.base_link);
 }
 
-structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation::SimState& s,
+structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation_core::SimState& s,
                                                    const kinematics::RobotParameters& nominal,
                                                    uint64_t previous_ticks, double offset,
-                                                   const dds::FrameIds& frames) {
+                                                   const dds_common::FrameIds& frames) {
   structloc_msgs::msg::WheelEncoders msg;
-  msg.header().stamp(dds::ToRosTime(offset + s.time));
+  msg.header().stamp(dds_common::ToRosTime(offset + s.time));
   msg.header().frame_id(frames.base_link);
   msg.traction_ticks(static_cast<uint32_t>(s.traction_ticks));
   msg.traction_counter_bits(static_cast<uint8_t>(nominal.traction_counter_bits));

@@ -1,30 +1,31 @@
 // Simulator component (see header).
-#include "simulator_component.hpp"
+#include "structloc/simulator/simulator_component.hpp"
 
 #include <cmath>
 #include <iostream>
 
-#include "diagnostics.hpp"
-#include "sim_conversions.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/simulator/sim_conversions.hpp"
 
 namespace structloc::simulator {
 
-SimulatorComponent::SimulatorComponent(dds::Node& node, const simulation::Scenario& scenario,
+SimulatorComponent::SimulatorComponent(dds_common::Node& node,
+                                       const simulation_core::Scenario& scenario,
                                        const SimulatorComponentOptions& options)
     : options_(options),
       sim_(scenario),
-      scan_(node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan)),
-      odom_(node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom)),
+      scan_(node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan)),
+      odom_(node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)),
       ground_truth_(
-          node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kGroundTruth)),
+          node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kGroundTruth)),
       encoders_(node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(
-          dds::topics::kWheelEncoders)),
+          dds_common::topics::kWheelEncoders)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
-          dds::topics::kDiagnostics)),
-      clock_offset_s_(std::floor(dds::WallClockSeconds())),
+          dds_common::topics::kDiagnostics)),
+      clock_offset_s_(std::floor(dds_common::WallClockSeconds())),
       wall_start_(std::chrono::steady_clock::now()) {
   cmd_vel_ = node.Subscribe<geometry_msgs::msg::TwistPubSubType>(
-      dds::topics::kCmdVel, [this](const geometry_msgs::msg::Twist& t) {
+      dds_common::topics::kCmdVel, [this](const geometry_msgs::msg::Twist& t) {
         if (!std::isfinite(t.linear().x()) || !std::isfinite(t.angular().z())) return;
         std::lock_guard<std::mutex> lock(command_mutex_);
         command_linear_ = t.linear().x();
@@ -52,7 +53,7 @@ void SimulatorComponent::Step() {
     if (scan_.MatchedReaders() < needed || odom_.MatchedReaders() < needed) return;
     started_ = true;
     wall_start_ = std::chrono::steady_clock::now();
-    clock_offset_s_ = std::floor(dds::WallClockSeconds());
+    clock_offset_s_ = std::floor(dds_common::WallClockSeconds());
     if (needed > 0) std::cout << "simulator: subscribers ready, starting the clock" << std::endl;
   }
   const auto now = std::chrono::steady_clock::now();
@@ -70,10 +71,10 @@ void SimulatorComponent::Step() {
     }
     PublishStep(sim_.Step());
   }
-  if (dds::WallClockSeconds() - last_diagnostics_wall_s_ >= 1.0) PublishDiagnostics();
+  if (dds_common::WallClockSeconds() - last_diagnostics_wall_s_ >= 1.0) PublishDiagnostics();
 }
 
-void SimulatorComponent::PublishStep(const simulation::SimState& state) {
+void SimulatorComponent::PublishStep(const simulation_core::SimState& state) {
   ++steps_;
   distance_ += (state.odometry.Translation() - last_odometry_.Translation()).norm();
   last_odometry_ = state.odometry;
@@ -95,13 +96,14 @@ void SimulatorComponent::PublishStep(const simulation::SimState& state) {
 }
 
 void SimulatorComponent::PublishDiagnostics() {
-  last_diagnostics_wall_s_ = dds::WallClockSeconds();
-  dds::HealthReport report;
+  last_diagnostics_wall_s_ = dds_common::WallClockSeconds();
+  dds_common::HealthReport report;
   report.message = sim_.Finished() ? "scenario finished" : "simulating";
   report.values = {{"sim_time_s", std::to_string(sim_.State().time)},
                    {"scans_published", std::to_string(scans_published_)},
                    {"scenario", sim_.GetScenario().name}};
-  auto diag = dds::ToDiagnosticArray("simulator", report, clock_offset_s_ + sim_.State().time);
+  auto diag =
+      dds_common::ToDiagnosticArray("simulator", report, clock_offset_s_ + sim_.State().time);
   diagnostics_.Write(diag);
 }
 

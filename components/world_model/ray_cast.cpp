@@ -1,10 +1,10 @@
 // Ray casting (see header).
-#include "ray_cast.hpp"
+#include "structloc/world_model/ray_cast.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace structloc::world {
+namespace structloc::world_model {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 inline double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -64,4 +64,4 @@ bool Scene::Occluded(const Eigen::Vector2d& origin, const Eigen::Vector2d& targe
   return Cast(origin, delta / dist, dist - margin) < dist - margin;
 }
 
-}  // namespace structloc::world
+}  // namespace structloc::world_model

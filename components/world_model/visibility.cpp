@@ -1,11 +1,11 @@
 // Visibility computation (see header).
-#include "visibility.hpp"
+#include "structloc/world_model/visibility.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-namespace structloc::world {
+namespace structloc::world_model {
 namespace {
 
 // Guard for the sample count of one wall; walls within WorldLimits need at
@@ -85,4 +85,4 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
   }
 }
 
-}  // namespace structloc::world
+}  // namespace structloc::world_model

@@ -1,5 +1,5 @@
 // WorldModel validation and corner derivation.
-#include "world_model.hpp"
+#include "structloc/world_model/world_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "point_grid.hpp"
+#include "structloc/world_model/point_grid.hpp"
 
-namespace structloc::world {
+namespace structloc::world_model {
 namespace {
 
 bool Finite(const Eigen::Vector2d& v) {
@@ -175,4 +175,4 @@ Eigen::Vector4d WorldModel::Bounds() const {
   return b;
 }
 
-}  // namespace structloc::world
+}  // namespace structloc::world_model

@@ -1,11 +1,11 @@
 // World model XML reader (see header).
-#include "world_model_xml.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
-namespace structloc::world {
+namespace structloc::world_model {
 namespace {
 
 // A point whose coordinates lie within the limits, or a file:line error.
@@ -73,4 +73,4 @@ WorldModel LoadWorldModel(const std::string& path, const WorldLimits& limits) {
   return ReadWorldModel(file, file.Root("world"), limits);
 }
 
-}  // namespace structloc::world
+}  // namespace structloc::world_model

@@ -14,13 +14,13 @@
 #include <sstream>
 #include <thread>
 
-#include "child_process.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
-#include "node.hpp"
-#include "ros_conversions.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
-#include "sim_conversions.hpp"
+#include "structloc/dds_common/node.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/process/child_process.hpp"
+#include "structloc/simulator/sim_conversions.hpp"
 #include "test_domains.hpp"
 
 namespace {
@@ -43,31 +43,31 @@ double CpuSeconds(pid_t pid) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  namespace dds = structloc::dds;
-  namespace simulation = structloc::simulation;
+  namespace dds_common = structloc::dds_common;
+  namespace simulation_core = structloc::simulation_core;
   namespace simulator = structloc::simulator;
   namespace process = structloc::process;
   const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
   const double rate = argc > 2 ? std::atof(argv[2]) : 40.0;
   const std::string source = STRUCTLOC_SOURCE_DIR;
   const int domain = structloc::testing::domains::kLatencyBenchmark;
-  auto scenario = simulation::LoadScenario(source + "/maps/scenarios/office_people.xml");
+  auto scenario = simulation_core::LoadScenario(source + "/maps/scenarios/office_people.xml");
   scenario.laser.rate_hz = rate;
   scenario.duration_s = seconds;
-  dds::NodeOptions options{"latency_feeder", domain, source + "/qos/structloc_qos.xml",
-                           "structloc_localhost"};
-  dds::Node node(options);
-  auto scans = node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds::topics::kScan);
-  auto odom = node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds::topics::kOdom);
+  dds_common::NodeOptions options{"latency_feeder", domain, source + "/qos/structloc_qos.xml",
+                                  "structloc_localhost"};
+  dds_common::Node node(options);
+  auto scans = node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan);
+  auto odom = node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom);
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::vector<double> latency_ms;
   const auto pose_subscription =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+          dds_common::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
             const auto now = Clock::now();
             std::lock_guard<std::mutex> lock(mutex);
-            auto it = sent.find(dds::FromRosTime(m.header().stamp()));
+            auto it = sent.find(dds_common::FromRosTime(m.header().stamp()));
             if (it != sent.end()) {
               latency_ms.push_back(
                   std::chrono::duration<double, std::milli>(now - it->second).count());
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  simulation::Simulation sim(scenario);
+  simulation_core::Simulation sim(scenario);
   const double offset = 1.0e9;
   const auto start = Clock::now();
   const double cpu_start = CpuSeconds(loc.Pid());
@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       auto msg = simulator::ToLaserScan(*scan, offset);
       {
         std::lock_guard<std::mutex> lock(mutex);
-        sent[dds::FromRosTime(msg.header().stamp())] = Clock::now();
+        sent[dds_common::FromRosTime(msg.header().stamp())] = Clock::now();
       }
       scans.Write(msg);
     }

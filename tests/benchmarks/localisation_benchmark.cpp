@@ -8,15 +8,15 @@
 #include <algorithm>
 #include <chrono>
 
-#include "corner_extraction.hpp"
-#include "cylinder_extraction.hpp"
-#include "kohonen_clustering.hpp"
 #include "office_scene.hpp"
+#include "structloc/localisation_core/corner_extraction.hpp"
+#include "structloc/localisation_core/cylinder_extraction.hpp"
+#include "structloc/localisation_core/kohonen_clustering.hpp"
 
 namespace structloc {
 namespace {
 
-using localisation::Localiser;
+using localisation_core::Localiser;
 
 double FieldOfView(int beams) {
   return beams == 300 ? 2 * geometry::kPi : 1.5 * geometry::kPi;
@@ -26,15 +26,15 @@ double FieldOfView(int beams) {
 struct Prepared {
   testing::OfficeScene office;
   testing::SyntheticScan scan;
-  localisation::BeamDirections directions;
-  localisation::ScanPoints points;
+  localisation_core::BeamDirections directions;
+  localisation_core::ScanPoints points;
   std::vector<unsigned char> keep;
-  std::vector<localisation::WindowLine> windows;
-  localisation::ExpectedFeatures expected;
+  std::vector<localisation_core::WindowLine> windows;
+  localisation_core::ExpectedFeatures expected;
   geometry::Pose2D sensor_prior;
   std::vector<int> assignment;
-  localisation::WallClusterWork wall_work;
-  std::vector<localisation::WallCluster> walls;
+  localisation_core::WallClusterWork wall_work;
+  std::vector<localisation_core::WallCluster> walls;
 
   explicit Prepared(int beams) : office(FieldOfView(beams)) {
     std::mt19937 rng(1);
@@ -42,21 +42,21 @@ struct Prepared {
     const auto input = office.Input(scan);
     sensor_prior = geometry::Compose(input.odometry_pose, office.options.sensor_mount);
     directions.Update(scan.View());
-    localisation::PrefilterStats stats;
+    localisation_core::PrefilterStats stats;
     RangeGate(scan.View(), directions, office.options.prefilter, points, stats);
     RejectUnsupported(office.options.prefilter, points, keep, stats);
     Thin(office.options.prefilter, points, stats);
     FitWindowLines(points, office.options.line_fit, windows);
-    const auto lines = localisation::GroupCollinearWalls(office.world);
+    const auto lines = localisation_core::GroupCollinearWalls(office.world);
     std::vector<int> line_of(office.world.Walls().size());
     for (size_t l = 0; l < lines.size(); ++l) {
       for (int w : lines[l].walls) line_of[static_cast<size_t>(w)] = static_cast<int>(l);
     }
-    world::VisibilityOptions vo;
+    world_model::VisibilityOptions vo;
     vo.min_range_m = office.options.prefilter.min_range_m;
     vo.max_range_m = office.options.prefilter.max_range_m;
     vo.field_of_view_rad = office.options.visibility.field_of_view_rad;
-    world::Visibility visibility;
+    world_model::Visibility visibility;
     ComputeVisibility(office.world, office.scene, sensor_prior, vo, visibility);
     ComputeExpectedFeatures(office.world, lines, line_of, visibility, sensor_prior, expected);
     AssignWindowsByExpectation(windows, expected, sensor_prior, office.options.walls, assignment);
@@ -67,10 +67,10 @@ struct Prepared {
 
 void BM_Prefilter(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
-  localisation::ScanPoints points;
+  localisation_core::ScanPoints points;
   points.Reserve(4096);
   for (auto _ : state) {
-    localisation::PrefilterStats stats;
+    localisation_core::PrefilterStats stats;
     RangeGate(p.scan.View(), p.directions, p.office.options.prefilter, points, stats);
     RejectUnsupported(p.office.options.prefilter, points, p.keep, stats);
     Thin(p.office.options.prefilter, points, stats);
@@ -80,7 +80,7 @@ void BM_Prefilter(benchmark::State& state) {
 
 void BM_LineFit(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
-  std::vector<localisation::WindowLine> windows;
+  std::vector<localisation_core::WindowLine> windows;
   windows.reserve(4096);
   for (auto _ : state) {
     FitWindowLines(p.points, p.office.options.line_fit, windows);
@@ -114,8 +114,8 @@ void BM_WallClusteringKohonen(benchmark::State& state) {
 
 void BM_Corners(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
-  std::vector<localisation::PointSums> work;
-  std::vector<localisation::PointCluster> out;
+  std::vector<localisation_core::PointSums> work;
+  std::vector<localisation_core::PointCluster> out;
   work.reserve(64);
   out.reserve(64);
   for (auto _ : state) {
@@ -127,9 +127,9 @@ void BM_Corners(benchmark::State& state) {
 
 void BM_Cylinders(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
-  localisation::CylinderWork work;
+  localisation_core::CylinderWork work;
   work.Reserve(4096, 64);
-  std::vector<localisation::PointCluster> out;
+  std::vector<localisation_core::PointCluster> out;
   out.reserve(64);
   for (auto _ : state) {
     ExtractCylinders(p.windows, p.points, p.expected, p.office.options.cylinders,
@@ -146,7 +146,7 @@ void BM_Update(benchmark::State& state) {
   std::mt19937 rng(2);
   std::vector<testing::SyntheticScan> scans;
   for (int i = 0; i < 16; ++i) scans.push_back(office.Scan(beams, rng));
-  std::vector<localisation::UpdateInput> inputs;
+  std::vector<localisation_core::UpdateInput> inputs;
   for (const auto& s : scans) inputs.push_back(office.Input(s));
   std::vector<double> times;
   times.reserve(1 << 20);

@@ -7,7 +7,7 @@ It reproduces the flaky-test issue on demand: DDS domains above 101 have their
 ports inside Linux's ephemeral range, so a held port can be a domain's
 discovery port and the participants never meet; domains 0..101 are immune.
 
-  tests/stress/ephemeral_port_pressure.py --sockets 14000 -- build/bin/some_test
+  tests/stress/ephemeral_port_pressure.py --sockets 14000 -- build/tests/some_test
 
 Exits with the command's exit code. Only loopback-free bind(port 0) calls are
 made: nothing is sent anywhere.

@@ -1,0 +1,81 @@
+// The odometry-calibration component: records the wheel-encoder stream and
+// position fixes (rt/pose from the localisation, or any PoseWithCovarianceStamped
+// topic) for a given time, or until it is stopped, then estimates the
+// parameters with the DDS-free calibration core, publishes the result latched
+// (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
+// recording and the calibrated robot file. What is recorded and when to
+// estimate is the DDS-free calibration_core::CalibrationRecorder's policy (gaps in the encoder
+// stream are detected and reported, never silently bridged); this component
+// converts and moves messages around it. A failed estimate of a
+// complete recording, or a result that cannot be written, makes the process
+// exit non-zero.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "structloc/calibration_core/calibration_data.hpp"
+#include "structloc/calibration_core/calibration_recorder.hpp"
+#include "structloc/calibration_core/odometry_calibration.hpp"
+#include "structloc/dds_common/component_runtime.hpp"
+#include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
+#include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
+
+namespace structloc::calibration {
+
+struct CalibrationComponentOptions {
+  kinematics::RobotParameters nominal;
+  std::string robot_path;  // the nominal robot file: never overwritten
+  calibration_core::CalibrationOptions calibration;
+  double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
+  std::string fix_topic = dds_common::topics::kPose.name;
+  std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
+  bool exit_when_done = false;
+
+  // Throws config::ConfigError (exit code 2) for options that cannot work: an
+  // empty --fix-topic or one of structloc's topics of another message type,
+  // nothing to estimate, an --out-dir that is not (and cannot become) a
+  // writable folder. Creates --out-dir when it is missing.
+  void Validate() const;
+};
+
+class CalibrationComponent : public dds_common::Component {
+ public:
+  CalibrationComponent(dds_common::Node& node, const CalibrationComponentOptions& options);
+  void Step() override;
+  // Estimates with what was recorded if that has not happened yet; throws
+  // std::runtime_error (exit code 1) when the result could not be written, or
+  // when the calibration failed after a complete recording (--record-s
+  // reached, or 0 = until stopped).
+  void Stop() override;
+  bool Done() const override { return options_.exit_when_done && estimated_; }
+
+ private:
+  // `stopped_early`: the recording was cut short by a stop before --record-s.
+  void Estimate(bool stopped_early);
+  // Writes the recording and, for a successful estimate, calibrated.xml into
+  // out_dir; returns what went wrong, or "" when everything was written.
+  std::string WriteResults(const std::vector<calibration_core::EncoderSample>& encoders,
+                           const std::vector<calibration_core::Fix>& fixes,
+                           const calibration_core::CalibrationReport& report) const;
+  void PublishDiagnostics(double now);
+
+  CalibrationComponentOptions options_;
+  dds_common::TopicWriter<structloc_msgs::msg::CalibrationResultPubSubType> result_;
+  dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
+  std::mutex mutex_;  // guards the three below
+  calibration_core::CalibrationRecorder recorder_;
+  std::string outcome_;
+  std::string failure_;  // why the run produced no usable result ("" = it did)
+  std::atomic<bool> estimated_{false};
+  double last_diagnostics_s_ = 0.0;
+  // Last: destroyed first, so no sample reaches the members above then.
+  dds_common::Subscription encoders_subscription_;
+  dds_common::Subscription fixes_subscription_;
+};
+
+}  // namespace structloc::calibration

@@ -1,0 +1,62 @@
+// Records what an odometry calibration (thesis 6.5.4) is estimated from, the
+// policy the live calibration component holds apart from DDS: encoder samples
+// in stamp order (out-of-order ones counted and refused), gaps in the encoder
+// stream detected and counted (never silently bridged: the estimate sees
+// them), fixes with a finite pose in stamp order, when the recording is long
+// enough to calibrate, and whether a stop leaves enough to estimate from.
+// Single-threaded: the component guards it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "structloc/calibration_core/calibration_data.hpp"
+
+namespace structloc::calibration_core {
+
+struct RecorderOptions {
+  double record_s = 60.0;          // recording length in stamp time; 0 = until stopped
+  double max_encoder_gap_s = 0.5;  // longer steps between encoder samples are gaps
+};
+
+struct RecorderStats {
+  size_t encoders = 0, fixes = 0;
+  size_t encoders_out_of_order = 0, fixes_rejected = 0, gaps = 0;
+  double largest_gap_s = 0.0;
+};
+
+struct Recording {
+  std::vector<EncoderSample> encoders;
+  std::vector<Fix> fixes;
+};
+
+class CalibrationRecorder {
+ public:
+  explicit CalibrationRecorder(const RecorderOptions& options);
+
+  // Return false when the sample was refused (out of order, not finite, or
+  // the recording has ended).
+  bool AddEncoders(const EncoderSample& sample);
+  bool AddFix(const Fix& fix);
+
+  // The recording has reached record_s of stamp time: calibrate now.
+  bool Due() const;
+  // At a stop: whether what was recorded is worth an estimate.
+  bool WorthEstimating() const;
+  // A stop before record_s: its estimate is a bonus whose failure is no error
+  // ("until stopped" recordings end at the stop as planned).
+  bool StopIsEarly() const { return options_.record_s > 0; }
+
+  // Ends the recording (later samples are ignored) and returns it.
+  Recording Finish();
+  bool Finished() const { return finished_; }
+  RecorderStats Stats() const;
+
+ private:
+  RecorderOptions options_;
+  Recording recording_;
+  RecorderStats stats_;
+  bool finished_ = false;
+};
+
+}  // namespace structloc::calibration_core

@@ -1,0 +1,362 @@
+// Options declared once. Each option of an options struct is declared in one
+// place with its XML key (unit in the name), where it lives in the struct, its
+// valid range, unit and description; the struct's own member initialiser is the
+// default. Loading a section from XML (strict: unknown or missing keys are
+// errors naming file:line), validation (naming section and key) and a printed
+// listing all derive from that declaration, so key, default and range cannot
+// drift apart. Generic over the options struct and DDS-free, for parameter,
+// scenario and robot files alike.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <ostream>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "structloc/config/strict_xml.hpp"
+
+namespace structloc::config {
+
+// The valid values of a number: from min to max, either end open or unbounded;
+// with `magnitude`, the bounds apply to the absolute value (either sign).
+// Values must also be finite.
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  bool max_open = false;
+  bool magnitude = false;
+
+  static Range Any() { return {}; }
+  static Range Positive() { return {0.0, Range{}.max, true, false, false}; }
+  static Range NonNegative() { return {0.0, Range{}.max, false, false, false}; }
+  static Range AtLeast(double min) { return {min, Range{}.max, false, false, false}; }
+  static Range Closed(double min, double max) { return {min, max, false, false, false}; }
+  static Range Open(double min, double max) { return {min, max, true, true, false}; }
+  static Range LeftOpen(double min, double max) { return {min, max, true, false, false}; }
+  // |value| in [min, max], e.g. a non-zero scale factor of either sign.
+  static Range Magnitude(double min, double max) { return {min, max, false, false, true}; }
+
+  bool Contains(double value) const;
+  // "> 0", ">= 1", "in (0, 1.570796327)", "in [1, 60]", "finite",
+  // "magnitude in [1e-09, 1]".
+  std::string Describe() const;
+};
+
+// Formats a value for listings and messages (shortest of 10 significant digits).
+std::string FormatNumber(double value);
+
+// How an out-of-range value is reported after "section: ", from the key, the
+// value as text, the valid values (Range::Describe) and the unit (may be empty).
+// The default reads "key must be VALID, not VALUE".
+using OutOfRangeWording =
+    std::function<std::string(const std::string& key, const std::string& value,
+                              const std::string& valid, const std::string& unit)>;
+
+// The options of one XML section (one element whose attributes are the keys)
+// of the options struct S.
+template <class S>
+class OptionTable {
+ public:
+  OptionTable(std::string section, std::string description)
+      : section_(std::move(section)), description_(std::move(description)) {}
+
+  // Words out-of-range values of this table differently (see OutOfRangeWording);
+  // integers read from a file are then checked with it too.
+  OptionTable& Wording(OutOfRangeWording wording) {
+    wording_ = std::move(wording);
+    return *this;
+  }
+
+  // A number (double or integer type) stored in s.*member.
+  template <class T>
+  OptionTable& Number(const char* key, T S::*member, Range range, const char* unit,
+                      const char* description) {
+    return AddNumber<T>(
+        key, range, unit, description, [member](auto& s) -> auto& { return s.*member; });
+  }
+  // A number stored in (s.*outer).*member, e.g. (&Options::walls, &WallOptions::gate_m).
+  template <class M, class T>
+  OptionTable& Number(const char* key, M S::*outer, T M::*member, Range range, const char* unit,
+                      const char* description) {
+    return AddNumber<T>(
+        key, range, unit, description,
+        [ outer, member ](auto& s) -> auto& { return (s.*outer).*member; });
+  }
+  // "true" or "false".
+  OptionTable& Flag(const char* key, bool S::*member, const char* description) {
+    return AddFlag(
+        key, description, [member](auto& s) -> auto& { return s.*member; });
+  }
+  template <class M>
+  OptionTable& Flag(const char* key, M S::*outer, bool M::*member, const char* description) {
+    return AddFlag(
+        key, description, [ outer, member ](auto& s) -> auto& { return (s.*outer).*member; });
+  }
+  // One of the named values of an enumeration.
+  template <class E>
+  OptionTable& Choice(const char* key, E S::*member, std::vector<std::pair<std::string, E>> names,
+                      const char* description) {
+    return AddChoice<E>(
+        key, std::move(names), description, [member](auto& s) -> auto& { return s.*member; });
+  }
+  template <class M, class E>
+  OptionTable& Choice(const char* key, M S::*outer, E M::*member,
+                      std::vector<std::pair<std::string, E>> names, const char* description) {
+    return AddChoice<E>(
+        key, std::move(names), description,
+        [ outer, member ](auto& s) -> auto& { return (s.*outer).*member; });
+  }
+
+  // Free text, e.g. a name.
+  OptionTable& Text(const char* key, std::string S::*member, const char* description) {
+    Entry e{key, "", "text", description, {}, {}, {}, false};
+    const std::string name = key;
+    e.load = [name, member](const OptionTable&, AttributeReader& reader, S& s) {
+      s.*member = reader.String(name.c_str());
+    };
+    e.check = [](const OptionTable&, const S&) { return std::string(); };
+    e.show = [member](const S& s) { return s.*member; };
+    entries_.push_back(std::move(e));
+    return *this;
+  }
+
+  // Makes the key declared last optional: when a file leaves it out, the
+  // member keeps the value it had (the default). Listed as "[optional]".
+  OptionTable& Optional() {
+    if (!entries_.empty()) entries_.back().optional = true;
+    return *this;
+  }
+
+  const std::string& Section() const { return section_; }
+  bool HasOptionalKeys() const {
+    for (const auto& e : entries_) {
+      if (e.optional) return true;
+    }
+    return false;
+  }
+
+  // Every key with the value of `options` as text (numbers with 10 significant
+  // digits, choices by name, text as it is: escape it for XML), in declaration
+  // order: for writing a file.
+  std::vector<std::pair<std::string, std::string>> Values(const S& options) const {
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const auto& e : entries_) values.emplace_back(e.key, e.show(options));
+    return values;
+  }
+
+  // Reads every key of `element` into `out`; throws ConfigError naming
+  // file:line for a missing, unknown, malformed or out-of-range value.
+  void Load(const XmlFile& file, const tinyxml2::XMLElement& element, S& out) const {
+    AttributeReader reader(file, element);
+    for (const auto& e : entries_) {
+      if (!e.optional || reader.Has(e.key.c_str())) e.load(*this, reader, out);
+    }
+    reader.Finish();
+    const std::string problem = FirstProblem(out);
+    if (!problem.empty()) file.Fail(element, problem);
+  }
+
+  // Throws std::invalid_argument "section: key must be ..., not VALUE".
+  void Validate(const S& options) const {
+    const std::string problem = FirstProblem(options);
+    if (!problem.empty()) throw std::invalid_argument(problem);
+  }
+
+  // One line per key: key, default (from `defaults`), unit, valid values, description.
+  void Print(std::ostream& out, const S& defaults) const {
+    out << "<" << section_ << ">  " << description_ << "\n";
+    for (const auto& e : entries_) {
+      const std::string shown = e.show(defaults);
+      out << "  " << Pad(e.key, 28) << " " << Pad(shown.empty() ? "\"\"" : shown, 14) << " "
+          << Pad(e.unit.empty() ? "-" : e.unit, 5) << " " << Pad(e.valid, 26) << " "
+          << (e.optional ? "[optional] " : "") << e.description << "\n";
+    }
+  }
+
+ private:
+  // The functions take the table (not captured, so that tables copy safely)
+  // for its wording.
+  struct Entry {
+    std::string key, unit, valid, description;
+    std::function<void(const OptionTable&, AttributeReader&, S&)> load;
+    std::function<std::string(const OptionTable&, const S&)> check;  // empty when valid
+    std::function<std::string(const S&)> show;
+    bool optional = false;
+  };
+
+  std::string OutOfRange(const std::string& key, const std::string& value, const std::string& valid,
+                         const std::string& unit) const {
+    if (wording_) return wording_(key, value, valid, unit);
+    return key + " must be " + valid + ", not " + value;
+  }
+
+  static std::string Pad(const std::string& text, size_t width) {
+    return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
+  }
+
+  std::string FirstProblem(const S& options) const {
+    for (const auto& e : entries_) {
+      std::string why = e.check(*this, options);
+      if (!why.empty()) return section_ + ": " + why;
+    }
+    return {};
+  }
+
+  template <class T, class Get>
+  OptionTable& AddNumber(const char* key, Range range, const char* unit, const char* description,
+                         Get get) {
+    static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>, "use Flag for bool");
+    const bool any_integer =
+        std::is_integral_v<T> && !std::isfinite(range.min) && !std::isfinite(range.max);
+    Entry e{key, unit, any_integer ? "integer" : range.Describe(), description, {}, {}, {}, false};
+    const std::string name = key, unit_name = unit;
+    e.load = [name, unit_name, range, get](const OptionTable& table, AttributeReader& reader,
+                                           S& s) {
+      if constexpr (std::is_integral_v<T>) {
+        // Bounds within T's own range, so that a value is never truncated (a
+        // magnitude range's lower bound is checked after reading, by `check`).
+        constexpr T kMin = std::numeric_limits<T>::min(), kMax = std::numeric_limits<T>::max();
+        const double min = range.magnitude ? -range.max : range.min;
+        const T lo = min <= static_cast<double>(kMin) ? kMin : static_cast<T>(std::ceil(min));
+        const T hi =
+            range.max >= static_cast<double>(kMax) ? kMax : static_cast<T>(std::floor(range.max));
+        if (!table.wording_) {
+          get(s) = reader.IntegerIn<T>(name.c_str(), lo, hi);
+          return;
+        }
+        // Checked as read, before narrowing to T (4294967328 must not become 32).
+        const long long value = reader.Integer(name.c_str());
+        if (!range.Contains(static_cast<double>(value)) || value < static_cast<long long>(lo) ||
+            value > static_cast<long long>(hi)) {
+          reader.Fail(table.section_ + ": " +
+                      table.OutOfRange(name, std::to_string(value), range.Describe(), unit_name));
+        }
+        get(s) = static_cast<T>(value);
+      } else {
+        get(s) = static_cast<T>(reader.Double(name.c_str()));
+      }
+    };
+    e.check = [name, unit_name, range, get](const OptionTable& table, const S& s) -> std::string {
+      const double value = static_cast<double>(get(s));
+      if (range.Contains(value)) return {};
+      return table.OutOfRange(name, FormatNumber(value), range.Describe(), unit_name);
+    };
+    e.show = [get](const S& s) { return FormatNumber(static_cast<double>(get(s))); };
+    entries_.push_back(std::move(e));
+    return *this;
+  }
+
+  template <class Get>
+  OptionTable& AddFlag(const char* key, const char* description, Get get) {
+    Entry e{key, "", "true or false", description, {}, {}, {}, false};
+    const std::string name = key;
+    e.load = [name, get](const OptionTable&, AttributeReader& reader, S& s) {
+      get(s) = reader.Bool(name.c_str());
+    };
+    e.check = [](const OptionTable&, const S&) { return std::string(); };
+    e.show = [get](const S& s) { return std::string(get(s) ? "true" : "false"); };
+    entries_.push_back(std::move(e));
+    return *this;
+  }
+
+  template <class E, class Get>
+  OptionTable& AddChoice(const char* key, std::vector<std::pair<std::string, E>> names,
+                         const char* description, Get get) {
+    std::string valid;  // "a, b or c"
+    for (size_t i = 0; i < names.size(); ++i) {
+      valid += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
+    }
+    Entry e{key, "", valid, description, {}, {}, {}, false};
+    const std::string name = key;
+    e.load = [name, names, valid, get](const OptionTable&, AttributeReader& reader, S& s) {
+      const std::string value = reader.String(name.c_str());
+      for (const auto& n : names) {
+        if (n.first == value) {
+          get(s) = n.second;
+          return;
+        }
+      }
+      reader.Fail(name + " must be " + valid + ", not '" + value + "'");
+    };
+    e.check = [name, names, valid, get](const OptionTable&, const S& s) -> std::string {
+      for (const auto& n : names) {
+        if (n.second == get(s)) return {};
+      }
+      return name + " must be " + valid;
+    };
+    e.show = [names, get](const S& s) {
+      for (const auto& n : names) {
+        if (n.second == get(s)) return n.first;
+      }
+      return std::string("?");
+    };
+    entries_.push_back(std::move(e));
+    return *this;
+  }
+
+  std::string section_, description_;
+  std::vector<Entry> entries_;
+  OutOfRangeWording wording_;
+};
+
+// A file whose root element holds one element per OptionTable, each exactly
+// once, and nothing else.
+template <class S>
+class OptionFile {
+ public:
+  // `other_sections`: sections of the same file that another options struct
+  // reads (allowed here, not loaded).
+  OptionFile(std::string root, std::vector<OptionTable<S>> sections,
+             std::set<std::string> other_sections = {})
+      : root_(std::move(root)),
+        sections_(std::move(sections)),
+        other_sections_(std::move(other_sections)) {}
+
+  const std::string& RootName() const { return root_; }
+  const std::vector<OptionTable<S>>& Sections() const { return sections_; }
+
+  // Loads every section into a copy of `defaults`; throws ConfigError naming
+  // file:line for any problem.
+  S Load(const XmlFile& file, S defaults = S{}) const {
+    const auto& root = file.Root(root_);
+    std::set<std::string> names = other_sections_;
+    for (const auto& t : sections_) names.insert(t.Section());
+    RequireChildNames(file, root, names);
+    for (const auto& t : sections_) {
+      const auto* element = root.FirstChildElement(t.Section().c_str());
+      if (element == nullptr) file.Fail(root, "missing section <" + t.Section() + ">");
+      if (const auto* second = element->NextSiblingElement(t.Section().c_str())) {
+        file.Fail(*second, "a second <" + t.Section() + "> section; write each section once");
+      }
+      t.Load(file, *element, defaults);
+    }
+    return defaults;
+  }
+
+  void Validate(const S& options) const {
+    for (const auto& t : sections_) t.Validate(options);
+  }
+
+  void Print(std::ostream& out, const S& defaults) const {
+    bool optional = false;
+    for (const auto& t : sections_) optional = optional || t.HasOptionalKeys();
+    out << "<" << root_ << ">: every key below is required"
+        << (optional ? " unless marked [optional]" : "")
+        << "; columns: key, default, unit, valid values, meaning\n";
+    for (const auto& t : sections_) t.Print(out, defaults);
+  }
+
+ private:
+  std::string root_;
+  std::vector<OptionTable<S>> sections_;
+  std::set<std::string> other_sections_;
+};
+
+}  // namespace structloc::config

@@ -1,0 +1,50 @@
+// The main loop every component executable shares: standard options (domain,
+// QoS file, participant profile), node creation, endpoint report, a periodic
+// Step(), clean stop on SIGINT/SIGTERM, and exit code 2 with a message on bad
+// configuration.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "structloc/config/command_line.hpp"
+#include "structloc/dds_common/node.hpp"
+
+namespace structloc::dds_common {
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  // Called every Period() on the main thread until a stop signal arrives.
+  virtual void Step() = 0;
+  virtual std::chrono::milliseconds Period() const { return std::chrono::milliseconds(100); }
+  // Called once after the stop signal, before the node is destroyed.
+  virtual void Stop() {}
+  // True when the component has finished its work and the process should exit 0.
+  virtual bool Done() const { return false; }
+};
+
+using ComponentFactory =
+    std::function<std::unique_ptr<Component>(Node& node, const config::CommandLine& cli)>;
+
+// Options every component accepts, documented with their defaults.
+std::vector<config::OptionSpec> StandardOptions();
+
+// The frame-id options of components that stamp frames (--map-frame,
+// --odom-frame, --base-frame, --laser-frame), with the defaults of FrameIds.
+std::vector<config::OptionSpec> FrameIdOptions();
+// Reads them; throws config::ConfigError for an empty or blank frame id.
+FrameIds FrameIdsFrom(const config::CommandLine& cli);
+
+// Parses the command line, builds the node and runs the component.
+// Returns the process exit code (0 clean stop, 2 configuration error, 1 other failure).
+int RunComponent(int argc, char** argv, const std::string& name,
+                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory);
+
+// Wall-clock seconds since the epoch, for stamps of live data.
+double WallClockSeconds();
+
+}  // namespace structloc::dds_common

@@ -1,0 +1,77 @@
+// The localisation component: converts and moves messages around the DDS-free
+// localisation_core::TrackingSession (tracking_session.hpp), which holds the policy. DDS listener
+// threads only copy scans, odometry and initial poses into the session's inbox
+// and notify; a worker thread takes them, runs the session (one scan slot: the
+// newest scan wins) and publishes the pose, the map -> odom transform, the
+// features and its status outside any lock a listener takes. The main thread
+// saves the pose when the session says it is due and publishes diagnostics.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "structloc/dds_common/component_runtime.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/localisation/pose_state_file.hpp"
+#include "structloc/localisation_core/session_inbox.hpp"
+#include "structloc/localisation_core/tracking_session.hpp"
+#include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
+#include "structloc_msgs/msg/ScanFeaturesPubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
+
+namespace structloc::localisation {
+
+struct LocalisationComponentOptions {
+  double scan_timeout_s = 0.5;  // diagnostics go WARN without scans (or odometry) for this long
+  double silent_error_after_s = 5.0;  // ... and ERROR when a source stays silent this long
+  double problem_hold_s = 10.0;       // a rejected input is reported in diagnostics this long
+  std::string state_file;             // saved pose ("" = none)
+  std::optional<geometry::Pose2D> initial_pose;  // from the command line
+  dds_common::FrameIds frames;                   // stamped into every output
+};
+
+class LocalisationComponent : public dds_common::Component {
+ public:
+  LocalisationComponent(dds_common::Node& node, std::unique_ptr<world_model::WorldModel> world,
+                        const localisation_core::LocaliserOptions& localiser_options,
+                        const localisation_core::SessionOptions& session_options,
+                        const LocalisationComponentOptions& options);
+  ~LocalisationComponent() override;
+  void Step() override;
+  void Stop() override;
+
+ private:
+  void Worker();
+  void PublishDiagnostics(double now);
+  dds_common::HealthReport Health(double now);  // caller holds session_mutex_
+
+  LocalisationComponentOptions options_;
+  std::unique_ptr<world_model::WorldModel> world_;
+  dds_common::TopicWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType> pose_;
+  dds_common::TopicWriter<tf2_msgs::msg::TFMessagePubSubType> tf_;
+  dds_common::TopicWriter<structloc_msgs::msg::ScanFeaturesPubSubType> features_;
+  dds_common::TopicWriter<structloc_msgs::msg::LocalisationStatusPubSubType> status_;
+  dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
+  const dds_common::Node& node_;
+  const double started_s_;
+
+  localisation_core::SessionInbox inbox_;  // listeners -> worker; its own lock
+  std::mutex session_mutex_;  // the worker (updates) and the main thread (diagnostics, saving)
+  localisation_core::TrackingSession session_;
+  double last_diagnostics_s_ = 0.0;
+  std::string last_logged_state_;  // the diagnostics headline last printed
+  std::thread worker_;
+  // Last: destroyed first, so no sample reaches the members above then.
+  dds_common::Subscription scan_subscription_;
+  dds_common::Subscription odometry_subscription_;
+  dds_common::Subscription initial_pose_subscription_;
+};
+
+}  // namespace structloc::localisation

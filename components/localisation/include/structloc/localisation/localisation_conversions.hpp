@@ -1,0 +1,45 @@
+// Free conversions between ROS 2 messages and the localisation core's types,
+// tested without a participant.
+#pragma once
+
+#include <string>
+
+#include "geometry_msgs/msg/PoseWithCovarianceStamped.h"
+#include "nav_msgs/msg/Odometry.h"
+#include "sensor_msgs/msg/LaserScan.h"
+#include "structloc/dds_common/topics.hpp"
+#include "structloc/localisation_core/pose_tracker.hpp"
+#include "structloc/localisation_core/session_scan.hpp"
+#include "structloc_msgs/msg/LocalisationStatus.h"
+#include "structloc_msgs/msg/ScanFeatures.h"
+#include "tf2_msgs/msg/TFMessage.h"
+
+namespace structloc::localisation {
+
+// The ranges stay owned by the message.
+localisation_core::ScanInput FromLaserScan(const sensor_msgs::msg::LaserScan& msg);
+// The scan with a copy of its ranges, to wait in a localisation_core::TrackingSession.
+localisation_core::SessionScan ToSessionScan(const sensor_msgs::msg::LaserScan& msg);
+struct StampedPose2D {
+  double stamp;
+  geometry::Pose2D pose;
+};
+StampedPose2D FromOdometry(const nav_msgs::msg::Odometry& msg);
+// Pose and the x, y, yaw block of the covariance.
+StampedPose2D FromPoseWithCovariance(const geometry_msgs::msg::PoseWithCovarianceStamped& msg,
+                                     Eigen::Matrix3d* covariance);
+
+// Outputs are stamped with the frame ids of `frames`.
+geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
+    const localisation_core::TrackedPose& pose, const dds_common::FrameIds& frames);
+tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& map_to_odom, double stamp,
+                                       const dds_common::FrameIds& frames);
+structloc_msgs::msg::ScanFeatures ToScanFeatures(
+    const localisation_core::LocalisationResult& result, double stamp,
+    const dds_common::FrameIds& frames);
+structloc_msgs::msg::LocalisationStatus ToStatus(
+    const localisation_core::LocalisationResult& result,
+    const localisation_core::TrackerStats& stats, uint64_t dropped, double stamp,
+    const dds_common::FrameIds& frames);
+
+}  // namespace structloc::localisation

@@ -1,0 +1,65 @@
+// Where the world model and the odometric sensor pose say features should
+// appear in the scan (thesis 3.5.3 EQ 23-24, 3.5.4, 3.5.6), computed once per
+// update for the visible features only, so the clustering hot loops compare
+// against precomputed numbers.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+#include "structloc/world_model/visibility.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::localisation_core {
+
+// Collinear walls (same r, alpha within tolerance) give one constraint: they
+// are grouped into one wall line with the id of its first wall.
+struct WallLineModel {
+  geometry::Line line;
+  std::vector<int> walls;  // indices into WorldModel::Walls()
+  int model_id = 0;
+};
+std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& world,
+                                               double r_tolerance_m = 0.01,
+                                               double alpha_tolerance_rad = 0.01);
+
+// An expected wall in the sensor frame, oriented like the world line's normal:
+// alpha = alpha_W - theta, r = r_W - (x cos alpha_W + y sin alpha_W) (may be < 0).
+struct ExpectedWall {
+  int line_index = 0;
+  int model_id = 0;
+  double r = 0.0;
+  double c = 1.0;  // cos/sin of alpha (sensor frame)
+  double s = 0.0;
+  geometry::Line world;
+  double world_c = 1.0;  // cos/sin of the world line's alpha
+  double world_s = 0.0;
+  double extent_lo = 0.0;  // visible extent along the world line direction (-sin, cos)
+  double extent_hi = 0.0;
+};
+
+// An expected corner or cylinder centre.
+struct ExpectedPoint {
+  int model_index = 0;
+  int model_id = 0;
+  Eigen::Vector2d world{0, 0};
+  Eigen::Vector2d sensor{0, 0};  // in the sensor frame at the odometric pose
+  double radius = 0.0;           // cylinders only
+};
+
+struct ExpectedFeatures {
+  std::vector<ExpectedWall> walls;
+  std::vector<ExpectedPoint> corners;
+  std::vector<ExpectedPoint> cylinders;
+  void Reserve(size_t lines, size_t corners, size_t cylinders);
+};
+
+// `wall_line_of` maps a wall index to its WallLineModel index.
+void ComputeExpectedFeatures(const world_model::WorldModel& world,
+                             const std::vector<WallLineModel>& lines,
+                             const std::vector<int>& wall_line_of,
+                             const world_model::Visibility& visibility,
+                             const geometry::Pose2D& sensor_pose, ExpectedFeatures& out);
+
+}  // namespace structloc::localisation_core

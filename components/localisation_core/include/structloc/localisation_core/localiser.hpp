@@ -1,0 +1,126 @@
+// One position update (thesis 3.4-3.6 and 6.5): scan + odometric pose in, corrected
+// pose with covariance, matches, quality and a lost verdict out. Owns every
+// buffer it needs, sized at construction, so that the steady-state update
+// with the default (expectation) strategy never allocates. DDS-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "structloc/localisation_core/deskew.hpp"
+#include "structloc/localisation_core/expected_features.hpp"
+#include "structloc/localisation_core/feature_extractor.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/world_model/ray_cast.hpp"
+#include "structloc/world_model/visibility.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::localisation_core {
+
+struct UpdateInput {
+  ScanView scan;
+  geometry::Pose2D odometry_pose;  // robot base in the map frame at the scan stamp
+  Eigen::Matrix3d odometry_covariance = Eigen::Matrix3d::Identity();  // of that prediction
+  const BeamMotion* motion = nullptr;  // per-beam sensor motion for de-skewing, or none
+};
+
+enum class LostReason {
+  kNone,
+  kRejectedInput,       // the scan or prior was unusable; nothing was computed
+  kNoFeatures,          // no expected feature was found in the scan
+  kUnderdetermined,     // the features leave a direction of the pose open
+  kCorrectionTooLarge,  // the fit would move the robot beyond the gates
+  kSolverFailed,
+};
+const char* ToString(LostReason reason);
+
+struct StepTimes {
+  double prefilter_us = 0, line_fit_us = 0, solve_us = 0, total_us = 0;
+};  // each feature kind's own time is in FeatureKindResult::extract_us
+
+// What one feature kind found in one scan.
+struct FeatureKindResult {
+  const char* kind = "";  // FeatureExtractor::Kind(), e.g. "walls"
+  FeatureShape shape = FeatureShape::kPoint;
+  int expected = 0;  // visible in the model at the odometric pose
+  std::vector<FeatureMatch> matches;
+  double extract_us = 0.0;
+  int Matched() const { return static_cast<int>(matches.size()); }
+};
+
+struct LocalisationResult {
+  const char* rejection = nullptr;  // why the input was rejected, or nullptr
+  geometry::Pose2D pose;            // robot base, map frame (odometry when lost)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // x, y, theta
+  bool lost = false;
+  LostReason lost_reason = LostReason::kNone;
+  Eigen::Vector3d weak_direction = Eigen::Vector3d::Zero();  // least determined (x, y, theta)
+  double quality = 0.0;                                      // 0 .. 1, see Localiser::Update
+  // One entry per enabled kind, in the order of the parameter file.
+  std::vector<FeatureKindResult> features;
+  PrefilterStats prefilter;
+  StepTimes times;
+  double chi2 = 0.0;
+  int dof = 0;
+
+  // The entry of kind `name`, or nullptr when that kind is not enabled.
+  const FeatureKindResult* Kind(const char* name) const;
+  int Expected() const;  // over all kinds
+  int Matched() const;
+};
+
+class Localiser {
+ public:
+  // With the feature kinds the options enable (feature_kinds.hpp). Throws
+  // std::invalid_argument when the options are invalid.
+  Localiser(const world_model::WorldModel& world, const LocaliserOptions& options);
+  // With the given extractors instead, run in this order (tests of a new kind).
+  Localiser(const world_model::WorldModel& world, const LocaliserOptions& options,
+            std::vector<std::unique_ptr<FeatureExtractor>> extractors);
+
+  // Quality = matched / expected features, reduced when chi2/dof exceeds
+  // solver.quality_chi2_per_dof; 0 when lost. The returned reference stays valid until the next
+  // Update.
+  const LocalisationResult& Update(const UpdateInput& input);
+
+  const LocaliserOptions& Options() const { return options_; }
+  const world_model::WorldModel& World() const { return world_; }
+
+ private:
+  void RefreshVisibility(const geometry::Pose2D& sensor_pose);
+  void Reject(const UpdateInput& input, const char* why);
+  // Steps of the pose update after the line fits, in order.
+  void ExtractFeatures(const geometry::Pose2D& sensor_prior);
+  // Returns the solved sensor pose, or the prior when lost.
+  void SolveAndGate(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov,
+                    geometry::Pose2D& sensor_pose, Eigen::Matrix3d& sensor_cov);
+  void CheckObservability();
+  void PackMatches();
+  void FinishResult(const UpdateInput& input, const geometry::Pose2D& sensor_pose,
+                    const Eigen::Matrix3d& sensor_cov);
+
+  const world_model::WorldModel& world_;
+  LocaliserOptions options_;
+  world_model::Scene scene_;
+  std::vector<WallLineModel> lines_;
+  std::vector<int> wall_line_of_;
+  world_model::Visibility visibility_;
+  bool visibility_valid_ = false;
+  geometry::Pose2D visibility_pose_;
+
+  BeamDirections directions_;
+  ScanPoints points_;
+  std::vector<unsigned char> keep_;
+  std::vector<WindowLine> windows_;
+  ExpectedFeatures expected_;
+  std::vector<std::unique_ptr<FeatureExtractor>> extractors_;  // from the parameter file
+  Measurements measurements_;
+  SolveOutput solve_;
+  LocalisationResult result_;
+  // Last output, the fallback when an input's own prior is unusable.
+  geometry::Pose2D last_pose_;
+  Eigen::Matrix3d last_covariance_ = 1e4 * Eigen::Matrix3d::Identity();
+};
+
+}  // namespace structloc::localisation_core

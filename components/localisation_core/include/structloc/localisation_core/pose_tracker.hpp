@@ -1,0 +1,133 @@
+// Tracks the robot pose over time around the Localiser, the way a ROS node's
+// logic would, but without middleware: it keeps an odometry history, checks
+// every input (counted reasons for what it refuses), de-skews scans from the
+// history, runs the position update with a prior carried forward by odometry
+// (covariance growing with the distance driven), and keeps the map -> odom
+// correction so that between scans the pose follows odometry. A lost update
+// never moves the correction: the robot keeps dead reckoning and says so.
+// Run by the TrackingSession (tracking_session.hpp), which the localisation
+// component and the offline replay share; its options come from the
+// <tracking> block of the parameter file.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/odometry_history.hpp"
+
+namespace structloc::localisation_core {
+
+struct TrackerOptions {
+  double odometry_wait_s = 0.1;  // how long a scan may wait for odometry to cover it
+  // Beams this far past the newest odometry are de-skewed by extrapolating it
+  // instead of waiting for the next sample (latency).
+  double max_extrapolation_s = 0.03;
+  double max_future_s = 1.0;                // scans stamped further ahead of odometry are refused
+  double max_odometry_speed_m_s = 5;        // faster odometry steps are jumps and refused
+  double max_odometry_turn_rate_rad_s = 6;  // faster heading changes are jumps and refused
+  // A scan whose beams span longer than this (time_increment x beams) is refused:
+  // no scanner sweeps that slowly, and waiting for its odometry would stall the rest.
+  double max_scan_duration_s = 1.0;
+  double odometry_sigma_xy_per_m = 0.02;     // prior growth per metre driven (1 sigma)
+  double odometry_sigma_theta_per_m = 0.01;  // rad per metre driven
+  double odometry_sigma_theta_per_rad = 0.02;
+  double initial_sigma_xy_m = 0.05;  // uncertainty of a given initial pose
+  double initial_sigma_theta_rad = 0.03;
+  bool deskew = true;  // de-skew scans from the odometry history
+  void Validate() const;
+  // The covariance of a given initial pose (from the initial sigmas).
+  Eigen::Matrix3d InitialCovariance() const;
+};
+
+// Why an input was not used. The counters in TrackerStats are indexed by it.
+enum class Rejection {
+  kEmptyScan,
+  kBeamCountMismatch,
+  kBadScanGeometry,
+  kScanOutOfOrder,
+  kScanInFuture,
+  kNoOdometry,
+  kNoInitialPose,
+  kOdometryNonFinite,
+  kOdometryOutOfOrder,
+  kOdometryJump,
+  kInitialPoseInvalid,
+  kScanTooLong,
+  kTooManyBeams,
+  kLocaliserRejected,
+  kCount
+};
+const char* ToString(Rejection r);
+
+struct TrackerStats {
+  std::array<uint64_t, static_cast<size_t>(Rejection::kCount)> rejected{};
+  uint64_t scans_processed = 0;
+  uint64_t scans_lost = 0;
+  uint64_t scans_not_deskewed = 0;  // processed although odometry did not cover every beam
+  uint64_t Rejected() const;
+};
+
+// One scan as it arrives (LaserScan fields); `declared_count` is the number of
+// beams the geometry implies ((angle_max - angle_min) / increment + 1).
+struct ScanInput {
+  double stamp = 0.0;
+  double angle_min = 0.0, angle_max = 0.0, angle_increment = 0.0, time_increment = 0.0;
+  double range_min = 0.0, range_max = 0.0;
+  const float* ranges = nullptr;
+  size_t count = 0;
+};
+
+struct TrackedPose {
+  double stamp = 0.0;
+  geometry::Pose2D pose;  // robot base, map frame
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+};
+
+class PoseTracker {
+ public:
+  PoseTracker(const world_model::WorldModel& world, const LocaliserOptions& localiser_options,
+              const TrackerOptions& options);
+
+  // Odometry of the robot base in the odom frame.
+  std::optional<Rejection> AddOdometry(double stamp, const geometry::Pose2D& odom_pose);
+  // A map-frame pose at `stamp` (uses the odometry at or before that time).
+  std::optional<Rejection> SetInitialPose(double stamp, const geometry::Pose2D& pose,
+                                          const Eigen::Matrix3d& covariance);
+  bool HasInitialPose() const { return initialised_; }
+
+  enum class ScanVerdict { kProcessed, kWaitForOdometry, kRejected };
+  struct ScanOutcome {
+    ScanVerdict verdict = ScanVerdict::kRejected;
+    Rejection rejection = Rejection::kEmptyScan;  // when kRejected
+    const char* detail = nullptr;                 // the localiser's own reason, if any
+    const LocalisationResult* result = nullptr;   // when kProcessed
+    TrackedPose pose;                             // when kProcessed
+  };
+  // `waited_s`: how long the scan has already waited for odometry.
+  ScanOutcome ProcessScan(const ScanInput& scan, double waited_s);
+
+  // The map -> odom correction and the pose carried forward to the newest odometry.
+  geometry::Pose2D MapToOdom() const { return map_to_odom_; }
+  std::optional<TrackedPose> Latest() const;
+  const TrackerStats& Stats() const { return stats_; }
+  const OdometryHistory& Odometry() const { return history_; }
+  const LocaliserOptions& Options() const { return localiser_.Options(); }
+
+ private:
+  ScanOutcome Reject(Rejection r, const char* detail = nullptr);
+
+  Localiser localiser_;
+  TrackerOptions options_;
+  OdometryHistory history_;
+  BeamMotion motion_;
+  bool initialised_ = false;
+  geometry::Pose2D map_to_odom_;
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Identity();  // at the last update
+  geometry::Pose2D odom_at_last_update_;
+  double last_scan_stamp_ = -1e300;
+  TrackerStats stats_;
+};
+
+}  // namespace structloc::localisation_core

@@ -1,0 +1,35 @@
+// Options of a tracking session (the pose tracker's own and the session's
+// timing), loaded from the <tracking> block of a <localisation_params> file,
+// the same file as the Localiser's options, so that the live component and
+// the offline replay run with one set of parameters.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "structloc/localisation_core/pose_tracker.hpp"
+
+namespace structloc::localisation_core {
+
+struct SessionOptions {
+  TrackerOptions tracker;
+  double state_period_s = 2.0;      // how often the pose is due to be saved
+  double lost_error_after_s = 5.0;  // lost (dead reckoning) this long is an error, not a warning
+  // At most this many scans wait for odometry in in-order scheduling (replay);
+  // beyond it the oldest is processed with what there is.
+  size_t max_pending_scans = 1000;
+
+  // Throws std::invalid_argument naming the broken option ("tracking: ...").
+  void Validate() const;
+};
+
+// Reads the <tracking> block of a <localisation_params> file; every attribute
+// must be present and none may be unknown. Throws config::ConfigError naming
+// file, line and problem.
+SessionOptions LoadSessionOptions(const std::string& path);
+
+// Lists every key of the <tracking> block with its default, unit, valid values
+// and meaning.
+void PrintSessionOptions(std::ostream& out);
+
+}  // namespace structloc::localisation_core

@@ -1,0 +1,23 @@
+// Runs a launch description: starts every node as a child process, forwards
+// SIGINT/SIGTERM, stops all of them when one fails or the duration ends, and
+// reports each node's exit code. DDS-free.
+#pragma once
+
+#include <optional>
+
+#include "structloc/process/launch_file.hpp"
+#include "structloc/process/shutdown_signal.hpp"
+
+namespace structloc::process {
+
+struct LaunchRunOptions {
+  std::optional<double> duration_s;  // stop everything after this long; none = until a signal
+  double stop_grace_s = 5.0;         // SIGTERM -> SIGKILL grace per node
+};
+
+// Returns 0 when every node stopped cleanly, otherwise 1. `shutdown` must have
+// been constructed at the start of main().
+int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
+              ShutdownSignal& shutdown);
+
+}  // namespace structloc::process

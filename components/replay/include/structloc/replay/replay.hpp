@@ -1,0 +1,69 @@
+// Offline replay of a CARMEN log through the same TrackingSession (scans in
+// order, each once odometry covers it) as the localisation component: one TUM line per scan, a
+// summary (scans used and rejected by reason, features matched, lost periods, time per update),
+// and, given ground truth, the error of the estimate and of odometry alone.
+// --no-map passes odometry through while still parsing, prefiltering and
+// line-fitting every scan, for logs without a world model. DDS-free.
+//
+// Every input is read and checked before any output is opened; outputs are
+// written to temporary files renamed only when the run succeeded, and never
+// over an input. A run that localises no scan is an error.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "structloc/log_formats/carmen_reader.hpp"
+#include "structloc/replay/trajectory_error.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::replay {
+
+struct ReplayOptions {
+  std::string map_path;                          // world model (unless no_map)
+  std::string log_path;                          // CARMEN log (plain or .gz)
+  std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot
+  std::string out_tum;                           // estimate, one line per scan
+  std::string params_path;  // localisation parameters (default: built-in defaults)
+  std::string truth_path;   // optional TUM ground truth
+  std::string plot_path;    // optional picture (.png)
+  std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
+  bool no_map = false;
+  log_formats::CarmenLimits limits;       // beams per scan and lines per log
+  world_model::WorldLimits world_limits;  // walls per map, coordinate bounds
+  // Called every few percent of the log with the scans done so far.
+  std::function<void(size_t scans, double fraction)> progress;
+};
+
+struct ReplayReport {
+  bool no_map = false;
+  log_formats::CarmenStats log;
+  size_t scans_used = 0;
+  std::map<std::string, size_t> scans_rejected;  // reason -> count
+  size_t scans_lost = 0;
+  size_t lost_periods = 0;
+  double lost_duration_s = 0.0;
+  double mean_features = 0.0;
+  double median_update_us = 0.0;
+  double p99_update_us = 0.0;
+  geometry::Pose2D sensor_mount;  // derived from the log when it has laser and robot poses
+  std::optional<TrajectoryError> estimate_error;
+  std::optional<TrajectoryError> odometry_error;
+  std::vector<log_formats::StampedPose> estimate;
+};
+
+// Throws std::runtime_error (or config::ConfigError) with a message a user can
+// act on when an input is unusable, no scan could be localised, or an output
+// could not be written; outputs are then left as they were.
+ReplayReport RunReplay(const ReplayOptions& options);
+
+// The summary as printed by "structloc replay".
+std::string FormatReport(const ReplayReport& report);
+// Its first part: lines read, malformed lines with their reasons, scans used
+// and rejected by reason (also the explanation when no scan was usable).
+std::string FormatInputSummary(const ReplayReport& report);
+
+}  // namespace structloc::replay

@@ -1,0 +1,43 @@
+// Which walls, corners and cylinders a sensor at a given pose can see: within
+// range and field of view, not hidden behind other walls or pillars, and (for
+// walls) long enough and not seen too obliquely to yield line fits. Only
+// these are expected by the localisation (thesis 3.5.3).
+#pragma once
+
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+#include "structloc/world_model/ray_cast.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::world_model {
+
+struct VisibilityOptions {
+  double min_range_m = 0.5;  // sensor's usable range
+  double max_range_m = 4.0;
+  double field_of_view_rad = 2.0 * geometry::kPi;  // centred on the sensor's x axis
+  double sample_spacing_m = 0.05;                  // wall sampling step
+  double min_visible_length_m = 0.3;               // shorter visible parts are not expected
+  double max_incidence_rad = 75.0 * geometry::kPi / 180.0;  // grazing views do not count
+  double occlusion_margin_m = 0.02;
+};
+
+struct VisibleWall {
+  int index = 0;  // into WorldModel::Walls()
+  double visible_length_m = 0;
+  Eigen::Vector2d first{0, 0};  // visible extent along the wall (map frame)
+  Eigen::Vector2d last{0, 0};
+};
+
+struct Visibility {
+  std::vector<VisibleWall> walls;
+  std::vector<int> corners;    // indices into WorldModel::Corners()
+  std::vector<int> cylinders;  // indices into WorldModel::Cylinders()
+};
+
+// `scene` must hold the world's own surfaces (Scene::FromWorld) and may hold more.
+// Clears and fills `out` (no allocation once its vectors have grown).
+void ComputeVisibility(const WorldModel& world, const Scene& scene, const geometry::Pose2D& sensor,
+                       const VisibilityOptions& options, Visibility& out);
+
+}  // namespace structloc::world_model
