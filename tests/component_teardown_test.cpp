@@ -13,6 +13,7 @@
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/localisation/localisation_component.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
+#include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -118,6 +119,13 @@ TEST(ComponentTeardown, NoCallbackReachesASubscriberOnceItIsDestroyed) {
 TEST(ComponentTeardown, ALocalisationComponentDestroyedWhileScansArriveDoesNotCrash) {
   dds_common::Node node(testing::TestNodeOptions("localisation", kDomain));
   Flood flood(true);
+  // Statuses are published once per tracked scan: proof that scans were being
+  // processed when the component went away.
+  std::atomic<int> statuses{0};
+  const auto status_subscription =
+      node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
+          dds_common::topics::kStatus,
+          [&statuses](const structloc_msgs::msg::LocalisationStatus&) { ++statuses; });
   const std::string params = testing::SourcePath("maps/params/office_sick.xml");
   for (int round = 0; round < 3; ++round) {
     localisation::LocalisationComponentOptions options;
@@ -132,13 +140,16 @@ TEST(ComponentTeardown, ALocalisationComponentDestroyedWhileScansArriveDoesNotCr
         [&] { return flood.MatchedOdometryReaders() > 0 && flood.MatchedScanReaders() > 0; },
         std::chrono::seconds(20)))
         << "round " << round << ": the component's readers never matched";
-    for (int step = 0; step < 60; ++step) {
-      component->Step();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    const int before = statuses;
+    ASSERT_TRUE(testing::WaitUntil(
+        [&] {
+          component->Step();
+          return statuses > before + 5;
+        },
+        std::chrono::seconds(30)))
+        << "round " << round << ": no scan was processed";
     component.reset();  // mid-stream, without Stop() first
   }
-  SUCCEED();
 }
 
 }  // namespace

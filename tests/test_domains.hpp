@@ -27,6 +27,8 @@ inline constexpr int kBadInputConfig = 72;
 inline constexpr int kBadInputCalibration = 73;
 inline constexpr int kDomainPorts = 74;
 inline constexpr int kComponentTeardown = 81;
+// tests/install/install_test.sh (a script: tests/CMakeLists.txt passes it 82).
+inline constexpr int kInstallTest = 82;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -45,6 +47,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kBadInputCalibration,
                                     kDomainPorts,
                                     kComponentTeardown,
+                                    kInstallTest,
                                     kLatencyBenchmark};
 
 constexpr bool AllDistinctAndSafe() {

@@ -1,5 +1,6 @@
 // structloc_calibration: entry point of the odometry-calibration component.
 #include "structloc/calibration/calibration_component.hpp"
+#include "structloc/kinematics/robot_parameters.hpp"
 
 int main(int argc, char** argv) {
   namespace cal = structloc::calibration;
@@ -36,5 +37,6 @@ int main(int argc, char** argv) {
         }
         o.Validate();
         return std::make_unique<cal::CalibrationComponent>(node, o);
-      });
+      },
+      structloc::kinematics::PrintRobotParameters);
 }

@@ -49,14 +49,24 @@ double WallClockSeconds() {
 }
 
 int RunComponent(int argc, char** argv, const std::string& name,
-                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory) {
+                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory,
+                 const ParameterListing& listing) {
   process::ShutdownSignal shutdown;  // before any DDS thread exists
   auto specs = StandardOptions();
   specs.insert(specs.end(), extra_options.begin(), extra_options.end());
+  if (listing) {
+    specs.push_back({"print-params", false,
+                     "list every key of the parameter file(s) with default, unit, range and "
+                     "meaning, and exit"});
+  }
   try {
     const config::CommandLine cli(argc, argv, 1, specs);
     if (cli.Has("help")) {
       std::cout << "usage: " << argv[0] << " [options]\n" << config::CommandLine::Usage(specs);
+      return 0;
+    }
+    if (listing && cli.Has("print-params")) {
+      listing(std::cout);
       return 0;
     }
     NodeOptions options;

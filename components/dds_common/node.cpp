@@ -45,6 +45,18 @@ Node::Node(const NodeOptions& options)
   }
 }
 
+void Node::ReleaseCallbacks() {
+  callbacks_held_ = false;
+  std::vector<std::weak_ptr<DetachableListener>> live;
+  for (const auto& weak : listeners_) {
+    if (auto listener = weak.lock()) {
+      listener->TakeWaiting();
+      live.push_back(weak);
+    }
+  }
+  listeners_ = std::move(live);
+}
+
 Node::~Node() {
   if (participant_ != nullptr) {
     participant_->delete_contained_entities();

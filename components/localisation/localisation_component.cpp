@@ -51,7 +51,6 @@ LocalisationComponent::LocalisationComponent(
     std::cout << "localisation: waiting for an initial pose on "
               << dds_common::topics::kInitialPose.name << std::endl;
   }
-  worker_ = std::thread([this] { Worker(); });
   // The listeners only copy into the inbox and notify.
   scan_subscription_ = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
       dds_common::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) {
@@ -72,6 +71,8 @@ LocalisationComponent::LocalisationComponent(
             in.pose = p.pose;
             inbox_.OfferInitialPose(in);
           });
+  // Started last: if a subscription above throws, no thread is left running.
+  worker_ = std::thread([this] { Worker(); });
 }
 
 LocalisationComponent::~LocalisationComponent() {

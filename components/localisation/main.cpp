@@ -4,7 +4,10 @@
 #include <iostream>
 
 #include "structloc/config/strict_number.hpp"
+#include "structloc/dds_common/topics.hpp"
 #include "structloc/localisation/localisation_component.hpp"
+#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/tracking_session_options.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 
 int main(int argc, char** argv) {
@@ -16,13 +19,17 @@ int main(int argc, char** argv) {
        "localisation parameters (default: maps/params/office_sick.xml in structloc's data folder)"},
       {"initial-pose", true,
        "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
-       "it stands, or publish rt/initialpose with a stamp)"},
+       "it stands, or publish " +
+           structloc::dds_common::topics::kInitialPose.name + " with a stamp)"},
       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
       {"max-walls", true,
        "refuse maps with more walls than this (default " +
            std::to_string(structloc::world_model::WorldLimits::kDefaultMaxWalls) + ")"}};
-  const auto frame_options = structloc::dds_common::FrameIdOptions();
-  specs.insert(specs.end(), frame_options.begin(), frame_options.end());
+  // Its messages are in the map, odom and laser frames; the base frame is the
+  // simulator's (or the robot's) to name.
+  for (auto& option : structloc::dds_common::FrameIdOptions()) {
+    if (option.name != "base-frame") specs.push_back(std::move(option));
+  }
   return structloc::dds_common::RunComponent(
       argc, argv, "localisation", specs,
       [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
@@ -62,5 +69,9 @@ int main(int argc, char** argv) {
         }
         return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params, session,
                                                             options);
+      },
+      [](std::ostream& out) {
+        structloc::localisation_core::PrintLocaliserOptions(out);
+        structloc::localisation_core::PrintSessionOptions(out);
       });
 }

@@ -201,7 +201,11 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
     if (!odom) return Rejected(waiting, Rejection::kNoOdometry);
     if (pending_pose_ && pending_pose_->when == InitialPoseWhen::kAtFirstScan) {
       // The log's initial pose is that of its first laser line.
-      tracker_->SetInitialPose(scan.geometry.stamp, pending_pose_->pose, pending_pose_->covariance);
+      if (auto r = tracker_->SetInitialPose(scan.geometry.stamp, pending_pose_->pose,
+                                            pending_pose_->covariance)) {
+        // Said once; every later scan is then rejected as having no initial pose.
+        NoteProblem(std::string("initial pose rejected: ") + ToString(*r), waiting.arrived_s);
+      }
       pending_pose_.reset();
     }
   }

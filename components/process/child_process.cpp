@@ -10,10 +10,12 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 extern char** environ;
@@ -56,9 +58,11 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
                            Output output) {
   int fd = -1;
   if (output == Output::kCapture) {
-    char log_template[] = "/tmp/structloc_child_XXXXXX";
-    fd = mkstemp(log_template);
-    if (fd < 0) throw std::runtime_error("cannot create a temp file for " + executable);
+    const char* tmpdir = std::getenv("TMPDIR");
+    std::string log_template = std::string(tmpdir != nullptr && *tmpdir != '\0' ? tmpdir : "/tmp") +
+                               "/structloc_child_XXXXXX";
+    fd = mkstemp(log_template.data());
+    if (fd < 0) throw std::runtime_error("cannot create a temp file in " + log_template);
     log_path_ = log_template;
   }
   std::vector<std::string> all{executable};

@@ -1,4 +1,5 @@
 // structloc_simulator: entry point of the simulator component.
+#include "structloc/simulation_core/scenario_options.hpp"
 #include "structloc/simulator/simulator_component.hpp"
 
 int main(int argc, char** argv) {
@@ -36,5 +37,6 @@ int main(int argc, char** argv) {
         if (options.wait_for_subscribers < 0)
           throw ConfigError("--wait-for-subscribers must be >= 0");
         return std::make_unique<structloc::simulator::SimulatorComponent>(node, scenario, options);
-      });
+      },
+      structloc::simulation_core::PrintScenarioOptions);
 }

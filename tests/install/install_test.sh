@@ -4,10 +4,14 @@
 # runs the installed "structloc simulate" and "structloc replay" on the shipped
 # scenario, checks that no build or source path leaks into --help, and builds
 # and runs a tiny consumer project against find_package(structloc).
-# Usage: install_test.sh BUILD_DIR SOURCE_DIR. Removes everything it created.
+# The installed simulator also runs once with no file options, so that it must
+# find its default scenario and QoS profiles beside itself (DDS on DOMAIN,
+# loopback only).
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR DOMAIN. Removes everything it created.
 set -euo pipefail
 build_dir=$(cd "$1" && pwd)
 source_dir=$(cd "$2" && pwd)
+domain="$3"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -39,6 +43,11 @@ for program in structloc structloc_localisation structloc_simulator structloc_ca
 done
 
 share="$prefix/share/structloc"
+env -u STRUCTLOC_SHARE_DIR "$prefix/bin/structloc_simulator" --domain "$domain" --time-scale 0 \
+  --exit-when-done >"$work/simulator.txt" 2>&1 ||
+  { cat "$work/simulator.txt" >&2; echo "install_test: the installed simulator failed" >&2; exit 1; }
+grep -q "office_people" "$work/simulator.txt" ||
+  { cat "$work/simulator.txt" >&2; echo "install_test: default scenario not used" >&2; exit 1; }
 "$prefix/bin/structloc" simulate --scenario "$share/maps/scenarios/office_people.xml" \
   --out "$work/run" >/dev/null
 "$prefix/bin/structloc" replay --map "$share/maps/office_floor.xml" --log "$work/run/run.clf" \

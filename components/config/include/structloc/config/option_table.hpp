@@ -233,8 +233,10 @@ class OptionTable {
         }
         // Checked as read, before narrowing to T (4294967328 must not become 32).
         const long long value = reader.Integer(name.c_str());
-        if (!range.Contains(static_cast<double>(value)) || value < static_cast<long long>(lo) ||
-            value > static_cast<long long>(hi)) {
+        // Compared as doubles: an unsigned 64-bit bound does not fit a long long.
+        if (!range.Contains(static_cast<double>(value)) ||
+            static_cast<double>(value) < static_cast<double>(lo) ||
+            static_cast<double>(value) > static_cast<double>(hi)) {
           reader.Fail(table.section_ + ": " +
                       table.OutOfRange(name, std::to_string(value), range.Describe(), unit_name));
         }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,10 +40,16 @@ std::vector<config::OptionSpec> FrameIdOptions();
 // Reads them; throws config::ConfigError for an empty or blank frame id.
 FrameIds FrameIdsFrom(const config::CommandLine& cli);
 
-// Parses the command line, builds the node and runs the component.
+// Lists the keys of the component's parameter file(s) (declared once, see
+// structloc/config/option_table.hpp).
+using ParameterListing = std::function<void(std::ostream&)>;
+
+// Parses the command line, builds the node and runs the component. With a
+// `listing`, "--print-params" prints it and exits before any DDS entity exists.
 // Returns the process exit code (0 clean stop, 2 configuration error, 1 other failure).
 int RunComponent(int argc, char** argv, const std::string& name,
-                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory);
+                 std::vector<config::OptionSpec> extra_options, const ComponentFactory& factory,
+                 const ParameterListing& listing = nullptr);
 
 // Wall-clock seconds since the epoch, for stamps of live data.
 double WallClockSeconds();

@@ -85,20 +85,23 @@ class Node {
   [[nodiscard]] Subscription Subscribe(
       const TopicSpec& topic, std::function<void(const typename PubSubType::type&)> callback) {
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
-    auto listener = std::make_unique<CallbackListener<PubSubType>>(
+    auto listener = std::make_shared<CallbackListener<PubSubType>>(
         options_.name, topic.name, *monitor_, callbacks_held_, std::move(callback));
     auto* reader = subscriber_->create_datareader(
         dds_topic, qos_.Reader(*subscriber_, topic.qos_profile), listener.get());
     if (reader == nullptr) throw std::runtime_error("cannot create reader for " + topic.name);
+    listener->Attach(reader);
     endpoints_.push_back("subscribes " + Describe(topic, dds_topic->get_type_name()));
-    return Subscription(subscriber_, reader, std::move(listener));
+    listeners_.push_back(listener);
+    return Subscription(subscriber_, reader, std::move(listener), alive_);
   }
 
   // While held, arriving samples wait in their readers and no callback runs:
   // a component is built with callbacks held, so that none reaches an object
-  // whose constructor has not finished.
+  // whose constructor has not finished. Releasing takes what arrived meanwhile
+  // (a one-shot initial pose, a latched result), on the calling thread.
   void HoldCallbacks() { callbacks_held_ = true; }
-  void ReleaseCallbacks() { callbacks_held_ = false; }
+  void ReleaseCallbacks();
 
   // One line per endpoint: direction, topic, DDS type name, QoS profile.
   std::string EndpointReport() const;
@@ -142,6 +145,11 @@ class Node {
   QosProfiles qos_;
   std::unique_ptr<PeerMonitor> monitor_;  // outlives the participant that calls it
   std::atomic<bool> callbacks_held_{false};
+  // The listeners of live subscriptions, for ReleaseCallbacks().
+  std::vector<std::weak_ptr<DetachableListener>> listeners_;
+  // Expires with the Node, so that a subscription outliving it does not touch
+  // the deleted reader.
+  std::shared_ptr<const bool> alive_ = std::make_shared<const bool>(true);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

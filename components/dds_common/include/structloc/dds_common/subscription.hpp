@@ -3,7 +3,8 @@
 // handle. Destroying it (or Reset()) waits for a callback that is running,
 // makes sure none starts afterwards and deletes the reader, so an object that
 // holds its subscriptions as members can never be called back once it is
-// being destroyed. The Node that created a subscription must outlive it.
+// being destroyed. A subscription that outlives its Node only lets go of its
+// listener: the Node already deleted the reader with its participant.
 #pragma once
 
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -27,15 +28,21 @@ class DetachableListener : public eprosima::fastdds::dds::DataReaderListener {
  public:
   // After this returns the callback is not running and never runs again.
   virtual void Detach() = 0;
+  // Takes the samples that arrived while callbacks were held (see Node).
+  virtual void TakeWaiting() = 0;
 };
 
 class Subscription {
  public:
   Subscription() = default;
+  // `node_alive` expires when the Node that made the reader is destroyed.
   Subscription(eprosima::fastdds::dds::Subscriber* subscriber,
                eprosima::fastdds::dds::DataReader* reader,
-               std::unique_ptr<DetachableListener> listener)
-      : subscriber_(subscriber), reader_(reader), listener_(std::move(listener)) {}
+               std::shared_ptr<DetachableListener> listener, std::weak_ptr<const bool> node_alive)
+      : subscriber_(subscriber),
+        reader_(reader),
+        listener_(std::move(listener)),
+        node_alive_(std::move(node_alive)) {}
   ~Subscription() { Reset(); }
   Subscription(Subscription&& other) noexcept { *this = std::move(other); }
   Subscription& operator=(Subscription&& other) noexcept {
@@ -44,6 +51,7 @@ class Subscription {
       subscriber_ = other.subscriber_;
       reader_ = other.reader_;
       listener_ = std::move(other.listener_);
+      node_alive_ = std::move(other.node_alive_);
       other.subscriber_ = nullptr;
       other.reader_ = nullptr;
     }
@@ -55,7 +63,7 @@ class Subscription {
   // Stops the callbacks (waiting for one in flight) and deletes the reader.
   void Reset() {
     if (listener_) listener_->Detach();
-    if (reader_ != nullptr) {
+    if (reader_ != nullptr && !node_alive_.expired()) {
       reader_->set_listener(nullptr);
       subscriber_->delete_datareader(reader_);
     }
@@ -68,12 +76,14 @@ class Subscription {
  private:
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
-  std::unique_ptr<DetachableListener> listener_;
+  std::shared_ptr<DetachableListener> listener_;
+  std::weak_ptr<const bool> node_alive_;
 };
 
 // Calls `callback` on a DDS thread for every valid sample of a PubSubType
 // topic; exceptions it throws are caught and logged so one bad sample cannot
-// stop the component. While `held` is set, samples wait in the reader.
+// stop the component. While `held` is set, samples wait in the reader until
+// TakeWaiting().
 template <class PubSubType>
 class CallbackListener : public DetachableListener {
  public:
@@ -94,8 +104,13 @@ class CallbackListener : public DetachableListener {
     std::lock_guard<std::mutex> lock(mutex_);  // waits for a running callback
     callback_ = nullptr;
   }
+  // The reader this listener serves, for TakeWaiting().
+  void Attach(eprosima::fastdds::dds::DataReader* reader) { reader_ = reader; }
+  void TakeWaiting() override {
+    if (reader_ != nullptr) on_data_available(reader_);
+  }
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
-    if (held_) return;  // taken with the next sample after the hold ends
+    if (held_) return;  // taken by TakeWaiting() when the hold ends
     typename PubSubType::type sample;
     eprosima::fastdds::dds::SampleInfo info;
     std::lock_guard<std::mutex> lock(mutex_);
@@ -116,6 +131,7 @@ class CallbackListener : public DetachableListener {
   std::string topic_;
   PeerMonitor& monitor_;
   const std::atomic<bool>& held_;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::mutex mutex_;
   std::function<void(const typename PubSubType::type&)> callback_;
 };

@@ -2,8 +2,8 @@
 // localiser matches (walls, corners, cylinders, ...) is one FeatureExtractor.
 // It sees the expected features and the sliding line fits of one scan and hands
 // back solver measurements with their covariance and one typed match per
-// feature found. The localiser runs the extractors of the parameter file in
-// order, solves once over all measurements and reports per kind, so that
+// feature found. The localiser runs the enabled extractors in the fixed order
+// of FeatureKinds() (walls first), solves once over all measurements and reports per kind, so that
 // results, messages and timings need no change for a new kind.
 #pragma once
 

@@ -34,8 +34,8 @@ struct FeatureKind {
 // The known kinds, in the order their extractors run.
 std::vector<FeatureKind> FeatureKinds();
 
-// The extractors enabled in `options`, in the order of the parameter file's
-// sections (walls first: later kinds may read the walls' measurements).
+// The extractors enabled in `options`, in the order of FeatureKinds() (walls
+// first: later kinds may read the walls' measurements).
 std::vector<std::unique_ptr<FeatureExtractor>> MakeFeatureExtractors(
     const LocaliserOptions& options, const ExtractorCapacity& capacity);
 

@@ -57,7 +57,7 @@ struct LocalisationResult {
   LostReason lost_reason = LostReason::kNone;
   Eigen::Vector3d weak_direction = Eigen::Vector3d::Zero();  // least determined (x, y, theta)
   double quality = 0.0;                                      // 0 .. 1, see Localiser::Update
-  // One entry per enabled kind, in the order of the parameter file.
+  // One entry per enabled kind, in the order of FeatureKinds().
   std::vector<FeatureKindResult> features;
   PrefilterStats prefilter;
   StepTimes times;
@@ -92,7 +92,7 @@ class Localiser {
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.
   void ExtractFeatures(const geometry::Pose2D& sensor_prior);
-  // Returns the solved sensor pose, or the prior when lost.
+  // Sets sensor_pose / sensor_cov to the solved sensor pose, or to the prior when lost.
   void SolveAndGate(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov,
                     geometry::Pose2D& sensor_pose, Eigen::Matrix3d& sensor_cov);
   void CheckObservability();
