@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "structloc/calibration/calibration_conversions.hpp"
+#include "structloc/calibration_core/calibration_problem.hpp"
 #include "structloc/config/output_file.hpp"
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
@@ -146,11 +147,9 @@ void CalibrationComponent::Estimate(bool stopped_early) {
        << encoders.size() << " encoder samples and " << fixes.size() << " fixes";
   for (int k = 0; k < calibration_core::kParameterCount; ++k) {
     if (!report.estimated[static_cast<size_t>(k)]) continue;
-    const auto& p = report.parameters;
-    const double v[] = {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
-                        p.sensor.x,     p.sensor.y,      p.sensor.theta};
     text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
-         << " " << v[k] << " +- " << report.standard_deviation[static_cast<size_t>(k)];
+         << " " << calibration_core::ValuesOf(report.parameters)[static_cast<size_t>(k)] << " +- "
+         << report.standard_deviation[static_cast<size_t>(k)];
   }
   for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
   if (!report.success && !report.failure.empty()) text << "\n  FAILED: " << report.failure;

@@ -1,6 +1,7 @@
 // Calibration message conversions (see header).
 #include "structloc/calibration/calibration_conversions.hpp"
 
+#include "structloc/calibration_core/calibration_problem.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 
 namespace structloc::calibration {
@@ -42,8 +43,7 @@ structloc_msgs::msg::CalibrationResult ToCalibrationResult(
   msg.header().stamp(dds_common::ToRosTime(stamp));
   msg.success(r.success);
   const auto& p = r.parameters;
-  msg.parameters(ToMsg({p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
-                        p.sensor.x, p.sensor.y, p.sensor.theta}));
+  msg.parameters(ToMsg(calibration_core::ValuesOf(p)));
   msg.standard_deviations(ToMsg(r.standard_deviation));
   msg.residual_rms_before(r.residual_rms_before);
   msg.residual_rms_after(r.residual_rms_after);

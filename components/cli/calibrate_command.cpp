@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "structloc/calibration_core/calibration_problem.hpp"
 #include "structloc/calibration_core/odometry_calibration.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/output_file.hpp"
@@ -16,16 +17,11 @@
 namespace structloc::cli {
 namespace {
 
-std::array<double, calibration_core::kParameterCount> Values(const kinematics::RobotParameters& p) {
-  return {p.wheel_radius, p.axle_distance, p.steering_offset, p.steering_rad_per_tick,
-          p.sensor.x,     p.sensor.y,      p.sensor.theta};
-}
-
 void PrintReport(const calibration_core::CalibrationReport& report,
                  const calibration_core::CalibrationOptions& options,
                  const kinematics::RobotParameters& nominal) {
-  const auto nominal_values = Values(nominal);
-  const auto values = Values(report.parameters);
+  const auto nominal_values = calibration_core::ValuesOf(nominal);
+  const auto values = calibration_core::ValuesOf(report.parameters);
   const bool estimated_any =
       std::find(report.estimated.begin(), report.estimated.end(), true) != report.estimated.end();
   for (int k = 0; k < calibration_core::kParameterCount && report.iterations > 0; ++k) {
