@@ -135,69 +135,21 @@ void LocalisationComponent::Step() {
   if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);
 }
 
-dds_common::HealthReport LocalisationComponent::Health(double now) {
-  dds_common::HealthReport report;
-  // A source silent for a while is a warning; for long, an error.
-  auto silence = [&](double since, const std::string& what) {
-    const double silent = now - since;
-    report.level = silent > options_.silent_error_after_s ? dds_common::HealthLevel::kError
-                                                          : dds_common::HealthLevel::kWarn;
-    report.message = what + " for " + std::to_string(silent).substr(0, 4) + " s";
-  };
-  const double last_scan_s = inbox_.LastScanArrival();
-  const double last_odometry_s = inbox_.LastOdometryArrival();
-  const auto peer_problems = node_.PeerProblems();
-  if (!peer_problems.empty()) {
-    report.level = dds_common::HealthLevel::kError;
-    report.message = peer_problems.front();
-  } else if (last_odometry_s == 0.0) {
-    silence(started_s_, "no odometry on " + dds_common::topics::kOdom.name + " yet");
-  } else if (!session_.HasInitialPose()) {
-    report.level = dds_common::HealthLevel::kWarn;
-    report.message = "no initial pose: publish one on " + dds_common::topics::kInitialPose.name +
-                     " or pass --initial-pose";
-  } else if (now - std::max(last_scan_s, started_s_) > options_.scan_timeout_s) {
-    silence(std::max(last_scan_s, started_s_),
-            last_scan_s == 0.0 ? "no scans on " + dds_common::topics::kScan.name + " yet"
-                               : "no scans on " + dds_common::topics::kScan.name);
-  } else if (now - last_odometry_s > options_.scan_timeout_s) {
-    silence(last_odometry_s, "no odometry on " + dds_common::topics::kOdom.name);
-  } else if (session_.Lost()) {
-    // Dead reckoning for a while is normal (a corridor, a crowd); for long it is not.
-    report.level = session_.LostTooLong(now) ? dds_common::HealthLevel::kError
-                                             : dds_common::HealthLevel::kWarn;
-    report.message = "lost (dead reckoning) for " +
-                     std::to_string(session_.LostFor(now)).substr(0, 4) +
-                     " s: " + session_.LostReason();
-  } else {
-    report.message = "localised";
-  }
-  return report;
-}
-
 void LocalisationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
-  std::unique_lock<std::mutex> lock(session_mutex_);
-  dds_common::HealthReport report = Health(now);
-  const auto stats = session_.Stats();
-  const auto problem = session_.LastProblem(now, options_.problem_hold_s);
-  report.values = {
-      {"scans_processed", std::to_string(stats.scans_processed)},
-      {"scans_lost", std::to_string(stats.scans_lost)},
-      {"scans_dropped", std::to_string(session_.Dropped())},
-      {"scans_rejected", std::to_string(stats.Rejected())},
-      {"scans_not_deskewed", std::to_string(stats.scans_not_deskewed)},
-      {"quality", std::to_string(session_.LastQuality())},
-      {"last_problem", problem ? problem->first : ""},
-      {"last_problem_age_s", problem ? std::to_string(problem->second).substr(0, 4) : ""}};
-  lock.unlock();
-  for (size_t i = 0; i < stats.rejected.size(); ++i) {
-    if (stats.rejected[i] > 0) {
-      report.values.emplace_back(
-          std::string("rejected: ") +
-              localisation_core::ToString(static_cast<localisation_core::Rejection>(i)),
-          std::to_string(stats.rejected[i]));
-    }
+  localisation_core::HealthInputs in;
+  in.now_s = now;
+  in.started_s = started_s_;
+  in.last_scan_s = inbox_.LastScanArrival();
+  in.last_odometry_s = inbox_.LastOdometryArrival();
+  in.peer_problems = node_.PeerProblems();
+  in.scan_topic = dds_common::topics::kScan.name;
+  in.odometry_topic = dds_common::topics::kOdom.name;
+  in.initial_pose_topic = dds_common::topics::kInitialPose.name;
+  dds_common::HealthReport report;
+  {
+    std::lock_guard<std::mutex> lock(session_mutex_);
+    report = ToHealthReport(localisation_core::AssessHealth(session_, in));
   }
   if (const uint64_t overflow = inbox_.OdometryOverflow()) {
     report.values.emplace_back("odometry_dropped", std::to_string(overflow));

@@ -145,4 +145,22 @@ structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::Locali
   return s;
 }
 
+dds_common::HealthReport ToHealthReport(const localisation_core::SessionHealth& health) {
+  dds_common::HealthReport report;
+  switch (health.level) {
+    case localisation_core::HealthLevel::kOk:
+      report.level = dds_common::HealthLevel::kOk;
+      break;
+    case localisation_core::HealthLevel::kWarn:
+      report.level = dds_common::HealthLevel::kWarn;
+      break;
+    case localisation_core::HealthLevel::kError:
+      report.level = dds_common::HealthLevel::kError;
+      break;
+  }
+  report.message = health.message;
+  report.values = health.values;
+  return report;
+}
+
 }  // namespace structloc::localisation

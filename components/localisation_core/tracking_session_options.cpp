@@ -45,6 +45,12 @@ config::OptionFile<SessionOptions> SessionOptionFile() {
            "how often the pose is due to be saved");
   t.Number("lost_error_after_s", &S::lost_error_after_s, Range::NonNegative(), "s",
            "lost (dead reckoning) this long is an error, not a warning");
+  t.Number("scan_timeout_s", &S::scan_timeout_s, Range::Positive(), "s",
+           "health is WARN without scans (or odometry) this long");
+  t.Number("silent_error_after_s", &S::silent_error_after_s, Range::Positive(), "s",
+           "health is ERROR when an input stays silent this long");
+  t.Number("problem_hold_s", &S::problem_hold_s, Range::NonNegative(), "s",
+           "a rejected input stays in the health report this long");
   t.Number("max_pending_scans", &S::max_pending_scans, Range::Closed(1, 1000000), "",
            "scans waiting for odometry in in-order scheduling (replay)");
   std::set<std::string> localiser_sections;

@@ -29,10 +29,7 @@
 namespace structloc::localisation {
 
 struct LocalisationComponentOptions {
-  double scan_timeout_s = 0.5;  // diagnostics go WARN without scans (or odometry) for this long
-  double silent_error_after_s = 5.0;  // ... and ERROR when a source stays silent this long
-  double problem_hold_s = 10.0;       // a rejected input is reported in diagnostics this long
-  std::string state_file;             // saved pose ("" = none)
+  std::string state_file;                        // saved pose ("" = none)
   std::optional<geometry::Pose2D> initial_pose;  // from the command line
   dds_common::FrameIds frames;                   // stamped into every output
 };
@@ -50,7 +47,6 @@ class LocalisationComponent : public dds_common::Component {
  private:
   void Worker();
   void PublishDiagnostics(double now);
-  dds_common::HealthReport Health(double now);  // caller holds session_mutex_
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;

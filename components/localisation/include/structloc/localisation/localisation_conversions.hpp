@@ -7,8 +7,10 @@
 #include "geometry_msgs/msg/PoseWithCovarianceStamped.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "sensor_msgs/msg/LaserScan.h"
+#include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/localisation_core/pose_tracker.hpp"
+#include "structloc/localisation_core/session_health.hpp"
 #include "structloc/localisation_core/session_scan.hpp"
 #include "structloc_msgs/msg/LocalisationStatus.h"
 #include "structloc_msgs/msg/ScanFeatures.h"
@@ -41,5 +43,8 @@ structloc_msgs::msg::LocalisationStatus ToStatus(
     const localisation_core::LocalisationResult& result,
     const localisation_core::TrackerStats& stats, uint64_t dropped, double stamp,
     const dds_common::FrameIds& frames);
+
+// The core's health assessment as the DDS layer's diagnostics report.
+dds_common::HealthReport ToHealthReport(const localisation_core::SessionHealth& health);
 
 }  // namespace structloc::localisation

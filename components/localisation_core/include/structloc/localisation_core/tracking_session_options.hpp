@@ -13,8 +13,11 @@ namespace structloc::localisation_core {
 
 struct SessionOptions {
   TrackerOptions tracker;
-  double state_period_s = 2.0;      // how often the pose is due to be saved
-  double lost_error_after_s = 5.0;  // lost (dead reckoning) this long is an error, not a warning
+  double state_period_s = 2.0;        // how often the pose is due to be saved
+  double lost_error_after_s = 5.0;    // lost (dead reckoning) this long is an error, not a warning
+  double scan_timeout_s = 0.5;        // health is WARN without scans (or odometry) this long
+  double silent_error_after_s = 5.0;  // ... and ERROR when an input stays silent this long
+  double problem_hold_s = 10.0;       // a rejected input stays in the health report this long
   // At most this many scans wait for odometry in in-order scheduling (replay);
   // beyond it the oldest is processed with what there is.
   size_t max_pending_scans = 1000;
