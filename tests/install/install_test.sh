@@ -7,11 +7,13 @@
 # The installed simulator also runs once with no file options, so that it must
 # find its default scenario and QoS profiles beside itself (DDS on DOMAIN,
 # loopback only).
-# Usage: install_test.sh BUILD_DIR SOURCE_DIR DOMAIN. Removes everything it created.
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR DOMAIN [CONSUMER_LINK_FLAGS].
+# Removes everything it created.
 set -euo pipefail
 build_dir=$(cd "$1" && pwd)
 source_dir=$(cd "$2" && pwd)
 domain="$3"
+consumer_link_flags="${4:-}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -56,7 +58,7 @@ grep -q "office_people" "$work/simulator.txt" ||
 [[ -s "$work/replayed.tum" ]] || { echo "install_test: replay wrote no trajectory" >&2; exit 1; }
 
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
-  >/dev/null
+  -DCMAKE_EXE_LINKER_FLAGS="$consumer_link_flags" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer"
 echo "install_test: installed tree, relocated prefix, replay and find_package(structloc) all work"
