@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
@@ -58,7 +59,6 @@ class Replayer {
       }
     }
     reader_ = std::make_unique<log_formats::CarmenReader>(o.log_path, o.limits);
-    StartSession();
     const std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
     out_ = std::make_unique<log_formats::TumWriter>(o.out_tum, inputs);
     if (!o.fixes_path.empty()) {
@@ -74,14 +74,16 @@ class Replayer {
     while (reader_->Next(r)) {
       ++records;
       if (r.kind == log_formats::CarmenRecord::Kind::kOdometry) {
-        session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
+        AddOdometry(r.stamp, *r.robot_pose);
       } else {
-        if (r.robot_pose) session_->AddOdometry(r.stamp, *r.robot_pose, r.stamp);
+        if (!session_) StartSession(&r);
+        if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
         session_->AddScan(ToSessionScan(r), r.stamp);
       }
       Drain(false);
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
     }
+    if (!session_) StartSession(nullptr);
     Drain(true);
     report_.lost_periods = session_->LostPeriods();
     report_.lost_duration_s = session_->LostSeconds();
@@ -109,25 +111,34 @@ class Replayer {
   }
 
  private:
-  // The sensor mounting from the first laser line that has both the laser's
-  // and the robot's pose (else the parameters'), read ahead of the replay so
-  // that the session starts with its final options.
-  void StartSession() {
+  // Odometry before the first laser line waits for the session that line
+  // starts; the tracker keeps no more than this much odometry history anyway.
+  static constexpr size_t kMaxEarlyOdometry = 4096;
+
+  void AddOdometry(double stamp, const geometry::Pose2D& pose) {
+    if (session_) {
+      session_->AddOdometry(stamp, pose, stamp);
+      return;
+    }
+    early_odometry_.push_back({stamp, pose});
+    if (early_odometry_.size() > kMaxEarlyOdometry) early_odometry_.pop_front();
+  }
+
+  // Starts the session at the first laser line (nullptr: the log has none),
+  // whose laser and robot poses give the sensor mounting (else the
+  // parameters'), so that the session starts with its final options.
+  void StartSession(const log_formats::CarmenRecord* first_scan) {
     report_.sensor_mount = params_.sensor_mount;
-    log_formats::CarmenReader ahead(o_.log_path, o_.limits);
-    log_formats::CarmenRecord r;
-    while (ahead.Next(r)) {
-      if (r.kind != log_formats::CarmenRecord::Kind::kScan) continue;
-      if (r.laser_pose && r.robot_pose) {
-        report_.sensor_mount = geometry::Between(*r.robot_pose, *r.laser_pose);
-        params_.sensor_mount = report_.sensor_mount;
-      }
-      break;
+    if (first_scan != nullptr && first_scan->laser_pose && first_scan->robot_pose) {
+      report_.sensor_mount = geometry::Between(*first_scan->robot_pose, *first_scan->laser_pose);
+      params_.sensor_mount = report_.sensor_mount;
     }
     params_.max_beams = std::max(params_.max_beams, 4096);
     session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
                                                  localisation_core::Scheduling::kInOrder);
     session_->ExpectInitialPose(*o_.initial_pose, TrackingSession::InitialPoseWhen::kAtFirstScan);
+    for (const auto& odometry : early_odometry_) AddOdometry(odometry.stamp, odometry.pose);
+    early_odometry_.clear();
   }
 
   localisation_core::SessionScan ToSessionScan(const log_formats::CarmenRecord& rec) const {
@@ -146,6 +157,7 @@ class Replayer {
 
   // Handles the scans the session has ready (all of them at the end of the log).
   void Drain(bool end) {
+    if (!session_) return;
     while (auto report = session_->Next(0.0, end)) Handle(*report);
   }
 
@@ -310,7 +322,8 @@ class Replayer {
   std::unique_ptr<config::OutputFile> plot_;
   localisation_core::LocaliserOptions params_;
   localisation_core::SessionOptions session_options_;
-  std::unique_ptr<TrackingSession> session_;
+  std::unique_ptr<TrackingSession> session_;  // from the first laser line on
+  std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
   geometry::Pose2D first_odometry_;
   bool have_first_odometry_ = false;
