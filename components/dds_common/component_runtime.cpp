@@ -18,14 +18,17 @@ std::vector<config::OptionSpec> StandardOptions() {
   };
 }
 
-std::vector<config::OptionSpec> FrameIdOptions() {
+std::vector<config::OptionSpec> FrameIdOptions(BaseFrame base_frame) {
   const FrameIds defaults;
-  return {
+  std::vector<config::OptionSpec> options = {
       {"map-frame", true, "frame id of the map (default " + defaults.map + ")"},
       {"odom-frame", true, "frame id of odometry (default " + defaults.odom + ")"},
-      {"base-frame", true, "frame id of the robot base (default " + defaults.base_link + ")"},
-      {"laser-frame", true, "frame id of the laser scanner (default " + defaults.laser + ")"},
-  };
+      {"laser-frame", true, "frame id of the laser scanner (default " + defaults.laser + ")"}};
+  if (base_frame == BaseFrame::kNamed) {
+    options.push_back(
+        {"base-frame", true, "frame id of the robot base (default " + defaults.base_link + ")"});
+  }
+  return options;
 }
 
 FrameIds FrameIdsFrom(const config::CommandLine& cli) {

@@ -27,9 +27,9 @@ int main(int argc, char** argv) {
            std::to_string(structloc::world_model::WorldLimits::kDefaultMaxWalls) + ")"}};
   // Its messages are in the map, odom and laser frames; the base frame is the
   // simulator's (or the robot's) to name.
-  for (auto& option : structloc::dds_common::FrameIdOptions()) {
-    if (option.name != "base-frame") specs.push_back(std::move(option));
-  }
+  const auto frame_options =
+      structloc::dds_common::FrameIdOptions(structloc::dds_common::BaseFrame::kNotUsed);
+  specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds_common::RunComponent(
       argc, argv, "localisation", specs,
       [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {

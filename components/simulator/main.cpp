@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
       {"wait-for-subscribers", true,
        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
        "0)"}};
-  const auto frame_options = structloc::dds_common::FrameIdOptions();
+  const auto frame_options =
+      structloc::dds_common::FrameIdOptions(structloc::dds_common::BaseFrame::kNamed);
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds_common::RunComponent(
       argc, argv, "simulator", specs,

@@ -35,8 +35,10 @@ using ComponentFactory =
 std::vector<config::OptionSpec> StandardOptions();
 
 // The frame-id options of components that stamp frames (--map-frame,
-// --odom-frame, --base-frame, --laser-frame), with the defaults of FrameIds.
-std::vector<config::OptionSpec> FrameIdOptions();
+// --odom-frame, --laser-frame and, for one that names the robot base,
+// --base-frame), with the defaults of FrameIds.
+enum class BaseFrame { kNamed, kNotUsed };
+std::vector<config::OptionSpec> FrameIdOptions(BaseFrame base_frame);
 // Reads them; throws config::ConfigError for an empty or blank frame id.
 FrameIds FrameIdsFrom(const config::CommandLine& cli);
 
