@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "structloc/config/output_file.hpp"
@@ -167,13 +168,10 @@ class Replayer {
       ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
       return;
     }
-    if (!have_first_odometry_) {
-      first_odometry_ = *report.odometry;
-      have_first_odometry_ = true;
-    }
+    if (!first_odometry_) first_odometry_ = *report.odometry;
     // Odometry alone, carried from the initial pose.
     const geometry::Pose2D dead_reckoned =
-        geometry::Compose(*o_.initial_pose, geometry::Between(first_odometry_, *report.odometry));
+        geometry::Compose(*o_.initial_pose, geometry::Between(*first_odometry_, *report.odometry));
     odometry_only_.push_back({report.stamp, dead_reckoned});
     if (o_.no_map) {
       PassThrough(scan, report, dead_reckoned);
@@ -325,8 +323,7 @@ class Replayer {
   std::unique_ptr<TrackingSession> session_;  // from the first laser line on
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
-  geometry::Pose2D first_odometry_;
-  bool have_first_odometry_ = false;
+  std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled
   ReplayReport report_;
   std::vector<double> times_us_;
   size_t features_ = 0;
