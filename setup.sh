@@ -15,7 +15,7 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 packages=(
   build-essential cmake g++ make pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
-  libeigen3-dev libopencv-dev libtinyxml2-dev zlib1g-dev
+  libeigen3-dev libopencv-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   iproute2 procps
 )

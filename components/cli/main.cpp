@@ -1,5 +1,5 @@
 // structloc: the command-line front end (launch, demo and, as they land,
-// simulate, replay, calibrate, render, params). Each subcommand calls the same core
+// simulate, replay, calibrate, render, params, map). Each subcommand calls the same core
 // libraries as the components.
 #include <cstring>
 #include <iostream>
@@ -36,6 +36,9 @@ const Subcommand kSubcommands[] = {
     {"params", structloc::cli::ParamsCommand,
      "[--localiser] [--robot] [--scenario] [--check FILE.xml]  list every option of the "
      "localiser, robot and scenario files, or check such a file"},
+    {"map", structloc::cli::MapCommand,
+     "build|grid|import|export|check ...  make world maps from recordings, occupancy grids "
+     "and CAD drawings, export grids, check maps"},
 };
 
 void Usage(std::ostream& out) {

@@ -19,5 +19,6 @@ int RenderCommand(const Invocation& invocation);
 int ReplayCommand(const Invocation& invocation);
 int CalibrateCommand(const Invocation& invocation);
 int ParamsCommand(const Invocation& invocation);
+int MapCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

@@ -8,7 +8,9 @@
 // coordinates, radii and the wall count must lie within `limits`.
 #pragma once
 
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -19,5 +21,12 @@ WorldModel LoadWorldModel(const std::string& path, const WorldLimits& limits = {
 // Reads the <world> element of an already opened file (scenario files embed one).
 WorldModel ReadWorldModel(const config::XmlFile& file, const tinyxml2::XMLElement& world,
                           const WorldLimits& limits = {});
+
+// Writes `world` in the format LoadWorldModel reads: given walls, given
+// (not derived) corners and cylinders, coordinates to 0.1 mm, each element's id.
+// `comment_lines` go into an XML comment at the top (what the map was made from,
+// with which options), so that a map file says where it came from.
+void WriteWorldModel(const WorldModel& world, const std::vector<std::string>& comment_lines,
+                     std::ostream& out);
 
 }  // namespace structloc::world_model

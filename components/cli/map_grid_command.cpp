@@ -1,0 +1,13 @@
+// "structloc map grid": not written yet.
+#include <iostream>
+
+#include "map_subcommands.hpp"
+
+namespace structloc::cli {
+
+int MapGridCommand(const Invocation&) {
+  std::cerr << "structloc map: not written yet\n";
+  return 2;
+}
+
+}  // namespace structloc::cli

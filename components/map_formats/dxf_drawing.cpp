@@ -1,0 +1,1 @@
+// DXF drawings: not written yet.
