@@ -1,13 +1,115 @@
-// "structloc map build": not written yet.
+// "structloc map build --log LOG --out WORLD.xml [--params P.xml] [--plot P.png]":
+// walls, corners and pillars from a recording whose scan poses are corrected
+// (thesis 6.5.5, map building), written as a world file; every wall's support
+// (points, scans) and residual RMS is listed.
+#include <algorithm>
+#include <iomanip>
 #include <iostream>
 
+#include "map_picture.hpp"
 #include "map_subcommands.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/map_building/map_builder.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::cli {
+namespace {
 
-int MapBuildCommand(const Invocation&) {
-  std::cerr << "structloc map: not written yet\n";
-  return 2;
+std::string Stem(const std::string& path) {
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  return name.substr(0, name.find('.'));
+}
+
+void PrintSupport(const map_building::MapBuildResult& result) {
+  std::cout << "  wall  length_m  points  scans  rms_mm\n" << std::fixed;
+  for (size_t i = 0; i < result.walls.size(); ++i) {
+    const auto& w = result.walls[i];
+    std::cout << std::setw(6) << i + 1 << std::setw(10) << std::setprecision(2) << w.Length()
+              << std::setw(8) << w.points << std::setw(7) << w.sources << std::setw(8)
+              << std::setprecision(1) << 1000.0 * w.rms_m << "\n";
+  }
+}
+
+}  // namespace
+
+int MapBuildCommand(const Invocation& inv) {
+  const std::vector<config::OptionSpec> specs = {
+      {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
+      {"out", true, "world XML to write"},
+      {"params", true, "<map_build_params> file (default: the built-in defaults, for a 180 deg "
+                       "SICK-like laser; `structloc params --map-build` lists them)"},
+      {"plot", true, "PNG of the map over the recording's readings"},
+      {"name", true, "the world's name (default: the log's file name)"},
+      {"quiet", false, "leave out the table of every wall's support"},
+  };
+  try {
+    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+    const std::string log_path = cli.Required("log");
+    const std::string out_path = cli.Required("out");
+    const std::string plot_path = cli.GetOr("plot", "");
+    if (!plot_path.empty()) rendering::MapCanvas::CheckPictureName(plot_path);
+    const std::string params_path = cli.GetOr("params", "");
+    const auto options = params_path.empty() ? map_building::MapBuildOptions{}
+                                             : map_building::LoadMapBuildOptions(params_path);
+    std::vector<std::string> inputs{log_path};
+    if (!params_path.empty()) inputs.push_back(params_path);
+    config::OutputFile out(out_path, inputs);
+
+    const auto log = map_building::ReadPosedScans(log_path, options.scans);
+    const auto result = map_building::BuildMap(log.scans, options);
+    if (result.walls.empty() && result.pillars.empty()) {
+      throw std::runtime_error(log_path + ": no wall or pillar met the options' bars (" +
+                               std::to_string(result.wall_report.segments) +
+                               " scan segments); see structloc params --map-build");
+    }
+    const auto world = map_building::MakeWorld(cli.GetOr("name", Stem(log_path)), result.walls,
+                                               result.pillars);
+    const auto& r = result.wall_report;
+    world_model::WriteWorldModel(
+        world,
+        {"Built by `structloc map build` from " + log_path +
+             (params_path.empty() ? " with the default options" : " with " + params_path) + ":",
+         std::to_string(log.scans.size()) + " scans, " + std::to_string(r.segments) +
+             " scan segments merged into " + std::to_string(world.Walls().size()) + " walls, " +
+             std::to_string(world.Cylinders().size()) + " pillars."},
+        out.Stream());
+    out.Commit();
+
+    std::cout << "structloc map build: " << log.scans.size() << " scans (" << log.readings
+              << " readings, " << log.out_of_range << " out of range";
+    if (log.malformed_lines > 0) std::cout << ", " << log.malformed_lines << " malformed lines";
+    std::cout << ")\n  " << r.segments << " scan segments -> " << r.candidates
+              << " wall candidates (" << r.merged << " merged) -> " << r.pieces
+              << " pieces split at gaps\n  dropped: " << r.too_few_scans << " seen from fewer than "
+              << options.walls.min_scans << " scans, " << r.too_few_points << " with fewer than "
+              << options.walls.min_points << " points, " << r.too_rough << " rougher than "
+              << 1000.0 * options.walls.max_rms_m << " mm RMS, " << r.too_short
+              << " shorter than " << options.walls.min_length_m << " m\n  " << world.Walls().size()
+              << " walls, " << result.corners_joined << " corners joined ("
+              << world.Corners().size() << " corners derived), " << world.Cylinders().size()
+              << " pillars (" << result.pillar_report.sightings << " arc sightings, "
+              << result.pillar_report.too_few_scans << " seen too rarely)\n  wrote " << out_path
+              << "\n";
+    if (!cli.Has("quiet")) PrintSupport(result);
+    if (!plot_path.empty()) {
+      MapPicture picture;
+      picture.title = "map build: " + Stem(log_path);
+      picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 500));
+      picture.legend = {{rendering::colours::kWall, "walls and pillars built"},
+                        {cv::Scalar(200, 200, 200), "readings"}};
+      SaveMapPicture(plot_path, world, picture);
+      std::cout << "  picture: " << plot_path << "\n";
+    }
+    return 0;
+  } catch (const config::ConfigError& e) {
+    std::cerr << "structloc map build: " << e.what() << "\n" << config::CommandLine::Usage(specs);
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "structloc map build: " << e.what() << std::endl;
+    return 1;
+  }
 }
 
 }  // namespace structloc::cli

@@ -1,13 +1,138 @@
-// "structloc map check": not written yet.
+// "structloc map check --map WORLD.xml --log LOG [--plot P.png]": how well a map
+// agrees with a recording whose scan poses are corrected: the distance of the
+// readings that hit each wall, how often each is seen, walls never seen, and the
+// share of readings no wall explains, so that a user can trust or fix a map. The
+// picture marks the disagreeing walls.
+#include <algorithm>
+#include <iomanip>
 #include <iostream>
+#include <numeric>
 
+#include "map_picture.hpp"
 #include "map_subcommands.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/map_building/map_check.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::cli {
+namespace {
 
-int MapCheckCommand(const Invocation&) {
-  std::cerr << "structloc map: not written yet\n";
-  return 2;
+const cv::Scalar kAgrees(60, 160, 60);
+const cv::Scalar kDisagrees(0, 0, 230);
+const cv::Scalar kRarelySeen(0, 170, 255);
+const cv::Scalar kNeverSeen(170, 170, 170);
+
+void PrintDisagreeing(const world_model::WorldModel& world,
+                      const map_building::MapCheckReport& report) {
+  std::vector<size_t> order(report.walls.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return report.walls[a].median_m > report.walls[b].median_m;
+  });
+  std::cout << "  disagreeing walls (worst first; offset > 0: readings in front of the wall, "
+               "move it towards the laser):\n    id  length_m  readings  scans  median_mm  "
+               "offset_mm\n";
+  size_t shown = 0;
+  for (const size_t i : order) {
+    const auto& a = report.walls[i];
+    if (!a.disagrees || shown++ == 20) continue;
+    const auto& w = world.Walls()[i];
+    std::cout << std::setw(6) << w.id << std::setw(10) << std::setprecision(2) << w.Length()
+              << std::setw(10) << a.readings << std::setw(7) << a.scans << std::setw(11)
+              << std::setprecision(1) << 1000.0 * a.median_m << std::setw(11)
+              << 1000.0 * a.mean_offset_m << "\n";
+  }
+  if (report.walls_disagreeing > 20)
+    std::cout << "    ... and " << report.walls_disagreeing - 20 << " more\n";
+  if (report.walls_never_seen == 0) return;
+  std::cout << "  walls never seen:";
+  size_t listed = 0;
+  for (size_t i = 0; i < report.walls.size() && listed < 30; ++i) {
+    if (report.walls[i].readings != 0) continue;
+    std::cout << " " << world.Walls()[i].id;
+    ++listed;
+  }
+  std::cout << (report.walls_never_seen > listed ? " ..." : "") << "\n";
+}
+
+std::vector<cv::Scalar> WallColours(const map_building::MapCheckReport& report,
+                                    const map_building::MapCheckOptions& options) {
+  std::vector<cv::Scalar> colours;
+  for (const auto& a : report.walls) {
+    colours.push_back(a.readings == 0                     ? kNeverSeen
+                      : a.disagrees                       ? kDisagrees
+                      : a.readings < options.min_readings ? kRarelySeen
+                                                          : kAgrees);
+  }
+  return colours;
+}
+
+}  // namespace
+
+int MapCheckCommand(const Invocation& inv) {
+  const map_building::MapCheckOptions defaults;
+  const std::vector<config::OptionSpec> specs = {
+      {"map", true, "world XML to check"},
+      {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
+      {"plot", true, "PNG of the map over the readings, disagreeing walls marked"},
+      {"near", true, "a reading this close to a wall or pillar hits it, m (default 0.1)"},
+      {"max-median", true,
+       "walls whose readings lie farther (median) disagree, m (default 0.03)"},
+      {"max-range", true, "readings farther than this are left out, m (default 20)"},
+  };
+  try {
+    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+    const std::string map_path = cli.Required("map");
+    const std::string log_path = cli.Required("log");
+    const std::string plot_path = cli.GetOr("plot", "");
+    if (!plot_path.empty()) rendering::MapCanvas::CheckPictureName(plot_path);
+    map_building::MapCheckOptions options;
+    options.near_m = cli.NumberIn("near", defaults.near_m, 1e-3, 10.0);
+    options.max_median_m = cli.NumberIn("max-median", defaults.max_median_m, 1e-4, 10.0);
+    map_building::PosedScanOptions scan_options;
+    scan_options.max_range_m =
+        cli.NumberIn("max-range", scan_options.max_range_m, scan_options.min_range_m + 0.01, 1e3);
+    const auto world = world_model::LoadWorldModel(map_path);
+    const auto log = map_building::ReadPosedScans(log_path, scan_options);
+    std::vector<Eigen::Vector2d> unexplained;
+    const auto report = map_building::CheckMap(world, log.scans, options, &unexplained);
+    std::cout << std::fixed << std::setprecision(1) << "structloc map check: " << map_path
+              << " against " << log_path << "\n  " << report.scans << " scans, "
+              << report.readings << " readings within " << scan_options.max_range_m << " m\n  "
+              << report.explained << " readings within " << 1000.0 * options.near_m
+              << " mm of a wall or pillar: " << 100.0 * report.ExplainedShare()
+              << " % explained\n  their distance: median " << 1000.0 * report.median_m
+              << " mm, 90 % below " << 1000.0 * report.p90_m << " mm, RMS "
+              << 1000.0 * report.rms_m << " mm\n  " << world.Walls().size() << " walls: "
+              << report.walls_disagreeing << " disagree (median above "
+              << 1000.0 * options.max_median_m << " mm), " << report.walls_rarely_seen
+              << " rarely seen (fewer than " << options.min_readings << " readings), "
+              << report.walls_never_seen << " never seen\n";
+    PrintDisagreeing(world, report);
+    if (!plot_path.empty()) {
+      MapPicture picture;
+      picture.title = "map check: " + map_path;
+      picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 300));
+      const size_t step = std::max<size_t>(1, unexplained.size() / 200000);
+      for (size_t i = 0; i < unexplained.size(); i += step) picture.marked.push_back(unexplained[i]);
+      picture.wall_colours = WallColours(report, options);
+      picture.legend = {{kAgrees, "wall agrees"},
+                        {kDisagrees, "wall disagrees"},
+                        {kRarelySeen, "rarely seen"},
+                        {kNeverSeen, "never seen"},
+                        {cv::Scalar(60, 60, 255), "readings no wall explains"}};
+      SaveMapPicture(plot_path, world, picture);
+      std::cout << "  picture: " << plot_path << "\n";
+    }
+    return 0;
+  } catch (const config::ConfigError& e) {
+    std::cerr << "structloc map check: " << e.what() << "\n" << config::CommandLine::Usage(specs);
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "structloc map check: " << e.what() << std::endl;
+    return 1;
+  }
 }
 
 }  // namespace structloc::cli

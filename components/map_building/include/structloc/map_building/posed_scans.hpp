@@ -1,0 +1,46 @@
+// The input of the map makers that learn from recordings: every laser scan of
+// a CARMEN log with the pose of the laser when it was taken. In SLAM-corrected
+// logs (the Radish/GMapping "-corrected" logs) that pose is the SLAM estimate,
+// so the scans line up in the map frame. DDS-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+
+namespace structloc::map_building {
+
+struct PosedScanOptions {
+  double min_range_m = 0.05;  // closer readings are the robot itself or dust
+  double max_range_m = 20.0;  // farther ones are too sparse and too noisy in angle to map walls;
+                              // SICK "no return" readings (80+ m) are always dropped
+};
+
+struct PosedScan {
+  size_t index = 0;             // scan number in the log, from 0
+  size_t line = 0;              // line in the log
+  geometry::Pose2D laser_pose;  // map frame
+  // Readings within the range limits, in beam order, in the laser frame, with
+  // the range of each (a jump in range separates objects).
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> ranges;
+  double angular_resolution = 0.0;  // rad between beams
+};
+
+struct PosedScanLog {
+  std::vector<PosedScan> scans;
+  size_t readings = 0;       // all readings of all scans
+  size_t out_of_range = 0;   // of them, dropped by the range limits
+  size_t malformed_lines = 0;
+  size_t scans_without_pose = 0;  // laser lines with no pose at all (raw RAWLASER lines)
+};
+
+// Reads every scan of the log with its laser pose (the line's laser pose, else
+// the robot pose: the corrected logs have no laser offset). Throws
+// std::runtime_error naming the file when it cannot be read, and
+// config::ConfigError when it holds no scan with a pose.
+PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options);
+
+}  // namespace structloc::map_building

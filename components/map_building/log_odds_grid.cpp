@@ -1,0 +1,109 @@
+// Log-odds occupancy grid by ray casting (see header).
+#include "structloc/map_building/log_odds_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace structloc::map_building {
+namespace {
+
+// Visits the cells of the straight line from cell a to cell b (Bresenham),
+// calling pass(x, y) for all but the last and end(x, y) for b.
+template <class Pass, class End>
+void TraceCells(int x0, int y0, int x1, int y1, Pass pass, End end) {
+  const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
+  const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
+  int err = dx + dy;
+  while (x0 != x1 || y0 != y1) {
+    pass(x0, y0);
+    const int e2 = 2 * err;
+    if (e2 >= dy) {
+      err += dy;
+      x0 += sx;
+    }
+    if (e2 <= dx) {
+      err += dx;
+      y0 += sy;
+    }
+  }
+  end(x1, y1);
+}
+
+double LogOdds(double p) { return std::log(p / (1.0 - p)); }
+
+}  // namespace
+
+map_formats::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
+                                       const LogOddsGridOptions& options) {
+  if (!(options.resolution_m > 0.0) || !(options.hit_log_odds > 0.0) ||
+      !(options.miss_log_odds < 0.0) || !(options.free_probability > 0.0) ||
+      !(options.occupied_probability > options.free_probability) ||
+      !(options.occupied_probability < 1.0))
+    throw std::invalid_argument(
+        "log-odds grid: resolution and hit must be > 0, miss < 0, and 0 < free_probability < "
+        "occupied_probability < 1");
+  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (const auto& scan : scans) {
+    lo = lo.cwiseMin(scan.laser_pose.Translation());
+    hi = hi.cwiseMax(scan.laser_pose.Translation());
+    for (const auto& p : scan.points) {
+      const Eigen::Vector2d m = scan.laser_pose.Apply(p);
+      lo = lo.cwiseMin(m);
+      hi = hi.cwiseMax(m);
+    }
+  }
+  if (scans.empty()) throw std::invalid_argument("log-odds grid: no scans");
+  lo -= Eigen::Vector2d::Constant(options.margin_m);
+  hi += Eigen::Vector2d::Constant(options.margin_m);
+  const double columns = std::ceil((hi.x() - lo.x()) / options.resolution_m);
+  const double rows = std::ceil((hi.y() - lo.y()) / options.resolution_m);
+  if (!(columns * rows <= options.max_cells)) {
+    throw std::invalid_argument("log-odds grid: " + std::to_string(columns) + " x " +
+                                std::to_string(rows) + " cells is above the limit of " +
+                                std::to_string(options.max_cells));
+  }
+  map_formats::OccupancyGrid grid(static_cast<int>(columns), static_cast<int>(rows),
+                                  options.resolution_m, {lo.x(), lo.y(), 0.0});
+  std::vector<float> log_odds(grid.cells.size(), 0.0f);
+  const auto cell = [&](int x, int y) -> float& {
+    return log_odds[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
+                    static_cast<size_t>(x)];
+  };
+  const auto add = [&](int x, int y, double delta) {
+    float& l = cell(x, y);
+    l = static_cast<float>(
+        std::clamp(static_cast<double>(l) + delta, options.min_log_odds, options.max_log_odds));
+  };
+  std::vector<uint8_t> seen(grid.cells.size(), 0);
+  for (const auto& scan : scans) {
+    const Eigen::Vector2i from = grid.CellOf(scan.laser_pose.Translation());
+    for (const auto& p : scan.points) {
+      const Eigen::Vector2i to = grid.CellOf(scan.laser_pose.Apply(p));
+      TraceCells(
+          from.x(), from.y(), to.x(), to.y(),
+          [&](int x, int y) {
+            add(x, y, options.miss_log_odds);
+            seen[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
+                 static_cast<size_t>(x)] = 1;
+          },
+          [&](int x, int y) {
+            add(x, y, options.hit_log_odds);
+            seen[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
+                 static_cast<size_t>(x)] = 1;
+          });
+    }
+  }
+  const double occupied = LogOdds(options.occupied_probability);
+  const double free = LogOdds(options.free_probability);
+  for (size_t i = 0; i < grid.cells.size(); ++i) {
+    if (!seen[i]) continue;
+    grid.cells[i] = log_odds[i] > occupied ? map_formats::OccupancyGrid::kOccupied
+                    : log_odds[i] < free   ? map_formats::OccupancyGrid::kFree
+                                           : map_formats::OccupancyGrid::kUnknown;
+  }
+  return grid;
+}
+
+}  // namespace structloc::map_building
