@@ -303,5 +303,18 @@ TEST(ParamsCommand, ListsRobotAndScenarioKeysAndChecksEitherKindOfFile) {
       << bad.output;
 }
 
+// Every XML file shipped under maps/ (worlds, localiser, robot, scenario and
+// map-build files, in any subfolder) loads with the code that reads its kind.
+TEST(ShippedFiles, EveryXmlFileUnderMapsLoads) {
+  size_t checked = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(SourcePath("maps"))) {
+    if (e.path().extension() != ".xml") continue;
+    const auto run = testing::RunCli({"params", "--check", e.path().string()});
+    EXPECT_EQ(run.exit_code, 0) << e.path() << ": " << run.output;
+    ++checked;
+  }
+  EXPECT_GE(checked, 12u);
+}
+
 }  // namespace
 }  // namespace structloc

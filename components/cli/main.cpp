@@ -34,8 +34,9 @@ const Subcommand kSubcommands[] = {
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
     {"params", structloc::cli::ParamsCommand,
-     "[--localiser] [--robot] [--scenario] [--check FILE.xml]  list every option of the "
-     "localiser, robot and scenario files, or check such a file"},
+     "[--localiser] [--robot] [--scenario] [--map-build] [--check FILE.xml]  list every "
+     "option of the localiser, robot, scenario and map-build files, or check such a file or a "
+     "world map"},
     {"map", structloc::cli::MapCommand,
      "build|grid|import|export|check ...  make world maps from recordings, occupancy grids "
      "and CAD drawings, export grids, check maps"},

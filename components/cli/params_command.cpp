@@ -1,8 +1,9 @@
-// "structloc params [--localiser] [--robot] [--scenario] [--check FILE]": lists
-// every option of the localiser parameter files, the robot files and the
-// scenario files (key, default, unit, valid values, meaning) from the one place
-// each is declared (all three when none is chosen), or checks that a file of
-// any of the three kinds loads (the kind from its root element).
+// "structloc params [--localiser] [--robot] [--scenario] [--map-build] [--check
+// FILE]": lists every option of the localiser parameter files, the robot files,
+// the scenario files and the map builder's files (key, default, unit, valid
+// values, meaning) from the one place each is declared (all when none is
+// chosen), or checks that a file of any of these kinds, or a world map, loads
+// (the kind from its root element).
 #include <iostream>
 
 #include "structloc/config/command_line.hpp"
@@ -10,7 +11,9 @@
 #include "structloc/kinematics/robot_parameters.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/map_building/map_builder.hpp"
 #include "structloc/simulation_core/scenario_options.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -26,9 +29,14 @@ void Check(const std::string& path) {
     kinematics::LoadRobotParameters(path);
   } else if (root == "scenario") {
     simulation_core::LoadScenario(path);
+  } else if (root == "map_build_params") {
+    map_building::LoadMapBuildOptions(path);
+  } else if (root == "world") {
+    world_model::LoadWorldModel(path);
   } else {
     throw config::ConfigError(path + ": root element is <" + root +
-                              ">, expected <localisation_params>, <robot> or <scenario>");
+                              ">, expected <localisation_params>, <robot>, <scenario>, "
+                              "<map_build_params> or <world>");
   }
 }
 
@@ -39,9 +47,10 @@ int ParamsCommand(const Invocation& inv) {
       {"localiser", false, "list the <localisation_params> file's options"},
       {"robot", false, "list the <robot> file's options"},
       {"scenario", false, "list the <scenario> file's options"},
+      {"map-build", false, "list the <map_build_params> file's options (structloc map build)"},
       {"check", true,
-       "a <localisation_params>, <robot> or <scenario> file to load and validate instead of "
-       "listing"},
+       "a <localisation_params>, <robot>, <scenario>, <map_build_params> or <world> file to load "
+       "and validate instead of listing"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
@@ -50,7 +59,8 @@ int ParamsCommand(const Invocation& inv) {
       std::cout << *path << ": valid\n";
       return 0;
     }
-    const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario");
+    const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario") &&
+                     !cli.Has("map-build");
     if (all || cli.Has("localiser")) {
       localisation_core::PrintLocaliserOptions(std::cout);
       localisation_core::PrintSessionOptions(std::cout);
@@ -62,6 +72,10 @@ int ParamsCommand(const Invocation& inv) {
     if (all || cli.Has("scenario")) {
       std::cout << (all ? "\n" : "");
       simulation_core::PrintScenarioOptions(std::cout);
+    }
+    if (all || cli.Has("map-build")) {
+      std::cout << (all ? "\n" : "");
+      map_building::PrintMapBuildOptions(std::cout);
     }
     return 0;
   } catch (const config::ConfigError& e) {

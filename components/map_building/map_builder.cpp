@@ -1,6 +1,8 @@
 // The map builder's pipeline (see header).
 #include "structloc/map_building/map_builder.hpp"
 
+#include <algorithm>
+
 namespace structloc::map_building {
 
 MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptions& options) {
@@ -21,6 +23,17 @@ MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptio
   MapBuildResult result;
   result.walls = walls.Walls(result.wall_report);
   result.pillars = pillars.Pillars(result.pillar_report);
+  // Short straight runs on a wide pillar's arc are its chords, not walls.
+  const auto on_pillar = [&result, &options](const FittedWall& wall) {
+    for (const auto& p : result.pillars) {
+      const double reach = p.radius + options.walls.max_offset_m;
+      if ((wall.a - p.centre).norm() < reach && (wall.b - p.centre).norm() < reach) return true;
+    }
+    return false;
+  };
+  const auto kept = std::remove_if(result.walls.begin(), result.walls.end(), on_pillar);
+  result.walls_on_pillars = static_cast<size_t>(result.walls.end() - kept);
+  result.walls.erase(kept, result.walls.end());
   result.corners_joined = JoinCorners(result.walls, options.corners);
   return result;
 }

@@ -38,6 +38,7 @@ struct MapBuildResult {
   std::vector<FittedWall> walls;  // with their support, in the world's wall order
   std::vector<world_model::Cylinder> pillars;
   size_t corners_joined = 0;
+  size_t walls_on_pillars = 0;  // chords of a pillar's arc, dropped
   WallMergeReport wall_report;
   PillarReport pillar_report;
 };

@@ -1,0 +1,270 @@
+// Map building from recordings (map build, map check, map grid) on synthetic
+// recordings of the shipped office floor: a CARMEN log is written with noisy
+// scans ray-cast from known poses, read back like a user's log, and the map made
+// from it is compared with the floor it was cast from.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "structloc/config/strict_xml.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
+#include "structloc/map_building/log_odds_grid.hpp"
+#include "structloc/map_building/map_builder.hpp"
+#include "structloc/map_building/map_check.hpp"
+#include "structloc/world_model/ray_cast.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
+#include "temp_dir.hpp"
+#include "test_paths.hpp"
+
+namespace structloc::map_building {
+namespace {
+
+using geometry::kPi;
+using geometry::Pose2D;
+
+world_model::WorldModel Office() {
+  return world_model::LoadWorldModel(testing::SourcePath("maps/office_floor.xml"));
+}
+
+// Poses along the corridor (y = 5.9, clear of the corridor pillar at y = 6.5)
+// and through the east hall, facing both ways.
+std::vector<Pose2D> TourPoses() {
+  std::vector<Pose2D> poses;
+  for (double x = 1.0; x <= 19.0; x += 0.25) poses.push_back({x, 5.9, 0.0});
+  for (double y = 6.0; y <= 12.0; y += 0.25) poses.push_back({19.5, y, kPi / 2});
+  for (double y = 12.0; y >= 1.5; y -= 0.25) poses.push_back({23.0, y, -kPi / 2});
+  for (double x = 19.0; x >= 1.0; x -= 0.25) poses.push_back({x, 6.1, kPi});
+  return poses;
+}
+
+// A corrected log of 361-beam 180 deg scans with Gaussian range noise.
+std::string WriteTourLog(const testing::TempDir& dir, const world_model::Scene& scene,
+                         double noise_sigma_m) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, noise_sigma_m);
+  const std::string path = dir / "tour.log";
+  log_formats::CarmenWriter log(path);
+  log_formats::CarmenLaser laser{-kPi / 2, kPi, kPi / 360.0, 30.0, 0.01};
+  double t = 0.0;
+  for (const auto& pose : TourPoses()) {
+    std::vector<float> ranges;
+    for (int i = 0; i < 361; ++i) {
+      const double a = pose.theta + laser.start_angle + i * laser.angular_resolution;
+      const double r = scene.Cast(pose.Translation(), {std::cos(a), std::sin(a)}, 30.0);
+      ranges.push_back(static_cast<float>(std::isfinite(r) ? r + noise(rng) : r));
+    }
+    log.RobotLaser(t += 0.1, laser, ranges, pose, pose, 0.0, 0.0);
+  }
+  log.Close();
+  return path;
+}
+
+// Distance from p to the infinite line of a wall.
+double LineDistance(const world_model::Wall& wall, const Eigen::Vector2d& p) {
+  return std::abs(p.x() * std::cos(wall.line.alpha) + p.y() * std::sin(wall.line.alpha) -
+                  wall.line.r);
+}
+
+// The original wall a built wall lies on (both ends within 2 cm of its line and
+// within its extent), or nullptr.
+const world_model::Wall* Supporting(const world_model::WorldModel& world, const FittedWall& built) {
+  for (const auto& wall : world.Walls()) {
+    if (LineDistance(wall, built.a) > 0.02 || LineDistance(wall, built.b) > 0.02) continue;
+    const Eigen::Vector2d d = (wall.b - wall.a).normalized();
+    const double ta = d.dot(built.a - wall.a), tb = d.dot(built.b - wall.a);
+    if (std::min(ta, tb) > -0.2 && std::max(ta, tb) < wall.Length() + 0.2) return &wall;
+  }
+  return nullptr;
+}
+
+class OfficeTour : public ::testing::Test {
+ protected:
+  const world_model::WorldModel world = Office();
+  const world_model::Scene scene = world_model::Scene::FromWorld(world);
+  testing::TempDir dir;
+};
+
+TEST_F(OfficeTour, BuiltWallsLieOnTheFloorsWallsAndCoverTheCorridor) {
+  const auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  ASSERT_EQ(log.scans.size(), TourPoses().size());
+  const auto result = BuildMap(log.scans, MapBuildOptions{});
+  ASSERT_FALSE(result.walls.empty());
+  std::map<int, double> covered;  // original wall id -> built length on it
+  double worst_offset = 0.0;
+  for (const auto& built : result.walls) {
+    const auto* wall = Supporting(world, built);
+    ASSERT_NE(wall, nullptr) << "a built wall from (" << built.a.transpose() << ") to ("
+                             << built.b.transpose() << ") lies on no wall of the floor";
+    // The ends were moved to corners; the fit itself is judged at the middle.
+    worst_offset = std::max(worst_offset, LineDistance(*wall, 0.5 * (built.a + built.b)));
+    covered[wall->id] += built.Length();
+    EXPECT_GE(built.sources, 3u);
+    EXPECT_LT(built.rms_m, 0.02);
+  }
+  std::cout << "worst built wall offset " << 1000.0 * worst_offset << " mm\n";
+  EXPECT_LT(worst_offset, 0.005);
+  // The corridor's walls (door gaps are not walls) are found along most of their length.
+  for (const int id : {11, 12, 21, 22}) {
+    const auto& wall = *std::find_if(world.Walls().begin(), world.Walls().end(),
+                                     [id](const auto& w) { return w.id == id; });
+    EXPECT_GT(covered[id], 0.7 * wall.Length()) << "wall " << id;
+  }
+}
+
+TEST_F(OfficeTour, PillarsSeenFromManyScansAreFoundWithTheirRadius) {
+  const auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.005), {});
+  const auto result = BuildMap(log.scans, MapBuildOptions{});
+  size_t matched = 0;
+  for (const auto& pillar : world.Cylinders()) {
+    for (const auto& found : result.pillars) {
+      if ((found.centre - pillar.centre).norm() > 0.05) continue;
+      ++matched;
+      EXPECT_NEAR(found.radius, pillar.radius, 0.02) << "pillar " << pillar.id;
+    }
+  }
+  EXPECT_GE(matched, 2u);
+  EXPECT_EQ(result.pillars.size(), matched) << "a pillar where the floor has none";
+}
+
+TEST_F(OfficeTour, CheckAgreesWithTheTrueFloorAndFindsAMovedWall) {
+  const auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  MapCheckOptions options;
+  const auto truth = CheckMap(world, log.scans, options);
+  EXPECT_GT(truth.ExplainedShare(), 0.99);
+  EXPECT_LT(truth.median_m, 0.01);  // |N(0, 1 cm)| has a median of 6.7 mm
+  EXPECT_EQ(truth.walls_disagreeing, 0u);
+
+  // Wall 11 (y = 5, x 4.5..9.5) moved 5 cm towards the corridor, and a wall far
+  // outside that nobody sees.
+  std::vector<world_model::Wall> walls;
+  for (const auto& w : world.Walls()) {
+    walls.push_back(w.id == 11 ? world_model::MakeWall(11, {4.5, 5.05}, {9.5, 5.05}) : w);
+  }
+  walls.push_back(world_model::MakeWall(99, {100.0, 100.0}, {101.0, 100.0}));
+  const world_model::WorldModel edited("edited", walls, {}, world.Cylinders());
+  const auto report = CheckMap(edited, log.scans, options);
+  const size_t index = static_cast<size_t>(
+      std::find_if(walls.begin(), walls.end(), [](const auto& w) { return w.id == 11; }) -
+      walls.begin());
+  const auto& moved = report.walls[index];
+  EXPECT_TRUE(moved.disagrees);
+  EXPECT_NEAR(moved.mean_offset_m, -0.05, 0.01) << "readings lie 5 cm behind the moved wall";
+  EXPECT_EQ(report.walls.back().readings, 0u);
+  EXPECT_EQ(report.walls_never_seen, 1u);
+}
+
+TEST_F(OfficeTour, RayCastGridMarksWallsOccupiedAndTheCorridorFree) {
+  const auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  const auto grid = RayCastGrid(log.scans, {});
+  const auto value = [&grid](const Eigen::Vector2d& p) {
+    const Eigen::Vector2i c = grid.CellOf(p);
+    return grid.Contains(c.x(), c.y()) ? grid.At(c.x(), c.y()) : int8_t{-2};
+  };
+  // On wall 11, the cells just on either side of y = 5: at least one occupied.
+  int occupied = 0;
+  for (double x = 5.0; x < 9.0; x += 0.5) {
+    occupied += value({x, 4.99}) == map_formats::OccupancyGrid::kOccupied ||
+                value({x, 5.01}) == map_formats::OccupancyGrid::kOccupied;
+  }
+  EXPECT_EQ(occupied, 8);
+  EXPECT_EQ(value({7.0, 6.5}), map_formats::OccupancyGrid::kFree);
+  EXPECT_THROW(RayCastGrid(log.scans, [] {
+                 LogOddsGridOptions o;
+                 o.max_cells = 100;
+                 return o;
+               }()),
+               std::invalid_argument);
+}
+
+TEST(ScanSegments, AnLShapedScanGivesTwoSegmentsThatStopAtTheCorner) {
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 40; ++i) points.emplace_back(2.0, -1.0 + 0.05 * i);  // x = 2, y -1..0.95
+  for (int i = 0; i < 40; ++i) points.emplace_back(2.0 - 0.05 * i, 1.0);   // y = 1
+  const auto segments = ExtractScanSegments(points, {});
+  ASSERT_EQ(segments.size(), 2u);
+  EXPECT_GE(segments[0].last - segments[0].first, 38u);
+  EXPECT_LE(segments[0].last, 41u);
+  EXPECT_GE(segments[1].first, 39u);
+}
+
+TEST(WallFitting, SplitsAtGapsAndJoinsWallsThatNearlyMeet) {
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i <= 10; ++i) points.emplace_back(0.1 * i, 0.0);
+  for (int i = 0; i <= 10; ++i) points.emplace_back(2.0 + 0.1 * i, 0.0);  // 1 m door gap
+  const auto wall = FitWall(points);
+  EXPECT_NEAR(wall.Length(), 3.0, 1e-9);
+  EXPECT_EQ(SplitAtGaps(wall, points, 0.5).size(), 2u);
+  EXPECT_EQ(SplitAtGaps(wall, points, 1.5).size(), 1u);
+  EXPECT_THROW(FitWall({{1.0, 1.0}, {1.0, 1.0}}), std::invalid_argument);
+
+  std::vector<FittedWall> walls{FitWall({{0.0, 0.0}, {2.95, 0.0}}),
+                                FitWall({{3.0, 0.06}, {3.0, 2.0}})};
+  EXPECT_EQ(JoinCorners(walls, {}), 1u);
+  const auto world = MakeWorld("joined", walls, {});
+  ASSERT_EQ(world.Corners().size(), 1u);
+  EXPECT_NEAR((world.Corners()[0].position - Eigen::Vector2d(3.0, 0.0)).norm(), 0.0, 1e-9);
+  // Parallel walls and walls whose ends are far from the intersection stay as they are.
+  std::vector<FittedWall> apart{FitWall({{0.0, 0.0}, {2.0, 0.0}}),
+                                FitWall({{3.0, 0.5}, {3.0, 2.0}})};
+  EXPECT_EQ(JoinCorners(apart, {}), 0u);
+}
+
+TEST(WorldModelWriter, WrittenMapLoadsBackWithItsElementsAndEscapedText) {
+  const auto office = Office();
+  std::ostringstream xml;
+  world_model::WriteWorldModel(office, {"made -- by a test", "<&>"}, xml);
+  const testing::TempDir dir;
+  const auto copy = world_model::LoadWorldModel(dir.Write("office.xml", xml.str()));
+  ASSERT_EQ(copy.Walls().size(), office.Walls().size());
+  for (size_t i = 0; i < copy.Walls().size(); ++i) {
+    EXPECT_EQ(copy.Walls()[i].id, office.Walls()[i].id);
+    EXPECT_NEAR((copy.Walls()[i].a - office.Walls()[i].a).norm(), 0.0, 1e-4);
+    EXPECT_NEAR((copy.Walls()[i].b - office.Walls()[i].b).norm(), 0.0, 1e-4);
+  }
+  EXPECT_EQ(copy.Corners().size(), office.Corners().size());
+  ASSERT_EQ(copy.Cylinders().size(), office.Cylinders().size());
+  EXPECT_NEAR(copy.Cylinders()[2].radius, office.Cylinders()[2].radius, 1e-4);
+}
+
+TEST(PosedScans, ALogWithoutScansIsAnErrorNamingTheFile) {
+  const testing::TempDir dir;
+  const auto path = dir.Write("odometry_only.log", "ODOM 0 0 0 0 0 0 1.0 host 1.0\n");
+  try {
+    ReadPosedScans(path, {});
+    FAIL() << "no error";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": no laser scan"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ReadPosedScans(dir / "missing.log", {}), std::runtime_error);
+}
+
+TEST(MapBuildOptions, TheShippedFileHoldsTheDefaultsAndBadFilesNameTheKey) {
+  const auto shipped = LoadMapBuildOptions(testing::SourcePath("maps/map_build/sick_180deg.xml"));
+  const MapBuildOptions defaults;
+  EXPECT_EQ(shipped.walls.min_scans, defaults.walls.min_scans);
+  EXPECT_DOUBLE_EQ(shipped.pillars.min_arc_rad, defaults.pillars.min_arc_rad);
+  EXPECT_DOUBLE_EQ(shipped.segments.max_point_gap_m, defaults.segments.max_point_gap_m);
+
+  const testing::TempDir dir;
+  std::string text = testing::ReadFile(testing::SourcePath("maps/map_build/sick_180deg.xml"));
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string changed = text;
+    changed.replace(changed.find(from), from.size(), to);
+    return dir.Write("params.xml", changed);
+  };
+  const auto expect_error = [](const std::string& path, const std::string& words) {
+    try {
+      LoadMapBuildOptions(path);
+      ADD_FAILURE() << "no error for " << words;
+    } catch (const config::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  expect_error(with("max_range_m=\"20\"", "max_range_m=\"0.01\""), "max_range_m must be >");
+  expect_error(with("min_scans=\"3\"", "min_scans=\"3\" colour=\"red\""), "colour");
+  expect_error(with(" max_gap_m=\"0.4\"", ""), "max_gap_m");
+}
+
+}  // namespace
+}  // namespace structloc::map_building
