@@ -296,9 +296,10 @@ TEST(ParamsCommand, ListsRobotAndScenarioKeysAndChecksEitherKindOfFile) {
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("beams must be an integer from 10 to 100000"), std::string::npos)
       << bad.output;
-  bad = testing::RunCli({"params", "--check", SourcePath("maps/office_floor.xml")});
+  bad = testing::RunCli({"params", "--check", SourcePath("qos/structloc_qos.xml")});
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
-  EXPECT_NE(bad.output.find("expected <localisation_params>, <robot> or <scenario>"),
+  EXPECT_NE(bad.output.find("expected <localisation_params>, <robot>, <scenario>, "
+                            "<map_build_params> or <world>"),
             std::string::npos)
       << bad.output;
 }
