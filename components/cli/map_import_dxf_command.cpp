@@ -35,9 +35,13 @@ std::vector<std::string> SplitLayers(const std::string& text) {
   return layers;
 }
 
-std::string Stem(const std::string& path) {
+std::string FileName(const std::string& path) {
   const auto slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+std::string Stem(const std::string& path) {
+  std::string name = FileName(path);
   const auto dot = name.find_last_of('.');
   if (dot != std::string::npos && dot > 0) name.resize(dot);
   return name.empty() ? "imported" : name;
@@ -114,7 +118,10 @@ int MapImportDxfCommand(const Invocation& inv) {
       canvas.DrawWorld(imported.world);
       canvas.DrawLegend({{rendering::colours::kWall, "imported: walls, pillars, corners"},
                          {left_out_colour, "layers left out"}});
-      canvas.DrawTitle(options.world_name + " from " + Stem(dxf_path) + ".dxf, " +
+      std::string layers;
+      for (const auto& [layer, kinds] : report.layers)
+        layers += (layers.empty() ? "" : ", ") + layer;
+      canvas.DrawTitle(FileName(dxf_path) + ", layers " + layers + ": " +
                        std::to_string(report.walls) + " walls, " + std::to_string(report.pillars) +
                        " pillars");
       canvas.WriteTo(*plot);
