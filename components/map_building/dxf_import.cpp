@@ -111,15 +111,15 @@ class Importer {
   }
 
   void ChooseUnit() {
-    std::optional<LengthUnit> drawn;
-    if (drawing_.insunits) drawn = UnitOfInsunits(*drawing_.insunits, drawing_.path);
     if (options_.units) {
       report_.unit = *options_.units;
       report_.unit_source = "--units";
-      if (drawn && drawn->symbol != options_.units->symbol)
-        report_.unit_source += " (the drawing's $INSUNITS says " + drawn->name + ")";
+      if (drawing_.insunits && *drawing_.insunits != 0)
+        report_.unit_source += ", overriding $INSUNITS = " + std::to_string(*drawing_.insunits);
       return;
     }
+    std::optional<LengthUnit> drawn;
+    if (drawing_.insunits) drawn = UnitOfInsunits(*drawing_.insunits, drawing_.path);
     if (drawn) {
       report_.unit = *drawn;
       report_.unit_source = "$INSUNITS = " + std::to_string(*drawing_.insunits);
