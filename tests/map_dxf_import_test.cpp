@@ -230,6 +230,44 @@ TEST(DxfImport, CurvedAndDegenerateSegmentsAreSkippedAndCounted) {
   EXPECT_EQ(curved, 1u);
   EXPECT_EQ(short_ones, 1u);
   EXPECT_EQ(counts.at("LINE").skipped.begin()->second, 1u);
+
+  // A closed polyline that repeats its first vertex has no zero-length closing segment.
+  const auto square = Import(
+      dir, Dxf(LwPolyline("W", {{{0, 0, 0}, {1000, 0, 0}, {1000, 1000, 0}, {0, 0, 0}}}, true)),
+      {"W"});
+  EXPECT_EQ(square.world.Walls().size(), 3u);
+  EXPECT_TRUE(square.report.layers.at("W").at("LWPOLYLINE segments").skipped.empty());
+}
+
+TEST(DxfImport, PiecesOfOneWallAreMergedAsAHandWrittenMapHasThem) {
+  const TempDir dir;
+  const std::string entities = Line("W", 0, 0, 1000, 0) + Line("W", 1000, 0, 2500, 0) +  // touching
+                               Line("W", 2400, 0, 4000, 0) +     // overlapping
+                               Line("W", 5000, 0.5, 4000, 0) +   // reversed, 0.5 mm off
+                               Line("W", 0, 0, 1000, 0) +        // drawn twice
+                               Line("W", 5010, 0, 6000, 0) +     // beyond a 10 mm gap
+                               Line("W", 0, 50, 3000, 50) +      // parallel, 50 mm away
+                               Line("W", 2500, 0, 2500, -2000);  // T junction at a joint
+  const auto imported = Import(dir, Dxf(entities), {"W"});
+  const auto& walls = imported.world.Walls();
+  ASSERT_EQ(walls.size(), 4u);
+  EXPECT_EQ(imported.report.merged_pieces, 4u);
+  EXPECT_LE((walls[0].a - Eigen::Vector2d(0, 0)).norm(), 1e-3);
+  EXPECT_LE((walls[0].b - Eigen::Vector2d(5, 0)).norm(), 1e-3);
+  EXPECT_EQ(walls[1].a, Eigen::Vector2d(5.01, 0));
+  EXPECT_EQ(walls[2].a, Eigen::Vector2d(0, 0.05));
+  // The T junction meets the merged wall in its middle: no corner there.
+  for (const auto& c : imported.world.Corners())
+    EXPECT_GT((c.position - Eigen::Vector2d(2.5, 0)).norm(), 0.1);
+  EXPECT_NE(map_building::FormatImportReport(imported.report).find("merged 4 wall pieces"),
+            std::string::npos);
+
+  DxfImportOptions keep;
+  keep.layers = {"W"};
+  keep.merge_tolerance_m = 0.0;
+  const auto pieces = map_building::ImportDrawing(
+      map_formats::ReadDxfDrawing(dir.Write("pieces.dxf", Dxf(entities))), keep);
+  EXPECT_EQ(pieces.world.Walls().size(), 8u);
 }
 
 TEST(DxfImport, OnlyTheChosenLayersMatchedIgnoringCase) {

@@ -1,11 +1,12 @@
 // A world model from a CAD drawing as integrators receive one (issue 11,
 // "maps from what users have"): the entities of the chosen layers become the
-// thesis' three feature kinds (section 2.3): every straight LINE and polyline
-// segment a wall, every CIRCLE (and every ARC closed to a full circle) a
-// cylindrical pillar, every POINT a given corner; the drawing's unit is scaled
-// to metres. What is left out, and why, is counted per layer and entity kind.
-// The drawing itself is read by map_formats::ReadDxfDrawing (dxflib); this
-// part is format-independent and DDS-free.
+// map elements of the thesis' feature kinds: every straight LINE and polyline
+// segment a wall (3.5.3), every CIRCLE (and every ARC closed to a full circle)
+// a cylindrical pillar (3.5.6), every POINT a given corner (3.5.4); the
+// drawing's unit is scaled to metres. What is left out, and why, is counted
+// per layer and entity kind. The drawing itself is read by
+// map_formats::ReadDxfDrawing (dxflib); this part is format-independent and
+// DDS-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -84,6 +85,10 @@ struct DxfImportOptions {
   std::optional<LengthUnit> units;         // overrides the drawing's $INSUNITS (default: none)
   double min_segment_m = 0.001;            // shorter segments are skipped as degenerate
   double full_circle_tolerance_deg = 1.0;  // an ARC sweeping 360 deg +- this is a pillar
+  // Pieces of one straight wall (drawn in parts, or twice) whose ends lie
+  // within this of each other's line and that touch or overlap within it
+  // become one wall, as a hand-written map has it; 0 keeps every piece.
+  double merge_tolerance_m = 0.001;
   std::string world_name = "imported";
   world_model::WorldLimits limits;  // coordinates, radii and wall count
 };
@@ -102,6 +107,7 @@ struct DxfImportReport {
   std::string unit_source;    // "$INSUNITS = 4", "--units", or why the unit was assumed
   bool unit_assumed = false;  // no unit in the drawing and none given
   size_t walls = 0, given_corners = 0, derived_corners = 0, pillars = 0;
+  size_t merged_pieces = 0;  // wall pieces merged into a collinear neighbour
 };
 
 struct DxfImport {
