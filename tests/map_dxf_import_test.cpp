@@ -331,6 +331,8 @@ TEST(DxfImport, BadDrawingsAreErrorsThatSayWhatIsWrong) {
       read_error("binary.dxf", std::string("AutoCAD Binary DXF\r\n\x1a\0", 22)).find("binary DXF"),
       std::string::npos);
   EXPECT_NE(read_error("no_entities.dxf", Dxf("")).find("no DXF entities"), std::string::npos);
+  const auto nan = read_error("nan.dxf", Dxf("0\nLINE\n8\nW\n10\nnan\n20\n0\n11\n1\n21\n0\n"));
+  EXPECT_NE(nan.find("'nan' for group code 10"), std::string::npos) << nan;
   EXPECT_THROW(map_formats::ReadDxfDrawing(dir / "missing.dxf"), config::ConfigError);
   EXPECT_THROW(map_formats::ReadDxfDrawing(dir.Path()), config::ConfigError);
 

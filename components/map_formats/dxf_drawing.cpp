@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -27,11 +28,23 @@ std::string Lower(std::string text) {
   return text;
 }
 
+// A DXF real: optional blanks around a number strtod reads entirely, finite.
+bool IsNumber(const std::string& text) {
+  const char* start = text.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(start, &end);
+  if (end == start) return false;
+  while (*end == ' ' || *end == '\t' || *end == '\r') ++end;
+  return *end == '\0' && std::isfinite(value);
+}
+
 class DrawingCollector : public DL_CreationAdapter {
  public:
   explicit DrawingCollector(CadDrawing& drawing) : drawing_(drawing) {}
 
   bool SawSection() const { return saw_section_; }
+  // The first coordinate, length or angle that is no number (dxflib reads it as 0).
+  const std::string& BadNumber() const { return bad_number_; }
   size_t Entities() const { return entities_; }
 
   void processCodeValuePair(unsigned int code, const std::string& value) override {
@@ -47,6 +60,10 @@ class DrawingCollector : public DL_CreationAdapter {
       section_ = value;
       expect_section_name_ = false;
       raw_kind_.clear();  // "SECTION" itself is no entity
+    } else if (code >= 10 && code <= 59 && section_ == "ENTITIES" && bad_number_.empty() &&
+               !IsNumber(value)) {
+      bad_number_ = "a " + raw_kind_ + " entity on layer " + raw_layer_ + " has '" + value +
+                    "' for group code " + std::to_string(code) + ", not a finite number";
     } else if (code == 8) {
       raw_layer_ = value;
     } else if (code == 67) {
@@ -111,6 +128,7 @@ class DrawingCollector : public DL_CreationAdapter {
   CadDrawing& drawing_;
   std::set<std::string> known_layers_;  // lower case
   bool saw_section_ = false;
+  std::string bad_number_;
   bool expect_section_name_ = false;
   std::string section_;
   bool in_block_ = false;
@@ -196,6 +214,8 @@ CadDrawing ReadDxfDrawing(const std::string& path) {
                               ": not a DXF drawing (no SECTION found; is it a DWG or another "
                               "format? Save it as ASCII DXF)");
   }
+  if (!collector.BadNumber().empty())
+    throw config::ConfigError(path + ": " + collector.BadNumber());
   if (collector.Entities() == 0) {
     throw config::ConfigError(path +
                               ": no DXF entities in the drawing's model space (ENTITIES section)");
