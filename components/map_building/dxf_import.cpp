@@ -34,6 +34,14 @@ std::string Join(const std::vector<std::string>& items) {
   return out;
 }
 
+// At most 40 names, then how many more.
+std::string JoinSome(const std::vector<std::string>& items) {
+  constexpr size_t kMost = 40;
+  if (items.size() <= kMost) return Join(items);
+  return Join(std::vector<std::string>(items.begin(), items.begin() + kMost)) + " and " +
+         std::to_string(items.size() - kMost) + " more";
+}
+
 std::string Number(double value) {
   std::ostringstream out;
   out << value;
@@ -206,7 +214,7 @@ class Importer {
     if (!missing.empty()) {
       Fail("the drawing has no layer " + Join(missing) +
            (drawing_.layers.empty() ? std::string("; it has no layers at all")
-                                    : "; its layers are: " + Join(drawing_.layers)));
+                                    : "; its layers are: " + JoinSome(drawing_.layers)));
     }
     for (const auto& l : drawing_.layers) {
       if (chosen_.count(Lower(l)) == 0) report_.left_out_layers.push_back(l);
