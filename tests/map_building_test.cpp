@@ -164,16 +164,17 @@ TEST_F(OfficeTour, RayCastGridMarksWallsOccupiedAndTheCorridorFree) {
   // On wall 11, the cells just on either side of y = 5: at least one occupied.
   int occupied = 0;
   for (double x = 5.0; x < 9.0; x += 0.5) {
-    occupied += value({x, 4.99}) == map_formats::OccupancyGrid::kOccupied ||
-                value({x, 5.01}) == map_formats::OccupancyGrid::kOccupied;
+    occupied += value({x, 4.99}) == map_building::OccupancyGrid::kOccupied ||
+                value({x, 5.01}) == map_building::OccupancyGrid::kOccupied;
   }
   EXPECT_EQ(occupied, 8);
-  EXPECT_EQ(value({7.0, 6.5}), map_formats::OccupancyGrid::kFree);
-  EXPECT_THROW(RayCastGrid(log.scans, [] {
-                 LogOddsGridOptions o;
-                 o.max_cells = 100;
-                 return o;
-               }()),
+  EXPECT_EQ(value({7.0, 6.5}), map_building::OccupancyGrid::kFree);
+  EXPECT_THROW(RayCastGrid(log.scans,
+                           [] {
+                             LogOddsGridOptions o;
+                             o.max_cells = 100;
+                             return o;
+                           }()),
                std::invalid_argument);
 }
 

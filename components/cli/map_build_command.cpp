@@ -38,8 +38,9 @@ int MapBuildCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
       {"out", true, "world XML to write"},
-      {"params", true, "<map_build_params> file (default: the built-in defaults, for a 180 deg "
-                       "SICK-like laser; `structloc params --map-build` lists them)"},
+      {"params", true,
+       "<map_build_params> file (default: the built-in defaults, for a 180 deg "
+       "SICK-like laser; `structloc params --map-build` lists them)"},
       {"plot", true, "PNG of the map over the recording's readings"},
       {"name", true, "the world's name (default: the log's file name)"},
       {"quiet", false, "leave out the table of every wall's support"},
@@ -64,8 +65,8 @@ int MapBuildCommand(const Invocation& inv) {
                                std::to_string(result.wall_report.segments) +
                                " scan segments); see structloc params --map-build");
     }
-    const auto world = map_building::MakeWorld(cli.GetOr("name", Stem(log_path)), result.walls,
-                                               result.pillars);
+    const auto world =
+        map_building::MakeWorld(cli.GetOr("name", Stem(log_path)), result.walls, result.pillars);
     const auto& r = result.wall_report;
     world_model::WriteWorldModel(
         world,
@@ -85,14 +86,13 @@ int MapBuildCommand(const Invocation& inv) {
               << " pieces split at gaps\n  dropped: " << r.too_few_scans << " seen from fewer than "
               << options.walls.min_scans << " scans, " << r.too_few_points << " with fewer than "
               << options.walls.min_points << " points, " << r.too_rough << " rougher than "
-              << 1000.0 * options.walls.max_rms_m << " mm RMS, " << r.too_short
-              << " shorter than " << options.walls.min_length_m << " m, " << result.walls_on_pillars
-              << " on a pillar\n  " << world.Walls().size()
-              << " walls, " << result.corners_joined << " corners joined ("
-              << world.Corners().size() << " corners derived), " << world.Cylinders().size()
-              << " pillars (" << result.pillar_report.sightings << " arc sightings, "
-              << result.pillar_report.too_few_scans << " seen too rarely)\n  wrote " << out_path
-              << "\n";
+              << 1000.0 * options.walls.max_rms_m << " mm RMS, " << r.too_short << " shorter than "
+              << options.walls.min_length_m << " m, " << result.walls_on_pillars
+              << " on a pillar\n  " << world.Walls().size() << " walls, " << result.corners_joined
+              << " corners joined (" << world.Corners().size() << " corners derived), "
+              << world.Cylinders().size() << " pillars (" << result.pillar_report.sightings
+              << " arc sightings, " << result.pillar_report.too_few_scans
+              << " seen too rarely)\n  wrote " << out_path << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
     if (!plot_path.empty()) {
       MapPicture picture;

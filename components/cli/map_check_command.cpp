@@ -77,8 +77,7 @@ int MapCheckCommand(const Invocation& inv) {
       {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
       {"plot", true, "PNG of the map over the readings, disagreeing walls marked"},
       {"near", true, "a reading this close to a wall or pillar hits it, m (default 0.1)"},
-      {"max-median", true,
-       "walls whose readings lie farther (median) disagree, m (default 0.03)"},
+      {"max-median", true, "walls whose readings lie farther (median) disagree, m (default 0.03)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
   };
   try {
@@ -98,24 +97,24 @@ int MapCheckCommand(const Invocation& inv) {
     std::vector<Eigen::Vector2d> unexplained;
     const auto report = map_building::CheckMap(world, log.scans, options, &unexplained);
     std::cout << std::fixed << std::setprecision(1) << "structloc map check: " << map_path
-              << " against " << log_path << "\n  " << report.scans << " scans, "
-              << report.readings << " readings within " << scan_options.max_range_m << " m\n  "
-              << report.explained << " readings within " << 1000.0 * options.near_m
+              << " against " << log_path << "\n  " << report.scans << " scans, " << report.readings
+              << " readings within " << scan_options.max_range_m << " m\n  " << report.explained
+              << " readings within " << 1000.0 * options.near_m
               << " mm of a wall or pillar: " << 100.0 * report.ExplainedShare()
               << " % explained\n  their distance: median " << 1000.0 * report.median_m
-              << " mm, 90 % below " << 1000.0 * report.p90_m << " mm, RMS "
-              << 1000.0 * report.rms_m << " mm\n  " << world.Walls().size() << " walls: "
-              << report.walls_disagreeing << " disagree (median above "
-              << 1000.0 * options.max_median_m << " mm), " << report.walls_rarely_seen
-              << " rarely seen (fewer than " << options.min_readings << " readings), "
-              << report.walls_never_seen << " never seen\n";
+              << " mm, 90 % below " << 1000.0 * report.p90_m << " mm, RMS " << 1000.0 * report.rms_m
+              << " mm\n  " << world.Walls().size() << " walls: " << report.walls_disagreeing
+              << " disagree (median above " << 1000.0 * options.max_median_m << " mm), "
+              << report.walls_rarely_seen << " rarely seen (fewer than " << options.min_readings
+              << " readings), " << report.walls_never_seen << " never seen\n";
     PrintDisagreeing(world, report);
     if (!plot_path.empty()) {
       MapPicture picture;
       picture.title = "map check: " + map_path;
       picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 300));
       const size_t step = std::max<size_t>(1, unexplained.size() / 200000);
-      for (size_t i = 0; i < unexplained.size(); i += step) picture.marked.push_back(unexplained[i]);
+      for (size_t i = 0; i < unexplained.size(); i += step)
+        picture.marked.push_back(unexplained[i]);
       picture.wall_colours = WallColours(report, options);
       picture.legend = {{kAgrees, "wall agrees"},
                         {kDisagrees, "wall disagrees"},

@@ -34,14 +34,14 @@ int MapGridCommand(const Invocation& inv) {
     map_formats::SaveGridMap(grid, out_path, {log_path});
     size_t occupied = 0, free = 0;
     for (const auto c : grid.cells) {
-      occupied += c == map_formats::OccupancyGrid::kOccupied;
-      free += c == map_formats::OccupancyGrid::kFree;
+      occupied += c == map_building::OccupancyGrid::kOccupied;
+      free += c == map_building::OccupancyGrid::kFree;
     }
     std::cout << "structloc map grid: " << log.scans.size() << " scans, "
               << log.readings - log.out_of_range << " readings ray-cast into " << grid.width
               << " x " << grid.height << " cells of " << options.resolution_m << " m: " << occupied
-              << " occupied, " << free << " free, "
-              << grid.cells.size() - occupied - free << " unknown\n  wrote " << out_path << "\n";
+              << " occupied, " << free << " free, " << grid.cells.size() - occupied - free
+              << " unknown\n  wrote " << out_path << "\n";
     return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc map grid: " << e.what() << "\n" << config::CommandLine::Usage(specs);

@@ -59,8 +59,8 @@ int ParamsCommand(const Invocation& inv) {
       std::cout << *path << ": valid\n";
       return 0;
     }
-    const bool all = !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario") &&
-                     !cli.Has("map-build");
+    const bool all =
+        !cli.Has("localiser") && !cli.Has("robot") && !cli.Has("scenario") && !cli.Has("map-build");
     if (all || cli.Has("localiser")) {
       localisation_core::PrintLocaliserOptions(std::cout);
       localisation_core::PrintSessionOptions(std::cout);

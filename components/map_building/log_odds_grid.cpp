@@ -31,12 +31,14 @@ void TraceCells(int x0, int y0, int x1, int y1, Pass pass, End end) {
   end(x1, y1);
 }
 
-double LogOdds(double p) { return std::log(p / (1.0 - p)); }
+double LogOdds(double p) {
+  return std::log(p / (1.0 - p));
+}
 
 }  // namespace
 
-map_formats::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
-                                       const LogOddsGridOptions& options) {
+map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
+                                        const LogOddsGridOptions& options) {
   if (!(options.resolution_m > 0.0) || !(options.hit_log_odds > 0.0) ||
       !(options.miss_log_odds < 0.0) || !(options.free_probability > 0.0) ||
       !(options.occupied_probability > options.free_probability) ||
@@ -64,8 +66,8 @@ map_formats::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
                                 std::to_string(rows) + " cells is above the limit of " +
                                 std::to_string(options.max_cells));
   }
-  map_formats::OccupancyGrid grid(static_cast<int>(columns), static_cast<int>(rows),
-                                  options.resolution_m, {lo.x(), lo.y(), 0.0});
+  map_building::OccupancyGrid grid(static_cast<int>(columns), static_cast<int>(rows),
+                                   options.resolution_m, {lo.x(), lo.y(), 0.0});
   std::vector<float> log_odds(grid.cells.size(), 0.0f);
   const auto cell = [&](int x, int y) -> float& {
     return log_odds[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
@@ -99,9 +101,9 @@ map_formats::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
   const double free = LogOdds(options.free_probability);
   for (size_t i = 0; i < grid.cells.size(); ++i) {
     if (!seen[i]) continue;
-    grid.cells[i] = log_odds[i] > occupied ? map_formats::OccupancyGrid::kOccupied
-                    : log_odds[i] < free   ? map_formats::OccupancyGrid::kFree
-                                           : map_formats::OccupancyGrid::kUnknown;
+    grid.cells[i] = log_odds[i] > occupied ? map_building::OccupancyGrid::kOccupied
+                    : log_odds[i] < free   ? map_building::OccupancyGrid::kFree
+                                           : map_building::OccupancyGrid::kUnknown;
   }
   return grid;
 }

@@ -99,9 +99,9 @@ Table PillarsSection() {
 }
 
 config::OptionFile<O> MapBuildOptionFile() {
-  return config::OptionFile<O>("map_build_params",
-                               {ScansSection(), SegmentsSection(), WallsSection(),
-                                CornersSection(), PillarsSection()});
+  return config::OptionFile<O>(
+      "map_build_params",
+      {ScansSection(), SegmentsSection(), WallsSection(), CornersSection(), PillarsSection()});
 }
 
 }  // namespace
@@ -125,6 +125,8 @@ MapBuildOptions LoadMapBuildOptions(const std::string& path) {
   return options;
 }
 
-void PrintMapBuildOptions(std::ostream& out) { MapBuildOptionFile().Print(out, MapBuildOptions{}); }
+void PrintMapBuildOptions(std::ostream& out) {
+  MapBuildOptionFile().Print(out, MapBuildOptions{});
+}
 
 }  // namespace structloc::map_building

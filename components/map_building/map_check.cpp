@@ -43,8 +43,8 @@ SurfaceAgreement Summarise(Hits& hits, const MapCheckOptions& options) {
   a.rms_m = std::sqrt(sum2 / static_cast<double>(a.readings));
   a.mean_offset_m = sum / static_cast<double>(a.readings);
   std::sort(hits.scans.begin(), hits.scans.end());
-  a.scans = static_cast<size_t>(std::unique(hits.scans.begin(), hits.scans.end()) -
-                                hits.scans.begin());
+  a.scans =
+      static_cast<size_t>(std::unique(hits.scans.begin(), hits.scans.end()) - hits.scans.begin());
   a.disagrees = a.median_m > options.max_median_m;
   return a;
 }

@@ -10,7 +10,9 @@ namespace {
 using localisation_core::FitLine;
 using localisation_core::LineEstimate;
 
-Eigen::Vector2d Direction(const LineEstimate& fit) { return {-fit.sin_alpha, fit.cos_alpha}; }
+Eigen::Vector2d Direction(const LineEstimate& fit) {
+  return {-fit.sin_alpha, fit.cos_alpha};
+}
 
 double Distance(const LineEstimate& fit, const Eigen::Vector2d& p) {
   return std::abs(p.x() * fit.cos_alpha + p.y() * fit.sin_alpha - fit.r);
@@ -168,8 +170,9 @@ std::vector<FittedWall> WallAccumulator::Walls(WallMergeReport& report) const {
   report.candidates = candidates_.size();
   // Candidates that grew towards each other are one wall: merge until stable.
   std::vector<Candidate> walls = candidates_;
-  std::sort(walls.begin(), walls.end(),
-            [](const Candidate& a, const Candidate& b) { return a.points.size() > b.points.size(); });
+  std::sort(walls.begin(), walls.end(), [](const Candidate& a, const Candidate& b) {
+    return a.points.size() > b.points.size();
+  });
   std::vector<bool> gone(walls.size(), false);
   for (bool changed = true; changed;) {
     changed = false;

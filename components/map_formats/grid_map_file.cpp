@@ -5,11 +5,12 @@
 
 namespace structloc::map_formats {
 
-OccupancyGrid LoadGridMap(const std::string&) {
+map_building::OccupancyGrid LoadGridMap(const std::string&) {
   throw std::runtime_error("not written yet");
 }
 
-void SaveGridMap(const OccupancyGrid&, const std::string&, const std::vector<std::string>&) {
+void SaveGridMap(const map_building::OccupancyGrid&, const std::string&,
+                 const std::vector<std::string>&) {
   throw std::runtime_error("not written yet");
 }
 

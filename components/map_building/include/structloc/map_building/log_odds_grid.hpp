@@ -8,25 +8,25 @@
 
 #include <vector>
 
+#include "structloc/map_building/occupancy_grid.hpp"
 #include "structloc/map_building/posed_scans.hpp"
-#include "structloc/map_formats/occupancy_grid.hpp"
 
 namespace structloc::map_building {
 
 struct LogOddsGridOptions {
   double resolution_m = 0.05;
-  double hit_log_odds = 0.85;    // ln(0.7 / 0.3): a beam ends in the cell
-  double miss_log_odds = -0.4;   // ln(0.4 / 0.6): a beam passes through the cell
-  double min_log_odds = -4.0;    // clamps, so that a cell can change its mind
+  double hit_log_odds = 0.85;   // ln(0.7 / 0.3): a beam ends in the cell
+  double miss_log_odds = -0.4;  // ln(0.4 / 0.6): a beam passes through the cell
+  double min_log_odds = -4.0;   // clamps, so that a cell can change its mind
   double max_log_odds = 4.0;
   double occupied_probability = 0.65;  // map_saver's thresholds
   double free_probability = 0.196;
-  double margin_m = 1.0;         // around the readings and poses
-  double max_cells = 2e8;        // larger grids are refused (wrong unit or a runaway pose)
+  double margin_m = 1.0;   // around the readings and poses
+  double max_cells = 2e8;  // larger grids are refused (wrong unit or a runaway pose)
 };
 
 // Throws std::invalid_argument for bad options or a grid above max_cells.
-map_formats::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
-                                       const LogOddsGridOptions& options);
+map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
+                                        const LogOddsGridOptions& options);
 
 }  // namespace structloc::map_building

@@ -15,15 +15,15 @@
 namespace structloc::map_building {
 
 struct MapCheckOptions {
-  double near_m = 0.1;               // a reading this close to a wall or pillar hits it
-  double max_median_m = 0.03;        // walls whose readings lie farther (median) disagree
-  size_t min_readings = 10;          // walls hit by fewer readings are "rarely seen"
+  double near_m = 0.1;         // a reading this close to a wall or pillar hits it
+  double max_median_m = 0.03;  // walls whose readings lie farther (median) disagree
+  size_t min_readings = 10;    // walls hit by fewer readings are "rarely seen"
 };
 
 struct SurfaceAgreement {
   size_t readings = 0;
   size_t scans = 0;
-  double median_m = 0.0;       // median |distance| of its readings
+  double median_m = 0.0;  // median |distance| of its readings
   double rms_m = 0.0;
   double mean_offset_m = 0.0;  // mean signed distance, > 0: readings in front of it (laser side)
   bool disagrees = false;      // seen, and its median above max_median_m

@@ -15,8 +15,8 @@ namespace structloc::map_building {
 struct NearestSurface {
   enum class Kind { kNone, kWall, kPillar };
   Kind kind = Kind::kNone;
-  size_t index = 0;        // into world.Walls() or world.Cylinders()
-  double distance_m = 0;   // from the point to the wall segment or the pillar's surface
+  size_t index = 0;       // into world.Walls() or world.Cylinders()
+  double distance_m = 0;  // from the point to the wall segment or the pillar's surface
 };
 
 class NearestWallIndex {

@@ -15,7 +15,7 @@ namespace structloc::map_building {
 
 struct PillarOptions {
   bool enabled = true;
-  double min_radius_m = 0.1;      // thinner arcs are legs, chair and table legs
+  double min_radius_m = 0.1;  // thinner arcs are legs, chair and table legs
   double max_radius_m = 0.6;
   int min_points = 6;             // points on one arc
   double max_rms_m = 0.01;        // of the points' distances to the fitted circle

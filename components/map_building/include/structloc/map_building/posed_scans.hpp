@@ -31,8 +31,8 @@ struct PosedScan {
 
 struct PosedScanLog {
   std::vector<PosedScan> scans;
-  size_t readings = 0;       // all readings of all scans
-  size_t out_of_range = 0;   // of them, dropped by the range limits
+  size_t readings = 0;      // all readings of all scans
+  size_t out_of_range = 0;  // of them, dropped by the range limits
   size_t malformed_lines = 0;
   size_t scans_without_pose = 0;  // laser lines with no pose at all (raw RAWLASER lines)
 };

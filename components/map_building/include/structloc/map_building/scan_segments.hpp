@@ -11,12 +11,12 @@
 namespace structloc::map_building {
 
 struct ScanSegmentOptions {
-  int window_points = 7;          // points of the seed window (Table 6's line-fit window)
-  double max_window_rms_m = 0.02; // a seed window scattering more is not a wall
+  int window_points = 7;               // points of the seed window (Table 6's line-fit window)
+  double max_window_rms_m = 0.02;      // a seed window scattering more is not a wall
   double max_point_distance_m = 0.04;  // a point farther from the growing line ends the segment
-  double max_point_gap_m = 0.4;   // consecutive points farther apart belong to different objects
-  int min_points = 10;            // shorter runs are clutter
-  double min_length_m = 0.3;      // walls are at least this long
+  double max_point_gap_m = 0.4;  // consecutive points farther apart belong to different objects
+  int min_points = 10;           // shorter runs are clutter
+  double min_length_m = 0.3;     // walls are at least this long
 };
 
 // Indices [first, last) of a segment within the scan's point list.

@@ -16,23 +16,23 @@
 namespace structloc::map_building {
 
 struct WallMergeOptions {
-  double max_angle_rad = 0.05;       // ~3 deg between a segment and a wall's line
-  double max_offset_m = 0.05;        // a segment's ends to the wall's line
-  double max_extent_gap_m = 0.5;     // a segment's extent to the wall's, along the line
-  double inlier_distance_m = 0.04;   // the final refit keeps points this close to the line
-  double max_gap_m = 0.4;            // a wall is split where no point supports it this long
-  int min_scans = 3;                 // walls seen from fewer scans are dropped
-  int min_points = 20;               // walls with fewer supporting points are dropped
-  double max_rms_m = 0.03;           // rougher walls (bushes, clutter, glass) are dropped
-  double min_length_m = 0.3;         // shorter walls are clutter
+  double max_angle_rad = 0.05;      // ~3 deg between a segment and a wall's line
+  double max_offset_m = 0.05;       // a segment's ends to the wall's line
+  double max_extent_gap_m = 0.5;    // a segment's extent to the wall's, along the line
+  double inlier_distance_m = 0.04;  // the final refit keeps points this close to the line
+  double max_gap_m = 0.4;           // a wall is split where no point supports it this long
+  int min_scans = 3;                // walls seen from fewer scans are dropped
+  int min_points = 20;              // walls with fewer supporting points are dropped
+  double max_rms_m = 0.03;          // rougher walls (bushes, clutter, glass) are dropped
+  double min_length_m = 0.3;        // shorter walls are clutter
 };
 
 struct WallMergeReport {
-  size_t segments = 0;          // segments added
-  size_t candidates = 0;        // walls before the final merge
-  size_t merged = 0;            // candidates merged into others
-  size_t pieces = 0;            // walls after splitting at gaps
-  size_t too_few_scans = 0;     // dropped, and why
+  size_t segments = 0;       // segments added
+  size_t candidates = 0;     // walls before the final merge
+  size_t merged = 0;         // candidates merged into others
+  size_t pieces = 0;         // walls after splitting at gaps
+  size_t too_few_scans = 0;  // dropped, and why
   size_t too_few_points = 0;
   size_t too_rough = 0;
   size_t too_short = 0;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "structloc/map_formats/occupancy_grid.hpp"
+#include "structloc/map_building/occupancy_grid.hpp"
 
 namespace structloc::map_formats {
 
@@ -17,14 +17,14 @@ namespace structloc::map_formats {
 // config::ConfigError naming the file and what is wrong (missing or unreadable
 // image, resolution not positive, unknown key or mode, thresholds out of
 // order, image too large).
-OccupancyGrid LoadGridMap(const std::string& yaml_path);
+map_building::OccupancyGrid LoadGridMap(const std::string& yaml_path);
 
 // Writes `<yaml_path>` and a PGM image beside it (same stem), trinary mode,
 // negate 0, occupied_thresh 0.65, free_thresh 0.196 (map_saver's defaults), so
 // that map_server, AMCL and Nav2 load it unchanged. Both files replace existing
 // ones only when both were written; `inputs` are files that must not be
 // overwritten. Throws std::runtime_error / config::ConfigError.
-void SaveGridMap(const OccupancyGrid& grid, const std::string& yaml_path,
+void SaveGridMap(const map_building::OccupancyGrid& grid, const std::string& yaml_path,
                  const std::vector<std::string>& inputs = {});
 
 }  // namespace structloc::map_formats

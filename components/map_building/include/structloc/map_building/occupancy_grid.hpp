@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace structloc::map_formats {
+namespace structloc::map_building {
 
 struct OccupancyGrid {
   static constexpr int8_t kUnknown = -1;
@@ -61,4 +61,4 @@ struct OccupancyGrid {
   }
 };
 
-}  // namespace structloc::map_formats
+}  // namespace structloc::map_building
