@@ -28,7 +28,8 @@ const MapAction kActions[] = {
      "--grid MAP.yaml --out WORLD.xml [--plot P.png]  walls, corners, pillars from a map_server "
      "occupancy grid"},
     {"import", "--dxf", MapImportDxfCommand,
-     "--dxf DRAWING.dxf --layers L1,L2 --out WORLD.xml [--plot P.png]  walls and pillars from a "
+     "--dxf DRAWING.dxf --layers L1,L2 --out WORLD.xml [--units mm|cm|m|in|ft] [--plot P.png]  "
+     "walls and pillars from a "
      "CAD drawing"},
     {"export", nullptr, MapExportCommand,
      "--map WORLD.xml --grid OUT.yaml [--resolution M]  a map_server grid of a world map"},
