@@ -18,7 +18,6 @@
 #include <stdexcept>
 
 #include "structloc/config/strict_xml.hpp"
-#include "structloc/geometry/pose2d.hpp"
 #include "structloc/map_building/collinear_merging.hpp"
 
 namespace structloc::map_building {
