@@ -5,6 +5,7 @@
 // walls give their faces, with door gaps kept.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
@@ -137,6 +138,33 @@ TEST(GridImport, ObliqueWallsAtArbitraryPositionsComeBackWithinACentimetre) {
   const auto result = map_building::VectoriseGrid(Exported(world), {});
   std::cout << "oblique room, 5 cm grid:\n";
   ExpectWallsRecovered(world, result, 0.01, 0.3 * kDegree);
+}
+
+// A grid whose origin is turned (map_server's yaw): the walls are oblique in
+// the cells and still come back on their lines in the map frame.
+TEST(GridImport, GridWithATurnedOriginGivesTheWallsInTheMapFrame) {
+  const auto world = OfficeFloor();
+  const double yaw = 0.3;
+  const Eigen::Rotation2Dd turn(yaw);
+  const Eigen::Vector4d bounds = world.Bounds();
+  Eigen::Vector2d low(INFINITY, INFINITY), high(-INFINITY, -INFINITY);
+  for (const auto& corner :
+       {Eigen::Vector2d(bounds[0], bounds[1]), Eigen::Vector2d(bounds[2], bounds[1]),
+        Eigen::Vector2d(bounds[0], bounds[3]), Eigen::Vector2d(bounds[2], bounds[3])}) {
+    const Eigen::Vector2d in_grid = turn.inverse() * corner;
+    low = low.cwiseMin(in_grid);
+    high = high.cwiseMax(in_grid);
+  }
+  const Eigen::Vector2d origin = turn * (low - Eigen::Vector2d(0.5, 0.5));
+  const Eigen::Vector2d size = (high - low + Eigen::Vector2d(1.0, 1.0)) / 0.05;
+  OccupancyGrid grid(static_cast<int>(size.x()) + 1, static_cast<int>(size.y()) + 1, 0.05,
+                     {origin.x(), origin.y(), yaw}, OccupancyGrid::kFree);
+  for (const auto& wall : world.Walls()) map_building::MarkSegment(grid, wall.a, wall.b);
+  for (const auto& c : world.Cylinders()) map_building::MarkCircle(grid, c.centre, c.radius);
+  const auto result = map_building::VectoriseGrid(grid, {});
+  std::cout << "office_floor in a grid turned by 0.3 rad:\n";
+  ExpectWallsRecovered(world, result, 0.01, 0.3 * kDegree);
+  ExpectPillarsRecovered(world, result, 0.02);
 }
 
 TEST(GridImport, FurnitureSizedBlobsAreLeftOutAndCounted) {
