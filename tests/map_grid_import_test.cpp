@@ -228,6 +228,17 @@ TEST(GridImport, NoisyGridStillGivesTheWallsAndPillars) {
   ExpectPillarsRecovered(world, result, 0.02);
 }
 
+// Blobs a circle cannot be fitted to (a short diagonal stroke: its cells on
+// one line) are left out, not an error.
+TEST(GridImport, StraightStrokesAreNoPillars) {
+  OccupancyGrid grid(40, 40, 0.05, {0, 0, 0}, OccupancyGrid::kFree);
+  for (int i = 5; i < 17; ++i) grid.At(i, i) = OccupancyGrid::kOccupied;
+  const auto result = map_building::VectoriseGrid(grid, {});
+  EXPECT_TRUE(result.pillars.empty());
+  EXPECT_TRUE(result.walls.empty());
+  EXPECT_EQ(result.blobs_left_out, 1u);
+}
+
 TEST(GridImport, AGridWithoutOccupiedCellsIsNothingToImport) {
   const OccupancyGrid grid(10, 10, 0.05, {0, 0, 0}, OccupancyGrid::kFree);
   try {

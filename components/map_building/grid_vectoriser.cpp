@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iterator>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -125,14 +126,19 @@ class FaceCells {
 
 // A circle through a blob's boundary cells, refitted once without the cells
 // more than a cell off the first fit (noise cells stuck to the pillar); the
-// RMS is over all cells when more than a fifth of them were dropped.
-FittedCircle FitPillar(const std::vector<Eigen::Vector2d>& edge, double cell) {
-  const FittedCircle first = FitCircle(edge);
-  std::vector<Eigen::Vector2d> inliers;
-  for (const auto& p : edge)
-    if (std::abs((p - first.centre).norm() - first.radius) <= cell) inliers.push_back(p);
-  if (inliers.size() < 6 || inliers.size() * 5 < edge.size() * 4) return first;
-  return FitCircle(inliers);
+// first fit when more than a fifth of them would be dropped; nothing when the
+// cells lie on a line (a short diagonal stroke is no pillar).
+std::optional<FittedCircle> FitPillar(const std::vector<Eigen::Vector2d>& edge, double cell) {
+  try {
+    const FittedCircle first = FitCircle(edge);
+    std::vector<Eigen::Vector2d> inliers;
+    for (const auto& p : edge)
+      if (std::abs((p - first.centre).norm() - first.radius) <= cell) inliers.push_back(p);
+    if (inliers.size() < 6 || inliers.size() * 5 < edge.size() * 4) return first;
+    return FitCircle(inliers);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
 struct Blob {
@@ -254,11 +260,11 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
     const auto& edge = boundary[static_cast<size_t>(i)];
     if (long_side <= 2.0 * options.max_pillar_radius_m + 2.0 * res &&
         short_side >= options.min_pillar_roundness * long_side && edge.size() >= 6) {
-      const FittedCircle circle = FitPillar(edge, res);
-      if (circle.radius >= options.min_pillar_radius_m &&
-          circle.radius <= options.max_pillar_radius_m &&
-          circle.rms_m <= options.max_pillar_rms_cells * res) {
-        out.pillars.push_back({0, circle.centre, circle.radius});
+      const auto circle = FitPillar(edge, res);
+      if (circle && circle->radius >= options.min_pillar_radius_m &&
+          circle->radius <= options.max_pillar_radius_m &&
+          circle->rms_m <= options.max_pillar_rms_cells * res) {
+        out.pillars.push_back({0, circle->centre, circle->radius});
         continue;
       }
     }
