@@ -35,7 +35,7 @@ CheckFigures Check(const std::string& map, const std::string& log) {
   return figures;
 }
 
-void Run(const std::vector<std::string>& args) {
+void RunStep(const std::vector<std::string>& args) {
   const auto run = testing::RunCli(args);
   ASSERT_EQ(run.exit_code, 0) << run.output;
 }
@@ -48,15 +48,15 @@ class CorrectedLog : public ::testing::TestWithParam<const char*> {
 
 TEST_P(CorrectedLog, BuiltAndGridMapsAgreeWithTheRecording) {
   const std::string built = dir / "built.xml";
-  Run({"map", "build", "--log", log, "--out", built, "--quiet"});
+  RunStep({"map", "build", "--log", log, "--out", built, "--quiet"});
   const auto from_log = Check(built, log);
 
-  Run({"map", "export", "--map", built, "--grid", dir / "exported.yaml"});
-  Run({"map", "import", "--grid", dir / "exported.yaml", "--out", dir / "from_export.xml"});
+  RunStep({"map", "export", "--map", built, "--grid", dir / "exported.yaml"});
+  RunStep({"map", "import", "--grid", dir / "exported.yaml", "--out", dir / "from_export.xml"});
   const auto from_export = Check(dir / "from_export.xml", log);
 
-  Run({"map", "grid", "--log", log, "--out", dir / "ray_cast.yaml"});
-  Run({"map", "import", "--grid", dir / "ray_cast.yaml", "--out", dir / "from_ray_cast.xml"});
+  RunStep({"map", "grid", "--log", log, "--out", dir / "ray_cast.yaml"});
+  RunStep({"map", "import", "--grid", dir / "ray_cast.yaml", "--out", dir / "from_ray_cast.xml"});
   const auto from_ray_cast = Check(dir / "from_ray_cast.xml", log);
 
   std::cout << GetParam() << ": median distance / readings explained\n"

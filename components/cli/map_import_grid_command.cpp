@@ -1,13 +1,146 @@
-// "structloc map import grid": not written yet.
+// "structloc map import --grid MAP.yaml --out WORLD.xml [--plot P.png]": walls,
+// corners and pillars from a ROS map_server occupancy grid (what slam_toolbox,
+// gmapping, Cartographer or Nav2's map_saver wrote), so that a building
+// already mapped for ROS needs no new survey. The world file and the picture
+// replace existing ones only when complete.
+#include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "map_subcommands.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/map_building/grid_vectoriser.hpp"
+#include "structloc/map_formats/grid_map_file.hpp"
+#include "structloc/rendering/map_canvas.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::cli {
+namespace {
 
-int MapImportGridCommand(const Invocation&) {
-  std::cerr << "structloc map: not written yet\n";
-  return 2;
+void DrawPlot(const map_building::OccupancyGrid& grid, const world_model::WorldModel& world,
+              const std::string& title, config::OutputFile& file) {
+  std::vector<Eigen::Vector2d> occupied;
+  for (int row = 0; row < grid.height; ++row)
+    for (int column = 0; column < grid.width; ++column)
+      if (grid.At(column, row) >= map_building::GridVectoriseOptions{}.occupied_min_value)
+        occupied.push_back(grid.CellCentre(column, row));
+  Eigen::Vector4d bounds = world.Bounds();
+  for (const auto& p : occupied) {
+    bounds[0] = std::min(bounds[0], p.x());
+    bounds[1] = std::min(bounds[1], p.y());
+    bounds[2] = std::max(bounds[2], p.x());
+    bounds[3] = std::max(bounds[3], p.y());
+  }
+  rendering::MapCanvas canvas(bounds, 40.0);
+  const cv::Scalar cell_colour(0, 170, 255);
+  canvas.DrawPoints(occupied, cell_colour, 1);
+  canvas.DrawWorld(world);
+  canvas.DrawLegend({{cell_colour, "occupied cells of the grid"},
+                     {rendering::colours::kWall, "imported walls, pillars, corners"}});
+  canvas.DrawTitle(title);
+  canvas.WriteTo(file);
+}
+
+}  // namespace
+
+int MapImportGridCommand(const Invocation& inv) {
+  const map_building::GridVectoriseOptions defaults;
+  auto number = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  const std::vector<config::OptionSpec> specs = {
+      {"grid", true, "map_server YAML (with its PGM or PNG image) to import"},
+      {"out", true, "world XML to write"},
+      {"plot", true, "PNG: the occupied cells with the imported map over them"},
+      {"name", true, "name of the world (default: the YAML's file name without extension)"},
+      {"min-wall-length", true,
+       "shortest wall piece kept, m (default " + number(defaults.min_wall_length_m) + ")"},
+      {"max-gap", true,
+       "a wider gap in a wall's cells is a door, m (default " + number(defaults.max_gap_m) + ")"},
+      {"min-wall-blob", true,
+       "blobs of occupied cells smaller than this (bounding box) are furniture, not walls, m "
+       "(default " +
+           number(defaults.min_wall_blob_size_m) + ")"},
+      {"max-pillar-radius", true,
+       "largest pillar radius, m (default " + number(defaults.max_pillar_radius_m) + ")"},
+      {"ignore-unknown-keys", false,
+       "ignore YAML keys map_server does not read (as ROS does) instead of refusing them"},
+  };
+  try {
+    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+    const std::string grid_path = cli.Required("grid");
+    const std::string out_path = cli.Required("out");
+    const auto plot_path = cli.Get("plot");
+    if (plot_path) rendering::MapCanvas::CheckPictureName(*plot_path);
+    map_building::GridVectoriseOptions options;
+    options.min_wall_length_m =
+        cli.NumberIn("min-wall-length", defaults.min_wall_length_m, 1e-3, 1e3);
+    options.max_gap_m = cli.NumberIn("max-gap", defaults.max_gap_m, 1e-3, 1e3);
+    options.min_wall_blob_size_m =
+        cli.NumberIn("min-wall-blob", defaults.min_wall_blob_size_m, 0.0, 1e3);
+    options.max_pillar_radius_m = cli.NumberIn("max-pillar-radius", defaults.max_pillar_radius_m,
+                                               defaults.min_pillar_radius_m, 1e3);
+    map_formats::GridMapReadOptions read;
+    read.ignore_unknown_keys = cli.Has("ignore-unknown-keys");
+    const std::string name = cli.GetOr("name", std::filesystem::path(grid_path).stem().string());
+
+    const auto grid = map_formats::LoadGridMap(grid_path, read);
+    map_building::GridVectorisation result;
+    try {
+      result = map_building::VectoriseGrid(grid, options);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(grid_path + ": " + e.what());
+    }
+    if (result.walls.empty() && result.pillars.empty())
+      throw std::runtime_error(grid_path + ": found no wall or pillar in " +
+                               std::to_string(result.occupied_cells) +
+                               " occupied cells (see --min-wall-length and --min-wall-blob)");
+    const auto world = map_building::MakeWorld(name, result.walls, result.pillars);
+
+    config::OutputFile out(out_path, {grid_path});
+    std::optional<config::OutputFile> plot;
+    if (plot_path) plot.emplace(*plot_path, std::vector<std::string>{grid_path, out_path});
+    std::ostringstream made;
+    made << "made by structloc map import --grid " << grid_path << " (" << grid.width << " x "
+         << grid.height << " cells of " << grid.resolution_m << " m), min wall length "
+         << options.min_wall_length_m << " m, max gap " << options.max_gap_m << " m, min wall blob "
+         << options.min_wall_blob_size_m << " m, max pillar radius " << options.max_pillar_radius_m
+         << " m";
+    world_model::WriteWorldModel(world, {made.str()}, out.Stream());
+    if (plot) {
+      DrawPlot(grid, world,
+               name + ": " + std::to_string(world.Walls().size()) + " walls, " +
+                   std::to_string(world.Cylinders().size()) + " pillars from " + grid_path,
+               *plot);
+      plot->Flush();
+    }
+    out.Flush();
+    out.Commit();
+    if (plot) plot->Commit();
+    std::cout << "structloc map import: " << grid_path << ": " << result.cells << " cells read ("
+              << grid.width << " x " << grid.height << " of " << grid.resolution_m << " m), "
+              << result.occupied_cells << " occupied, " << result.face_cells
+              << " facing free space in " << result.wall_blobs << " wall blobs\n"
+              << "  " << world.Walls().size() << " walls, " << world.Corners().size()
+              << " corners (" << result.corners_joined << " wall ends joined), "
+              << world.Cylinders().size() << " pillars\n"
+              << "  left out: " << result.blobs_left_out
+              << " blobs too small for a wall and not round (furniture), " << result.specks_left_out
+              << " specks of at most " << options.max_speck_cells << " cells (noise)\n"
+              << "  wrote " << out_path;
+    if (plot_path) std::cout << " and " << *plot_path;
+    std::cout << "\n";
+    return 0;
+  } catch (const config::ConfigError& e) {
+    std::cerr << "structloc map import: " << e.what() << "\n" << config::CommandLine::Usage(specs);
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "structloc map import: " << e.what() << std::endl;
+    return 1;
+  }
 }
 
 }  // namespace structloc::cli

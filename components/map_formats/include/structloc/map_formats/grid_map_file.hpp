@@ -5,6 +5,7 @@
 // AMCL/Nav2 read. DDS-free.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -12,19 +13,48 @@
 
 namespace structloc::map_formats {
 
-// Loads a map_server YAML and its image into cells (-1/0/100 for mode
-// "trinary", 0..100 for "scale", the raw value for "raw"). Throws
-// config::ConfigError naming the file and what is wrong (missing or unreadable
-// image, resolution not positive, unknown key or mode, thresholds out of
-// order, image too large).
-map_building::OccupancyGrid LoadGridMap(const std::string& yaml_path);
+// The grid type is the map builder's; this file only reads and writes it.
+using map_building::OccupancyGrid;
+
+// How strictly a map_server YAML is read, and how large a grid may be.
+struct GridMapReadOptions {
+  static constexpr size_t kDefaultMaxCells = 100'000'000;  // 10000 x 10000 cells, 100 MB
+
+  // Cells (width * height) beyond which the image is refused before it is
+  // decoded (PGM and PNG headers are read first): a guard against a wrong or
+  // hostile file taking all memory.
+  size_t max_cells = kDefaultMaxCells;
+  // map_server and Nav2 read only image, resolution, origin, negate,
+  // occupied_thresh, free_thresh and mode, and ignore every other key. We
+  // refuse other keys by default, so that a misspelt key ("ocupied_thresh")
+  // is not silently replaced by its default; true ignores them as ROS does
+  // (for YAMLs that carry extra keys for other tools).
+  bool ignore_unknown_keys = false;
+};
+
+// Loads a map_server YAML and its image into cells. Required keys: image
+// (relative to the YAML's folder unless absolute), resolution (m per cell,
+// > 0) and origin ([x, y, yaw]); optional with map_saver's defaults: negate
+// (0), occupied_thresh (0.65), free_thresh (0.196), mode ("trinary").
+// Values as map_server computes them: p = (255 - x) / 255 (x / 255 when
+// negated) from the grey level x (colour channels averaged, alpha ignored);
+// "trinary": 100 when p > occupied_thresh, 0 when p < free_thresh, else -1;
+// "scale": the same but 99 * (p - free) / (occupied - free) in between, and -1
+// where the alpha channel is not opaque; "raw": x itself (0..100, 255 for -1,
+// as map_saver writes raw maps). Throws config::ConfigError naming the file and
+// what is wrong (unreadable YAML, missing or unknown key, resolution not
+// positive, unknown mode, thresholds outside [0, 1] or free >= occupied,
+// missing or unreadable image, image too large, empty image).
+OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options = {});
 
 // Writes `<yaml_path>` and a PGM image beside it (same stem), trinary mode,
 // negate 0, occupied_thresh 0.65, free_thresh 0.196 (map_saver's defaults), so
-// that map_server, AMCL and Nav2 load it unchanged. Both files replace existing
-// ones only when both were written; `inputs` are files that must not be
-// overwritten. Throws std::runtime_error / config::ConfigError.
-void SaveGridMap(const map_building::OccupancyGrid& grid, const std::string& yaml_path,
+// that map_server, AMCL and Nav2 load it unchanged: cells >= 65 are black (0),
+// cells 0..19 white (254), the rest (unknown, and values in between) grey
+// (205), which LoadGridMap reads back as 100, 0 and -1. Both files replace
+// existing ones only when both were written; `inputs` are files that must not
+// be overwritten. Throws std::runtime_error / config::ConfigError.
+void SaveGridMap(const OccupancyGrid& grid, const std::string& yaml_path,
                  const std::vector<std::string>& inputs = {});
 
 }  // namespace structloc::map_formats

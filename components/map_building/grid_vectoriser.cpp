@@ -1,0 +1,391 @@
+// Walls, corners and pillars from an occupancy grid (see header).
+#include "structloc/map_building/grid_vectoriser.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace structloc::map_building {
+namespace {
+
+using map_building::OccupancyGrid;
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("grid import option " + what);
+}
+
+void CheckOptions(const GridVectoriseOptions& o) {
+  Require(o.free_max_value >= 0 && o.free_max_value < o.occupied_min_value &&
+              o.occupied_min_value <= 100,
+          "free_max_value and occupied_min_value must satisfy 0 <= free < occupied <= 100");
+  Require(o.min_wall_length_m > 0.0, "min_wall_length_m must be positive");
+  Require(o.max_gap_m > 0.0, "max_gap_m must be positive");
+  Require(o.min_wall_blob_size_m >= 0.0, "min_wall_blob_size_m must not be negative");
+  Require(o.proposal_capture_cells > 0.0 && o.capture_cells > 0.0,
+          "proposal_capture_cells and capture_cells must be positive");
+  Require(o.same_line_angle_rad > 0.0, "same_line_angle_rad must be positive");
+  Require(o.hough_votes >= 2, "hough_votes must be at least 2");
+  Require(o.min_pillar_radius_m > 0.0 && o.min_pillar_radius_m <= o.max_pillar_radius_m,
+          "min_pillar_radius_m must be positive and at most max_pillar_radius_m");
+  Require(o.max_pillar_rms_cells > 0.0, "max_pillar_rms_cells must be positive");
+  Require(o.min_pillar_roundness > 0.0 && o.min_pillar_roundness <= 1.0,
+          "min_pillar_roundness must lie in (0, 1]");
+}
+
+// A cell this near a fitted line counts as lying on it (a wall two cells
+// thick has its cells half a cell either side of its line).
+constexpr double kOnLineCells = 0.55;
+
+struct Line {
+  Eigen::Vector2d normal{1, 0};
+  double r = 0.0;
+  double Distance(const Eigen::Vector2d& p) const { return std::abs(normal.dot(p) - r); }
+  Eigen::Vector2d Direction() const { return {-normal.y(), normal.x()}; }
+};
+
+Line LineOf(const FittedWall& wall) {
+  return {Eigen::Vector2d(std::cos(wall.line.alpha), std::sin(wall.line.alpha)), wall.line.r};
+}
+
+// Cell-centre points of one line, split into runs at gaps, runs shorter than
+// min_length dropped.
+std::vector<std::vector<Eigen::Vector2d>> Runs(const std::vector<Eigen::Vector2d>& points,
+                                               double max_gap, double min_length) {
+  std::vector<std::vector<Eigen::Vector2d>> kept;
+  if (points.size() < 3) return kept;
+  const FittedWall all = FitWall(points);
+  for (auto& run : SplitAtGaps(all, points, max_gap)) {
+    if (run.size() < 3) continue;
+    const double length = std::abs(AlongWall(all, run.back()) - AlongWall(all, run.front()));
+    if (length >= min_length) kept.push_back(std::move(run));
+  }
+  return kept;
+}
+
+std::vector<Eigen::Vector2d> Joined(const std::vector<std::vector<Eigen::Vector2d>>& runs) {
+  std::vector<Eigen::Vector2d> all;
+  for (const auto& run : runs) all.insert(all.end(), run.begin(), run.end());
+  return all;
+}
+
+// The face cells' centres, found by cell: lines are walked across the grid
+// instead of testing every face cell against every line.
+class FaceCells {
+ public:
+  explicit FaceCells(const OccupancyGrid& grid) : grid_(grid), index_(grid.cells.size(), -1) {}
+  void Add(int column, int row) {
+    index_[Key(column, row)] = static_cast<int>(points_.size());
+    points_.push_back(grid_.CellCentre(column, row));
+  }
+  const std::vector<Eigen::Vector2d>& Points() const { return points_; }
+  long long KeyOf(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2i cell = grid_.CellOf(p);
+    return static_cast<long long>(Key(cell.x(), cell.y()));
+  }
+  // Face cells whose centre is at most `distance` from the line.
+  std::vector<Eigen::Vector2d> Near(const Line& line, double distance) const {
+    // The line in cell units: n_g . u = r_g, u = (column + 0.5, row + 0.5) at centres.
+    const double c = std::cos(grid_.origin.z()), s = std::sin(grid_.origin.z());
+    const Eigen::Vector2d n(c * line.normal.x() + s * line.normal.y(),
+                            -s * line.normal.x() + c * line.normal.y());
+    const double r = (line.r - line.normal.dot(grid_.origin.head<2>())) / grid_.resolution_m;
+    const double d = distance / grid_.resolution_m;
+    const bool by_column = std::abs(n.y()) >= std::abs(n.x());
+    const int steps = by_column ? grid_.width : grid_.height;
+    const int across_size = by_column ? grid_.height : grid_.width;
+    const double major = by_column ? n.x() : n.y(), minor = by_column ? n.y() : n.x();
+    std::vector<Eigen::Vector2d> near;
+    for (int i = 0; i < steps; ++i) {
+      const double centre = (r - major * (i + 0.5)) / minor - 0.5;
+      const double spread = d / std::abs(minor) + 1.0;
+      const int lo = std::max(0, static_cast<int>(std::floor(centre - spread)));
+      const int hi = std::min(across_size - 1, static_cast<int>(std::ceil(centre + spread)));
+      for (int j = lo; j <= hi; ++j) {
+        const int at = index_[by_column ? Key(i, j) : Key(j, i)];
+        if (at >= 0 && line.Distance(points_[static_cast<size_t>(at)]) <= distance)
+          near.push_back(points_[static_cast<size_t>(at)]);
+      }
+    }
+    return near;
+  }
+
+ private:
+  size_t Key(int column, int row) const {
+    return static_cast<size_t>(row) * static_cast<size_t>(grid_.width) +
+           static_cast<size_t>(column);
+  }
+  const OccupancyGrid& grid_;
+  std::vector<int> index_;
+  std::vector<Eigen::Vector2d> points_;
+};
+
+// A circle through a blob's boundary cells, refitted once without the cells
+// more than a cell off the first fit (noise cells stuck to the pillar); the
+// first fit when more than a fifth of them would be dropped; nothing when the
+// cells lie on a line (a short diagonal stroke is no pillar).
+std::optional<FittedCircle> FitPillar(const std::vector<Eigen::Vector2d>& edge, double cell) {
+  try {
+    const FittedCircle first = FitCircle(edge);
+    std::vector<Eigen::Vector2d> inliers;
+    for (const auto& p : edge)
+      if (std::abs((p - first.centre).norm() - first.radius) <= cell) inliers.push_back(p);
+    if (inliers.size() < 6 || inliers.size() * 5 < edge.size() * 4) return first;
+    return FitCircle(inliers);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+struct Blob {
+  int left, bottom, width, height;
+  size_t cells;
+};
+
+}  // namespace
+
+FittedCircle FitCircle(const std::vector<Eigen::Vector2d>& points) {
+  if (points.size() < 3) throw std::invalid_argument("a circle needs at least three points");
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  // Kasa: x^2 + y^2 + D x + E y + F = 0, about the mean for conditioning.
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  for (const auto& p : points) {
+    const Eigen::Vector2d q = p - mean;
+    const Eigen::Vector3d row(q.x(), q.y(), 1.0);
+    ata += row * row.transpose();
+    atb += row * -q.squaredNorm();
+  }
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(ata);
+  if (lu.rank() < 3) throw std::invalid_argument("circle points are collinear");
+  const Eigen::Vector3d def = lu.solve(atb);
+  Eigen::Vector2d centre(-def[0] / 2.0, -def[1] / 2.0);
+  double radius = std::sqrt(std::max(0.0, centre.squaredNorm() - def[2]));
+  // Geometric refinement (Gauss-Newton on |p - c| - R).
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
+    for (const auto& p : points) {
+      const Eigen::Vector2d d = (p - mean) - centre;
+      const double n = d.norm();
+      if (n < 1e-12) continue;
+      const Eigen::Vector3d j(-d.x() / n, -d.y() / n, -1.0);
+      jtj += j * j.transpose();
+      jtr += j * (n - radius);
+    }
+    const Eigen::Vector3d step = jtj.ldlt().solve(-jtr);
+    if (!step.allFinite()) break;
+    centre += step.head<2>();
+    radius += step[2];
+    if (step.norm() < 1e-10) break;
+  }
+  double sse = 0.0;
+  for (const auto& p : points) sse += std::pow(((p - mean) - centre).norm() - radius, 2);
+  FittedCircle circle;
+  circle.centre = centre + mean;
+  circle.radius = std::abs(radius);
+  circle.rms_m = std::sqrt(sse / static_cast<double>(points.size()));
+  return circle;
+}
+
+GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOptions& options) {
+  CheckOptions(options);
+  GridVectorisation out;
+  out.cells = grid.cells.size();
+  const double res = grid.resolution_m;
+  auto occupied = [&](int c, int r) {
+    return grid.Contains(c, r) && grid.At(c, r) >= options.occupied_min_value;
+  };
+  auto free = [&](int c, int r) {
+    return grid.Contains(c, r) && grid.At(c, r) >= 0 && grid.At(c, r) <= options.free_max_value;
+  };
+  cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
+  bool any_free = false;
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      if (occupied(c, r)) {
+        mask.at<uint8_t>(r, c) = 255;
+        ++out.occupied_cells;
+      } else if (free(c, r)) {
+        any_free = true;
+      }
+    }
+  }
+  if (out.occupied_cells == 0)
+    throw std::invalid_argument("the grid has no occupied cell (none at or above " +
+                                std::to_string(options.occupied_min_value) +
+                                "): nothing to import");
+  // A face looks onto free space; a grid without free cells (only occupied
+  // and unknown) has its faces looking onto anything not occupied.
+  auto open = [&](int c, int r) { return any_free ? free(c, r) : !occupied(c, r); };
+  auto face = [&](int c, int r) {
+    return open(c - 1, r) || open(c + 1, r) || open(c, r - 1) || open(c, r + 1);
+  };
+
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<Blob> blobs(static_cast<size_t>(count));
+  std::vector<std::vector<Eigen::Vector2d>> boundary(static_cast<size_t>(count));
+  for (int i = 1; i < count; ++i) {
+    blobs[static_cast<size_t>(i)] = {
+        stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+        stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
+        static_cast<size_t>(stats.at<int>(i, cv::CC_STAT_AREA))};
+  }
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      const int label = labels.at<int>(r, c);
+      if (label == 0) continue;
+      if (!occupied(c - 1, r) || !occupied(c + 1, r) || !occupied(c, r - 1) || !occupied(c, r + 1))
+        boundary[static_cast<size_t>(label)].push_back(grid.CellCentre(c, r));
+    }
+  }
+
+  // Classify the blobs: specks, pillars, walls, and the rest left out.
+  std::vector<bool> is_wall(static_cast<size_t>(count), false);
+  for (int i = 1; i < count; ++i) {
+    const Blob& blob = blobs[static_cast<size_t>(i)];
+    const double long_side = std::max(blob.width, blob.height) * res;
+    const double short_side = std::min(blob.width, blob.height) * res;
+    if (blob.cells <= options.max_speck_cells) {
+      ++out.specks_left_out;
+      continue;
+    }
+    const auto& edge = boundary[static_cast<size_t>(i)];
+    if (long_side <= 2.0 * options.max_pillar_radius_m + 2.0 * res &&
+        short_side >= options.min_pillar_roundness * long_side && edge.size() >= 6) {
+      const auto circle = FitPillar(edge, res);
+      if (circle && circle->radius >= options.min_pillar_radius_m &&
+          circle->radius <= options.max_pillar_radius_m &&
+          circle->rms_m <= options.max_pillar_rms_cells * res) {
+        out.pillars.push_back({0, circle->centre, circle->radius});
+        continue;
+      }
+    }
+    if (long_side >= options.min_wall_blob_size_m) {
+      is_wall[static_cast<size_t>(i)] = true;
+      ++out.wall_blobs;
+    } else {
+      ++out.blobs_left_out;
+    }
+  }
+
+  // Face cells of the wall blobs: the points the walls are fitted to.
+  cv::Mat faces(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
+  FaceCells face_cells(grid);
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      if (!is_wall[static_cast<size_t>(labels.at<int>(r, c))] || !face(c, r)) continue;
+      faces.at<uint8_t>(r, c) = 255;
+      face_cells.Add(c, r);
+    }
+  }
+  out.face_cells = face_cells.Points().size();
+
+  std::vector<cv::Vec4i> proposals;
+  if (out.face_cells > 0) {
+    cv::HoughLinesP(faces, proposals, 1.0, CV_PI / 720.0, options.hough_votes,
+                    options.min_wall_length_m / res, options.max_gap_m / res);
+  }
+  auto length = [](const cv::Vec4i& s) { return std::hypot(s[2] - s[0], s[3] - s[1]); };
+  std::stable_sort(proposals.begin(), proposals.end(),
+                   [&](const auto& l, const auto& m) { return length(l) > length(m); });
+
+  // Each proposal is refitted on its own; proposals that end on the same
+  // cells (near-parallel, sharing half of them) are one wall, and the fit
+  // with the most cells within ~half a cell of its line wins (not simply the
+  // most cells: a line slanting across a thick wall's two faces collects as
+  // many cells as either face, but few of them lie on it).
+  struct Candidate {
+    FittedWall fit;
+    std::vector<std::vector<Eigen::Vector2d>> runs;
+    std::vector<long long> cells;  // sorted keys of the cells fitted
+    size_t on_line = 0;            // cells within kOnLineCells of the line
+    bool dropped = false;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& s : proposals) {
+    const Eigen::Vector2d a = grid.CellCentre(s[0], s[1]), b = grid.CellCentre(s[2], s[3]);
+    if ((b - a).norm() < 1e-9) continue;
+    Line proposed;
+    proposed.normal = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
+    proposed.r = proposed.normal.dot(a);
+    const Eigen::Vector2d mid = (a + b) / 2.0;
+    // Start: the cells along the proposed segment (and a gap beyond its ends).
+    const Eigen::Vector2d direction = proposed.Direction();
+    const double half = (b - a).norm() / 2.0 + options.max_gap_m;
+    std::vector<Eigen::Vector2d> start;
+    for (const auto& p : face_cells.Near(proposed, options.proposal_capture_cells * res))
+      if (std::abs(direction.dot(p - mid)) <= half) start.push_back(p);
+    auto runs = Runs(start, options.max_gap_m, options.min_wall_length_m);
+    if (runs.empty()) continue;
+    // Then the whole line, refitted until its cells settle (first with the
+    // wider capture, so that a slightly turned start swings back): every piece
+    // of the line (across doors) is fitted jointly.
+    FittedWall fit = FitWall(Joined(runs));
+    for (int iteration = 0; iteration < 4 && !runs.empty(); ++iteration) {
+      const double capture =
+          (iteration < 2 ? options.proposal_capture_cells : options.capture_cells) * res;
+      runs =
+          Runs(face_cells.Near(LineOf(fit), capture), options.max_gap_m, options.min_wall_length_m);
+      if (!runs.empty()) fit = FitWall(Joined(runs));
+    }
+    if (runs.empty()) continue;
+    Candidate candidate{fit, runs, {}, 0, false};
+    const Line fitted = LineOf(fit);
+    for (const auto& run : runs) {
+      for (const auto& p : run) {
+        candidate.cells.push_back(face_cells.KeyOf(p));
+        candidate.on_line += fitted.Distance(p) <= kOnLineCells * res;
+      }
+    }
+    std::sort(candidate.cells.begin(), candidate.cells.end());
+    for (auto& other : candidates) {
+      if (other.dropped) continue;
+      const Line known = LineOf(other.fit);
+      const double cross =
+          known.normal.x() * fitted.normal.y() - known.normal.y() * fitted.normal.x();
+      if (std::abs(cross) > std::sin(options.same_line_angle_rad)) continue;
+      std::vector<long long> shared;
+      std::set_intersection(candidate.cells.begin(), candidate.cells.end(), other.cells.begin(),
+                            other.cells.end(), std::back_inserter(shared));
+      if (2 * shared.size() < std::min(candidate.cells.size(), other.cells.size())) continue;
+      if (other.on_line >= candidate.on_line) {
+        candidate.dropped = true;
+        break;
+      }
+      other.dropped = true;
+    }
+    if (!candidate.dropped) candidates.push_back(std::move(candidate));
+  }
+  for (const auto& candidate : candidates) {
+    if (candidate.dropped) continue;
+    const Line fitted = LineOf(candidate.fit);
+    const Eigen::Vector2d foot = fitted.r * fitted.normal;
+    for (const auto& run : candidate.runs) {
+      FittedWall piece = candidate.fit;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const auto& p : run) {
+        const double t = fitted.Direction().dot(p - foot);
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+      }
+      piece.a = foot + lo * fitted.Direction();
+      piece.b = foot + hi * fitted.Direction();
+      piece.points = run.size();
+      out.walls.push_back(piece);
+    }
+  }
+  CornerJoinOptions corners = options.corners;
+  corners.max_end_distance_m = std::max(corners.max_end_distance_m, 3.0 * res);
+  out.corners_joined = JoinCorners(out.walls, corners);
+  return out;
+}
+
+}  // namespace structloc::map_building

@@ -1,0 +1,78 @@
+// Walls, corners and pillars from an occupancy grid (`structloc map import
+// --grid`): the occupied cells are split into connected blobs; blobs shaped
+// like a round pillar get a circle fitted to their boundary cells, blobs too
+// small for a wall (furniture, noise) are left out and counted, and the rest
+// give walls: OpenCV's probabilistic Hough transform proposes segments, and
+// each wall's line is then the total least-squares fit (FitWall, thesis 3.5.2)
+// of the cell centres near it, so that its position is good to a fraction of
+// a cell.
+//
+// Which cells are fitted: the "face" cells, occupied cells with a free
+// 4-neighbour, i.e. what a laser in the free space sees. A wall one or two
+// cells thick has both its faces within capture_cells of one line and gives
+// one wall along its middle; a thicker wall (from SLAM, or a drawn plan) gives
+// one wall per face, each through the centres of the face cells (a laser hit
+// lies somewhere in its cell; the centre is the unbiased guess). An
+// axis-aligned wall is thus known to +-half a cell only when it is thin and
+// lies inside one row of cells; oblique walls, and walls whose cells straddle
+// a cell border, come out to ~cell / sqrt(cells). Pieces of one line on both
+// sides of a door share one fitted line and keep the door as a gap. DDS-free.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "structloc/map_building/wall_fitting.hpp"
+#include "structloc/map_building/occupancy_grid.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::map_building {
+
+struct GridVectoriseOptions {
+  int occupied_min_value = 65;           // cells >= this are occupied (map_saver's 0.65)
+  int free_max_value = 19;               // cells 0..this are free (map_saver's 0.196)
+  double min_wall_length_m = 0.3;        // shorter wall pieces are dropped
+  double max_gap_m = 0.25;               // a wider gap in a wall's cells splits it (a door)
+  double min_wall_blob_size_m = 1.0;     // blobs whose bounding box is smaller are not walls
+  double proposal_capture_cells = 1.25;  // cells this near a proposed segment start its fit
+  double capture_cells = 0.8;            // cells this near a fitted line belong to it
+  // Fits this close in angle (~2 deg) that share at least half their cells
+  // are one wall (several Hough proposals of one wall); the one with more cells is kept.
+  double same_line_angle_rad = 0.035;
+  int hough_votes = 10;  // Hough accumulator threshold, cells
+  double min_pillar_radius_m = 0.05;
+  double max_pillar_radius_m = 0.6;
+  double max_pillar_rms_cells = 0.5;  // RMS of the boundary cells about the fitted circle
+  double min_pillar_roundness = 0.7;  // bounding box: short side / long side
+  size_t max_speck_cells = 2;         // blobs this small are noise, counted apart
+  CornerJoinOptions corners{0.15, 0.5};
+};
+
+struct GridVectorisation {
+  std::vector<FittedWall> walls;
+  std::vector<world_model::Cylinder> pillars;
+  size_t cells = 0;            // in the grid
+  size_t occupied_cells = 0;   // at or above occupied_min_value
+  size_t face_cells = 0;       // occupied cells of wall blobs next to free space
+  size_t wall_blobs = 0;       // connected blobs that gave walls
+  size_t blobs_left_out = 0;   // neither wall nor pillar (furniture, clutter)
+  size_t specks_left_out = 0;  // blobs of at most max_speck_cells (noise)
+  size_t corners_joined = 0;   // wall ends pulled onto a corner (JoinCorners)
+};
+
+// Throws std::invalid_argument when the grid has no occupied cell, or
+// when the options are out of range (naming the option).
+GridVectorisation VectoriseGrid(const map_building::OccupancyGrid& grid,
+                                const GridVectoriseOptions& options);
+
+// Circle through points by algebraic (Kasa) then geometric least squares:
+// centre, radius and the RMS of the radial residuals. Throws
+// std::invalid_argument for fewer than three points or collinear points.
+struct FittedCircle {
+  Eigen::Vector2d centre{0, 0};
+  double radius = 0.0;
+  double rms_m = 0.0;
+};
+FittedCircle FitCircle(const std::vector<Eigen::Vector2d>& points);
+
+}  // namespace structloc::map_building
