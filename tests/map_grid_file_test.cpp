@@ -13,9 +13,9 @@
 namespace structloc {
 namespace {
 
+using map_building::OccupancyGrid;
 using map_formats::GridMapReadOptions;
 using map_formats::LoadGridMap;
-using map_building::OccupancyGrid;
 using map_formats::SaveGridMap;
 using testing::TempDir;
 

@@ -72,7 +72,7 @@ void MarkCircle(map_building::OccupancyGrid& grid, const Eigen::Vector2d& centre
 }
 
 map_building::OccupancyGrid RasteriseWorld(const world_model::WorldModel& world,
-                                          const RasteriseOptions& options) {
+                                           const RasteriseOptions& options) {
   if (!(options.resolution_m > 0.0) || !std::isfinite(options.resolution_m))
     throw std::invalid_argument("the grid resolution must be a positive number of metres");
   if (!(options.margin_m >= 0.0) || !std::isfinite(options.margin_m))
@@ -89,8 +89,8 @@ map_building::OccupancyGrid RasteriseWorld(const world_model::WorldModel& world,
         std::to_string(static_cast<long long>(rows)) + " cells is beyond the limit of " +
         std::to_string(options.max_cells) + " cells: choose a coarser resolution");
   map_building::OccupancyGrid grid(std::max(1, static_cast<int>(columns)),
-                                  std::max(1, static_cast<int>(rows)), res, {x0, y0, 0.0},
-                                  map_building::OccupancyGrid::kFree);
+                                   std::max(1, static_cast<int>(rows)), res, {x0, y0, 0.0},
+                                   map_building::OccupancyGrid::kFree);
   for (const auto& wall : world.Walls()) MarkSegment(grid, wall.a, wall.b);
   for (const auto& cylinder : world.Cylinders()) MarkCircle(grid, cylinder.centre, cylinder.radius);
   return grid;

@@ -22,8 +22,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "structloc/map_building/wall_fitting.hpp"
 #include "structloc/map_building/occupancy_grid.hpp"
+#include "structloc/map_building/wall_fitting.hpp"
 #include "structloc/world_model/world_model.hpp"
 
 namespace structloc::map_building {

@@ -29,7 +29,7 @@ struct RasteriseOptions {
 // std::invalid_argument for a resolution or margin that is not positive /
 // negative, or a grid beyond max_cells.
 map_building::OccupancyGrid RasteriseWorld(const world_model::WorldModel& world,
-                                          const RasteriseOptions& options);
+                                           const RasteriseOptions& options);
 
 // Marks as occupied every cell that the segment a-b touches (closed cells,
 // with a tolerance of 1e-6 cells). Works in the grid's frame (any origin yaw).
