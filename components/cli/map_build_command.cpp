@@ -17,8 +17,12 @@
 namespace structloc::cli {
 namespace {
 
+std::string FileName(const std::string& path) {
+  return path.substr(path.find_last_of('/') + 1);
+}
+
 std::string Stem(const std::string& path) {
-  std::string name = path.substr(path.find_last_of('/') + 1);
+  const std::string name = FileName(path);
   return name.substr(0, name.find('.'));
 }
 
@@ -70,8 +74,10 @@ int MapBuildCommand(const Invocation& inv) {
     const auto& r = result.wall_report;
     world_model::WriteWorldModel(
         world,
-        {"Built by `structloc map build` from " + log_path +
-             (params_path.empty() ? " with the default options" : " with " + params_path) + ":",
+        {"Built by `structloc map build` from " + FileName(log_path) +
+             (params_path.empty() ? " with the default options"
+                                  : " with " + FileName(params_path)) +
+             ":",
          std::to_string(log.scans.size()) + " scans, " + std::to_string(r.segments) +
              " scan segments merged into " + std::to_string(world.Walls().size()) + " walls, " +
              std::to_string(world.Cylinders().size()) + " pillars."},

@@ -36,7 +36,8 @@ void PrintDisagreeing(const world_model::WorldModel& world,
   size_t shown = 0;
   for (const size_t i : order) {
     const auto& a = report.walls[i];
-    if (!a.disagrees || shown++ == 20) continue;
+    if (!a.disagrees) continue;
+    if (shown++ == 20) break;
     const auto& w = world.Walls()[i];
     std::cout << std::setw(6) << w.id << std::setw(10) << std::setprecision(2) << w.Length()
               << std::setw(10) << a.readings << std::setw(7) << a.scans << std::setw(11)
