@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "map_action.hpp"
 #include "map_picture.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
@@ -49,8 +50,7 @@ int MapBuildCommand(const Invocation& inv) {
       {"name", true, "the world's name (default: the log's file name)"},
       {"quiet", false, "leave out the table of every wall's support"},
   };
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "build", specs, [&](const config::CommandLine& cli) {
     const std::string log_path = cli.Required("log");
     const std::string out_path = cli.Required("out");
     const std::string plot_path = cli.GetOr("plot", "");
@@ -110,13 +110,7 @@ int MapBuildCommand(const Invocation& inv) {
       std::cout << "  picture: " << plot_path << "\n";
     }
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "structloc map build: " << e.what() << "\n" << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "structloc map build: " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli

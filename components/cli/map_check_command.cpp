@@ -8,6 +8,7 @@
 #include <iostream>
 #include <numeric>
 
+#include "map_action.hpp"
 #include "map_picture.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
@@ -81,8 +82,7 @@ int MapCheckCommand(const Invocation& inv) {
       {"max-median", true, "walls whose readings lie farther (median) disagree, m (default 0.03)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
   };
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "check", specs, [&](const config::CommandLine& cli) {
     const std::string map_path = cli.Required("map");
     const std::string log_path = cli.Required("log");
     const std::string plot_path = cli.GetOr("plot", "");
@@ -126,13 +126,7 @@ int MapCheckCommand(const Invocation& inv) {
       std::cout << "  picture: " << plot_path << "\n";
     }
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "structloc map check: " << e.what() << "\n" << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "structloc map check: " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli

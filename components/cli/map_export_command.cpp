@@ -5,6 +5,7 @@
 // pillar insides unknown, everything else free (see world_rasteriser.hpp).
 #include <iostream>
 
+#include "map_action.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/map_building/world_rasteriser.hpp"
@@ -20,8 +21,7 @@ int MapExportCommand(const Invocation& inv) {
       {"resolution", true, "cell size, m (default 0.05)"},
       {"margin", true, "free border around the map, m (default 0.5)"},
   };
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "export", specs, [&](const config::CommandLine& cli) {
     const std::string map_path = cli.Required("map");
     const std::string grid_path = cli.Required("grid");
     map_building::RasteriseOptions options;
@@ -48,13 +48,7 @@ int MapExportCommand(const Invocation& inv) {
               << " free\n"
               << "  wrote " << grid_path << " and its PGM image\n";
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "structloc map export: " << e.what() << "\n" << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "structloc map export: " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli

@@ -4,6 +4,7 @@
 // the independent grid on which `structloc map import --grid` is checked.
 #include <iostream>
 
+#include "map_action.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/map_building/log_odds_grid.hpp"
@@ -20,8 +21,7 @@ int MapGridCommand(const Invocation& inv) {
       {"resolution", true, "cell size, m (default 0.05)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
   };
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "grid", specs, [&](const config::CommandLine& cli) {
     const std::string log_path = cli.Required("log");
     const std::string out_path = cli.Required("out");
     map_building::LogOddsGridOptions options;
@@ -43,13 +43,7 @@ int MapGridCommand(const Invocation& inv) {
               << " occupied, " << free << " free, " << grid.cells.size() - occupied - free
               << " unknown\n  wrote " << out_path << "\n";
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "structloc map grid: " << e.what() << "\n" << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "structloc map grid: " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli

@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "map_action.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/output_file.hpp"
@@ -85,9 +86,7 @@ int MapImportDxfCommand(const Invocation& inv) {
        "$INSUNITS; millimetres, with a warning, when it has none)"},
       {"plot", true, "PNG of the imported map over the layers left out (drawn lighter)"},
   };
-  bool options_read = false;  // the usage is shown for mistakes in the options only
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "import", specs, [&](const config::CommandLine& cli) {
     const std::string dxf_path = cli.Required("dxf");
     const std::string out_path = cli.Required("out");
     const std::string plot_path = cli.GetOr("plot", "");
@@ -96,7 +95,6 @@ int MapImportDxfCommand(const Invocation& inv) {
     options.layers = SplitLayers(cli.Required("layers"));
     if (cli.Has("units")) options.units = map_building::ParseLengthUnit(cli.Required("units"));
     options.world_name = Stem(dxf_path);
-    options_read = true;
 
     const auto drawing = map_formats::ReadDxfDrawing(dxf_path);
     const auto imported = map_building::ImportDrawing(drawing, options);
@@ -136,14 +134,7 @@ int MapImportDxfCommand(const Invocation& inv) {
     if (plot) std::cout << " and " << plot_path << (scaled_down ? " (scaled down)" : "");
     std::cout << "\n";
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << kName << ": " << e.what() << "\n";
-    if (!options_read) std::cerr << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << kName << ": " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "map_action.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/output_file.hpp"
@@ -69,8 +70,7 @@ int MapImportGridCommand(const Invocation& inv) {
       {"ignore-unknown-keys", false,
        "ignore YAML keys map_server does not read (as ROS does) instead of refusing them"},
   };
-  try {
-    const config::CommandLine cli(inv.argc, inv.argv, 3, specs);
+  return RunMapAction(inv, "import", specs, [&](const config::CommandLine& cli) {
     const std::string grid_path = cli.Required("grid");
     const std::string out_path = cli.Required("out");
     const auto plot_path = cli.Get("plot");
@@ -134,13 +134,7 @@ int MapImportGridCommand(const Invocation& inv) {
     if (plot_path) std::cout << " and " << *plot_path;
     std::cout << "\n";
     return 0;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "structloc map import: " << e.what() << "\n" << config::CommandLine::Usage(specs);
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "structloc map import: " << e.what() << std::endl;
-    return 1;
-  }
+  });
 }
 
 }  // namespace structloc::cli
