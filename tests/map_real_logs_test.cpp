@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
-#include <regex>
+#include <string>
 
 #include "cli_runner.hpp"
 #include "temp_dir.hpp"
@@ -26,11 +26,15 @@ CheckFigures Check(const std::string& map, const std::string& log) {
   const auto run = testing::RunCli({"map", "check", "--map", map, "--log", log});
   EXPECT_EQ(run.exit_code, 0) << run.output;
   CheckFigures figures;
-  std::smatch m;
-  if (std::regex_search(run.output, m, std::regex(R"(([0-9.]+) % explained)")))
-    figures.explained_percent = std::stod(m[1]);
-  if (std::regex_search(run.output, m, std::regex(R"(their distance: median ([0-9.]+) mm)")))
-    figures.median_mm = std::stod(m[1]);
+  const std::string& out = run.output;
+  const size_t explained = out.find(" % explained");
+  if (explained != std::string::npos) {
+    const size_t start = out.find_last_of(' ', explained - 1) + 1;
+    figures.explained_percent = std::stod(out.substr(start, explained - start));
+  }
+  const std::string median = "their distance: median ";
+  const size_t at = out.find(median);
+  if (at != std::string::npos) figures.median_mm = std::stod(out.substr(at + median.size()));
   EXPECT_GE(figures.median_mm, 0.0) << run.output;
   return figures;
 }
