@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
-#include <string>
 
 namespace structloc::map_building {
 namespace {
@@ -62,9 +63,11 @@ map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
   const double columns = std::ceil((hi.x() - lo.x()) / options.resolution_m);
   const double rows = std::ceil((hi.y() - lo.y()) / options.resolution_m);
   if (!(columns * rows <= options.max_cells)) {
-    throw std::invalid_argument("log-odds grid: " + std::to_string(columns) + " x " +
-                                std::to_string(rows) + " cells is above the limit of " +
-                                std::to_string(options.max_cells));
+    std::ostringstream message;
+    message << std::setprecision(3) << "log-odds grid: " << columns << " x " << rows
+            << " cells is above the limit of " << options.max_cells
+            << " (are the poses in metres? is the resolution right?)";
+    throw std::invalid_argument(message.str());
   }
   map_building::OccupancyGrid grid(static_cast<int>(columns), static_cast<int>(rows),
                                    options.resolution_m, {lo.x(), lo.y(), 0.0});
