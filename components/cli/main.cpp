@@ -1,6 +1,6 @@
 // structloc: the command-line front end (launch, demo and, as they land,
-// simulate, replay, calibrate, render, params, map). Each subcommand calls the same core
-// libraries as the components.
+// simulate, replay, calibrate, render, params, map, synthesise-odometry). Each subcommand calls the
+// same core libraries as the components.
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -40,6 +40,10 @@ const Subcommand kSubcommands[] = {
     {"map", structloc::cli::MapCommand,
      "build|grid|import|export|check ...  make world maps from recordings, occupancy grids "
      "and CAD drawings, export grids, check maps"},
+    {"synthesise-odometry", structloc::cli::SynthesiseOdometryCommand,
+     "--log CORRECTED.log --out EVAL.log --truth TRUTH.tum [--scale-error X] [--heading-drift "
+     "DEG_PER_M] [--noise-xy M] [--noise-theta DEG] [--seed N] [--restamp SPEED]  an evaluation "
+     "log with re-synthesised odometry from a corrected recording"},
 };
 
 void Usage(std::ostream& out) {

@@ -20,5 +20,6 @@ int ReplayCommand(const Invocation& invocation);
 int CalibrateCommand(const Invocation& invocation);
 int ParamsCommand(const Invocation& invocation);
 int MapCommand(const Invocation& invocation);
+int SynthesiseOdometryCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli
