@@ -267,5 +267,22 @@ TEST(MapBuildOptions, TheShippedFileHoldsTheDefaultsAndBadFilesNameTheKey) {
   expect_error(with(" max_gap_m=\"0.4\"", ""), "max_gap_m");
 }
 
+TEST_F(OfficeTour, APartOfTheScansCanBeKeptAndBadRangesAreNamed) {
+  auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  const size_t total = log.scans.size();
+  const auto [first, last] = ParseScanRange("10:20");
+  KeepScans(log, first, last);
+  ASSERT_EQ(log.scans.size(), 10u);
+  EXPECT_EQ(log.scans.front().index, 10u);
+  EXPECT_EQ(log.readings, 10u * 361u);
+  EXPECT_EQ(ParseScanRange(":").first, 0u);
+  EXPECT_EQ(ParseScanRange("5:").second, SIZE_MAX);
+  for (const char* bad : {"5", "a:b", "-1:4", "1:2:3"})
+    EXPECT_THROW(ParseScanRange(bad), config::ConfigError) << bad;
+  auto again = ReadPosedScans(dir / "tour.log", {});
+  EXPECT_THROW(KeepScans(again, total, total + 5), config::ConfigError);
+  EXPECT_THROW(KeepScans(again, 8, 8), config::ConfigError);
+}
+
 }  // namespace
 }  // namespace structloc::map_building

@@ -42,6 +42,9 @@ void PrintSupport(const map_building::MapBuildResult& result) {
 int MapBuildCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
+      {"scans", true,
+       "use only the scans FIRST:LAST of the log (numbers from 0, LAST not included; default: "
+       "all), e.g. to build from one part and check on another"},
       {"out", true, "world XML to write"},
       {"params", true,
        "<map_build_params> file (default: the built-in defaults, for a 180 deg "
@@ -62,7 +65,9 @@ int MapBuildCommand(const Invocation& inv) {
     if (!params_path.empty()) inputs.push_back(params_path);
     config::OutputFile out(out_path, inputs);
 
-    const auto log = map_building::ReadPosedScans(log_path, options.scans);
+    const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
+    auto log = map_building::ReadPosedScans(log_path, options.scans);
+    map_building::KeepScans(log, range.first, range.second);
     const auto result = map_building::BuildMap(log.scans, options);
     if (result.walls.empty() && result.pillars.empty()) {
       throw std::runtime_error(log_path + ": no wall or pillar met the options' bars (" +

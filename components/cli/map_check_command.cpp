@@ -77,6 +77,9 @@ int MapCheckCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"map", true, "world XML to check"},
       {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
+      {"scans", true,
+       "use only the scans FIRST:LAST of the log (numbers from 0, LAST not included; default: "
+       "all), e.g. to build from one part and check on another"},
       {"plot", true, "PNG of the map over the readings, disagreeing walls marked"},
       {"near", true, "a reading this close to a wall or pillar hits it, m (default 0.1)"},
       {"max-median", true, "walls whose readings lie farther (median) disagree, m (default 0.03)"},
@@ -94,7 +97,9 @@ int MapCheckCommand(const Invocation& inv) {
     scan_options.max_range_m =
         cli.NumberIn("max-range", scan_options.max_range_m, scan_options.min_range_m + 0.01, 1e3);
     const auto world = world_model::LoadWorldModel(map_path);
-    const auto log = map_building::ReadPosedScans(log_path, scan_options);
+    const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
+    auto log = map_building::ReadPosedScans(log_path, scan_options);
+    map_building::KeepScans(log, range.first, range.second);
     std::vector<Eigen::Vector2d> unexplained;
     const auto report = map_building::CheckMap(world, log.scans, options, &unexplained);
     std::cout << std::fixed << std::setprecision(1) << "structloc map check: " << map_path

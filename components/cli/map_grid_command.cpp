@@ -17,6 +17,9 @@ int MapGridCommand(const Invocation& inv) {
   const map_building::PosedScanOptions scan_defaults;
   const std::vector<config::OptionSpec> specs = {
       {"log", true, "CARMEN log whose scan poses are corrected (e.g. by SLAM), .gz or plain"},
+      {"scans", true,
+       "use only the scans FIRST:LAST of the log (numbers from 0, LAST not included; default: "
+       "all), e.g. to build from one part and check on another"},
       {"out", true, "map_server YAML to write (the PGM image is written beside it)"},
       {"resolution", true, "cell size, m (default 0.05)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
@@ -29,7 +32,9 @@ int MapGridCommand(const Invocation& inv) {
     map_building::PosedScanOptions scan_options;
     scan_options.max_range_m =
         cli.NumberIn("max-range", scan_defaults.max_range_m, scan_defaults.min_range_m + 0.01, 1e3);
-    const auto log = map_building::ReadPosedScans(log_path, scan_options);
+    const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
+    auto log = map_building::ReadPosedScans(log_path, scan_options);
+    map_building::KeepScans(log, range.first, range.second);
     const auto grid = map_building::RayCastGrid(log.scans, options);
     map_formats::SaveGridMap(grid, out_path, {log_path});
     size_t occupied = 0, free = 0;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -27,6 +28,7 @@ struct PosedScan {
   std::vector<Eigen::Vector2d> points;
   std::vector<double> ranges;
   double angular_resolution = 0.0;  // rad between beams
+  size_t beams = 0;                 // readings of the scan, within the limits or not
 };
 
 struct PosedScanLog {
@@ -42,5 +44,15 @@ struct PosedScanLog {
 // std::runtime_error naming the file when it cannot be read, and
 // config::ConfigError when it holds no scan with a pose.
 PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options);
+
+// Keeps the scans numbered first .. last - 1 (their `index`), so that a map can
+// be built from one part of a recording and checked or localised on another;
+// the reading counts are then those of the kept scans.
+// Throws config::ConfigError when the range is empty or starts beyond the log.
+void KeepScans(PosedScanLog& log, size_t first, size_t last);
+
+// "A:B" (either side may be empty: from the start, to the end) as [first, last);
+// throws config::ConfigError naming `text` otherwise.
+std::pair<size_t, size_t> ParseScanRange(const std::string& text);
 
 }  // namespace structloc::map_building
