@@ -7,6 +7,13 @@
 
 namespace structloc::localisation_core {
 
+Eigen::Matrix3d UsableCovariance(const Eigen::Matrix3d& solved, const Eigen::Matrix3d& prior) {
+  const Eigen::Matrix3d symmetric = 0.5 * (solved + solved.transpose());
+  if (!symmetric.allFinite() || Eigen::LLT<Eigen::Matrix3d>(symmetric).info() != Eigen::Success)
+    return prior;
+  return symmetric;
+}
+
 const char* ToString(Rejection r) {
   switch (r) {
     case Rejection::kEmptyScan:
@@ -213,7 +220,7 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   const bool use = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
   if (use) {
     map_to_odom_ = geometry::Compose(r.pose, geometry::Inverse(odom));
-    covariance_ = r.covariance;
+    covariance_ = UsableCovariance(r.covariance, in.odometry_covariance);
   } else {
     covariance_ = in.odometry_covariance;
   }

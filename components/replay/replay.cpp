@@ -179,7 +179,7 @@ class Replayer {
     }
     times_us_.push_back(report.update_us);
     if (report.kind != ScanReport::Kind::kTracked) {
-      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
+      ++report_.scans_rejected[report.reason];
       return;
     }
     const auto& r = *report.result;
