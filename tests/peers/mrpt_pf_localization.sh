@@ -125,8 +125,9 @@ PY
         > "$work/$variant.replay.out" 2>&1 || fail "structloc replay ($variant)" "$work/$variant.replay.out"
     took=$(seconds_since "$start")
     lost=$(sed -n 's/^lost: \([0-9]*\) scans.*/\1/p' "$work/$variant.replay.out")
+    refused=$(sed -n 's/^ *rejected \([0-9]*\):.*/\1/p' "$work/$variant.replay.out" | awk '{n += $1} END {print n + 0}')
     read -r n rmse worst heading < <(python3 "$here/pose_errors.py" tum "$work/$variant.ours.tum" "$work/$variant.tum")
-    rows+=("$variant|structloc replay|world map|$n|$rmse|$worst|$heading|${lost:-0} lost|$took")
+    rows+=("$variant|structloc replay|world map|$n|$rmse|$worst|$heading|${lost:-0} lost, $refused refused|$took")
 
     # 3. rawlog
     carmen2rawlog -i "$work/$variant.log" -o "$work/$variant.rawlog" -w -q > "$work/$variant.rawlog.out" 2>&1 \
@@ -158,8 +159,9 @@ done
 
 # 6. the table
 echo "log $(basename "$log"), map $(basename "$map"); odometry 'errors' = 1.5 % scale, 0.3 deg/m, noise 5 mm and 0.1 deg per sqrt(m)"
-printf '%-8s %-21s %-14s %6s %10s %10s %12s %9s %8s\n' odometry localiser map poses "RMSE m" "max m" "heading deg" note "time s"
+echo "errors over the poses each localiser estimated (of $(grep -vc '^#' "$work/perfect.tum") scans); MRPT seeds its generator from the clock, so its figures vary a little from run to run"
+printf '%-8s %-21s %-14s %6s %10s %10s %12s %-24s %8s\n' odometry localiser map poses "RMSE m" "max m" "heading deg" note "time s"
 for r in "${rows[@]}"; do
     IFS='|' read -r a b c d e f g h i <<< "$r"
-    printf '%-8s %-21s %-14s %6s %10s %10s %12s %9s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h" "$i"
+    printf '%-8s %-21s %-14s %6s %10s %10s %12s %-24s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h" "$i"
 done
