@@ -30,7 +30,7 @@ struct Recording {
 
 class GlobalOnRealLog : public ::testing::TestWithParam<Recording> {};
 
-TEST_P(GlobalOnRealLog, LocatesNinetyPercentOfRandomScansAndIsNeverConfidentlyWrong) {
+TEST_P(GlobalOnRealLog, LocatesMostRandomScansAndIsNeverConfidentlyWrong) {
   const auto world = world_model::LoadWorldModel(testing::SourcePath(GetParam().map));
   const auto log = map_building::ReadPosedScans(
       testing::SourcePath("../shared/data/") + GetParam().log, map_building::PosedScanOptions{});

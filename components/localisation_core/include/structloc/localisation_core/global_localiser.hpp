@@ -31,7 +31,7 @@ struct GlobalLocaliserOptions {
   double grid_resolution_m = 0.05;  // distance-field cell
   double grid_margin_m = 1.0;       // field border around the map's bounds
   double min_range_m = 0.1;         // readings closer are the robot itself
-  double max_range_m = 20.0;        // farther readings are too noisy in angle
+  double max_range_m = 30.0;        // farther readings are too noisy in angle
   int max_points = 90;              // scan points used (evenly subsampled)
   int coarse_points = 60;           // of them, used by the coarse search
   int min_points = 20;              // fewer usable points: "not found"

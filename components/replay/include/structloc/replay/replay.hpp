@@ -34,7 +34,7 @@ struct ReplayOptions {
   std::string log_path;                          // CARMEN log (plain or .gz)
   std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot;
                                                  // none: located globally
-  size_t global_attempts = 20;  // without initial_pose: scans tried before giving up
+  size_t global_attempts = 50;  // without initial_pose: scans tried before giving up
   localisation_core::GlobalLocaliserOptions global;
   std::string out_tum;      // estimate, one line per scan
   std::string params_path;  // localisation parameters (default: built-in defaults)
