@@ -97,7 +97,10 @@ TEST_P(GlobalOnRealLog, LocatesMostRandomScansAndIsNeverConfidentlyWrong) {
 INSTANTIATE_TEST_SUITE_P(
     SharedData, GlobalOnRealLog,
     ::testing::Values(Recording{"freiburg-079-corrected.log.gz", "maps/real/freiburg_079.xml", 85},
-                      Recording{"intel-corrected.log.gz", "maps/real/intel.xml", 75}));
+                      Recording{"intel-corrected.log.gz", "maps/real/intel.xml", 75}),
+    [](const ::testing::TestParamInfo<Recording>& info) {
+      return std::string(info.index == 0 ? "Freiburg079" : "Intel");
+    });
 
 }  // namespace
 }  // namespace structloc

@@ -109,6 +109,13 @@ TEST(GlobalLocalisationReplay, TheCliReportsTheSearchAndFailsClearlyOnAForeignMa
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_NE(bad.output.find("none of the first 3 scans"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find("--initial-pose"), std::string::npos) << bad.output;
+
+  // Without a map there is nothing to locate the robot on.
+  const auto no_map =
+      testing::RunCli({"replay", "--no-map", "--log", dir + "/run.clf", "--out", temp / "x.tum"});
+  EXPECT_EQ(no_map.exit_code, 2) << no_map.output;
+  EXPECT_NE(no_map.output.find("--no-map needs --initial-pose"), std::string::npos)
+      << no_map.output;
 }
 
 }  // namespace
