@@ -1,15 +1,15 @@
 // Global localisation: the laser poses that explain one scan against the whole
 // map, for a robot with no initial pose or one that was carried away. The
-// thesis' position update (section 4) needs a prior pose; this search gives
-// it one. The map's walls and pillar outlines are drawn into a grid and turned
-// into a distance field; a coarse search over positions and headings with a
-// blurred field keeps the best candidates, each is refined by a local search on
-// the fine field, and the refined poses are ranked by the share of scan points
-// they explain (beams that would pass through a wall explain nothing). The best
-// pose is "found" only when it explains enough points and no distinct
-// runner-up explains nearly as many; two equally good poses (a symmetric
-// corridor) give "ambiguous" rather than a guess. DDS-free, deterministic (no
-// randomness).
+// thesis' position update needs a prior pose; this search gives it one. The
+// map's walls and pillar outlines are drawn into a grid and turned into a
+// distance field (OpenCV's distance transform); a coarse search over positions
+// and headings with a blurred field keeps the best candidates, each is refined
+// by a local search on the fine field, and the distinct refined poses are
+// polished and ranked by the share of scan points they explain (beams that
+// would pass through a wall explain nothing). The best pose is "found" only
+// when it explains enough points and no distinct runner-up explains nearly as
+// many; two equally good poses (a symmetric corridor) give "ambiguous" rather
+// than a guess. DDS-free, deterministic (no randomness).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,7 +32,7 @@ struct GlobalLocaliserOptions {
   double grid_margin_m = 1.0;       // field border around the map's bounds
   double min_range_m = 0.1;         // readings closer are the robot itself
   double max_range_m = 30.0;        // farther readings are too noisy in angle
-  int max_points = 90;              // scan points used (evenly subsampled)
+  int max_points = 90;              // scan points used by the refinement (evenly subsampled)
   int coarse_points = 60;           // of them, used by the coarse search
   int min_points = 20;              // fewer usable points: "not found"
   double clearance_m = 0.1;         // candidate laser positions this far from any wall
