@@ -1,7 +1,8 @@
-// "structloc replay --map WORLD.xml --log RUN.clf --initial-pose "X Y THETA"
+// "structloc replay --map WORLD.xml --log RUN.clf [--initial-pose "X Y THETA"]
 //  --out TRAJ.tum [--params P.xml] [--truth TRUTH.tum] [--plot OUT.png] [--no-map]
-//  [--fixes-out FIXES.csv] [--max-beams N] [--max-lines N]":
-// runs a recorded CARMEN log through the localisation core, offline.
+//  [--fixes-out FIXES.csv] [--max-beams N] [--max-lines N] [--global-attempts N]":
+// runs a recorded CARMEN log through the localisation core, offline; without
+// --initial-pose the robot is first located globally from the first scans.
 #include <iostream>
 #include <string>
 
@@ -30,7 +31,12 @@ int ReplayCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
       {"map", true, "world model XML (not with --no-map)"},
       {"log", true, "CARMEN log (.clf/.log, or .gz)"},
-      {"initial-pose", true, "\"X Y THETA\": map pose of the robot at the first laser line"},
+      {"initial-pose", true,
+       "\"X Y THETA\": map pose of the robot at the first laser line (default: located "
+       "globally from the first scans)"},
+      {"global-attempts", true,
+       "without --initial-pose: scans tried against the whole map before giving up (default " +
+           std::to_string(replay::ReplayOptions{}.global_attempts) + ")"},
       {"out", true, "TUM trajectory to write (one line per scan)"},
       {"params", true, "localisation parameter file (default: built-in Table 6 defaults)"},
       {"truth", true, "TUM ground truth: adds RMSE, max and heading errors"},
@@ -66,13 +72,16 @@ int ReplayCommand(const Invocation& inv) {
     o.limits.max_beams = Limit(cli, "max-beams", o.limits.max_beams, 10000000);
     o.limits.max_lines = Limit(cli, "max-lines", o.limits.max_lines, 1000000000000);
     o.world_limits.max_walls = Limit(cli, "max-walls", o.world_limits.max_walls, 100000000);
-    const std::string pose_text = cli.Required("initial-pose");
-    const auto pose = config::ParseNumberList(pose_text, 3);
-    if (!pose) {
-      throw config::ConfigError(
-          "--initial-pose must be exactly three numbers \"X Y THETA\", got '" + pose_text + "'");
+    o.global_attempts = Limit(cli, "global-attempts", o.global_attempts, 100000);
+    if (cli.Has("initial-pose")) {
+      const std::string pose_text = cli.Required("initial-pose");
+      const auto pose = config::ParseNumberList(pose_text, 3);
+      if (!pose) {
+        throw config::ConfigError(
+            "--initial-pose must be exactly three numbers \"X Y THETA\", got '" + pose_text + "'");
+      }
+      o.initial_pose = geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
     }
-    o.initial_pose = {(*pose)[0], (*pose)[1], (*pose)[2]};
     o.progress = [&progress_shown](size_t scans, double) {
       std::cerr << "\rstructloc replay: " << scans << " scans localised" << std::flush;
       progress_shown = true;

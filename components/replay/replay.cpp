@@ -35,10 +35,16 @@ class Replayer {
  public:
   // Reads and checks every input, then opens the outputs (temporary files).
   explicit Replayer(const ReplayOptions& o) : o_(o) {
-    if (!o.initial_pose) throw config::ConfigError("replay needs --initial-pose \"X Y THETA\"");
+    if (!o.initial_pose && o.no_map)
+      throw config::ConfigError(
+          "--no-map needs --initial-pose \"X Y THETA\" (without a map the "
+          "robot cannot be located globally)");
+    if (!o.initial_pose && o.global_attempts == 0)
+      throw config::ConfigError("without --initial-pose at least one scan must be tried");
     const double bound = o.world_limits.max_abs_coordinate_m;
-    if (!geometry::IsFinite(*o.initial_pose) || std::abs(o.initial_pose->x) > bound ||
-        std::abs(o.initial_pose->y) > bound) {
+    if (o.initial_pose &&
+        (!geometry::IsFinite(*o.initial_pose) || std::abs(o.initial_pose->x) > bound ||
+         std::abs(o.initial_pose->y) > bound)) {
       throw config::ConfigError("--initial-pose must lie within " +
                                 std::to_string(static_cast<long long>(bound)) +
                                 " m of the map origin");
@@ -52,6 +58,9 @@ class Replayer {
       params_ = localisation_core::LoadLocaliserOptions(o.params_path);
       session_options_ = localisation_core::LoadSessionOptions(o.params_path);
     }
+    initial_pose_ = o.initial_pose;
+    if (!initial_pose_)
+      global_ = std::make_unique<localisation_core::GlobalLocaliser>(*world_, o.global);
     if (!o.truth_path.empty()) {
       truth_ = log_formats::ReadTum(o.truth_path);
       if (truth_.empty()) {
@@ -76,6 +85,12 @@ class Replayer {
       ++records;
       if (r.kind == log_formats::CarmenRecord::Kind::kOdometry) {
         AddOdometry(r.stamp, *r.robot_pose);
+      } else if (!session_ && !initial_pose_) {
+        if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
+        if (LocateGlobally(r)) {
+          StartSession(&r);
+          session_->AddScan(ToSessionScan(r), r.stamp);
+        }
       } else {
         if (!session_) StartSession(&r);
         if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
@@ -83,6 +98,12 @@ class Replayer {
       }
       Drain(false);
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
+    }
+    if (!session_ && !initial_pose_) {
+      report_.log = reader_->Stats();
+      throw std::runtime_error(o_.log_path + ": the log ended before any scan was located " +
+                               "globally; give --initial-pose \"X Y THETA\"; nothing written\n" +
+                               FormatGlobalAttempts(report_.global_attempts));
     }
     if (!session_) StartSession(nullptr);
     Drain(true);
@@ -125,19 +146,54 @@ class Replayer {
     if (early_odometry_.size() > kMaxEarlyOdometry) early_odometry_.pop_front();
   }
 
+  // The laser's mounting on the robot: from the scan's laser and robot poses
+  // when it has both, else the parameters'.
+  geometry::Pose2D SensorMount(const log_formats::CarmenRecord* scan) const {
+    if (scan != nullptr && scan->laser_pose && scan->robot_pose)
+      return geometry::Between(*scan->robot_pose, *scan->laser_pose);
+    return params_.sensor_mount;
+  }
+
+  // Tries the scan against the whole map; true when it gave a "found" pose,
+  // which then becomes the initial pose. Throws when the last allowed
+  // attempt failed.
+  bool LocateGlobally(const log_formats::CarmenRecord& r) {
+    ++global_scans_;
+    const double max_range = r.max_range > 0.0 ? r.max_range - 1e-3 : INFINITY;
+    const auto points = localisation_core::ScanPointsInLaserFrame(
+        r.ranges, r.start_angle, r.angular_resolution, 0.0, max_range);
+    const auto t0 = std::chrono::steady_clock::now();
+    GlobalAttempt attempt{global_scans_, r.line, r.stamp, global_->Locate(points), 0.0};
+    attempt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report_.global_attempts.push_back(attempt);
+    if (attempt.result.decision == localisation_core::GlobalDecision::kFound) {
+      const geometry::Pose2D mount = SensorMount(&r);
+      initial_pose_ = geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount));
+      return true;
+    }
+    ++report_.scans_rejected["before the global localisation found the robot"];
+    if (global_scans_ >= o_.global_attempts) {
+      report_.log = reader_->Stats();
+      throw std::runtime_error(
+          o_.log_path + ": none of the first " + std::to_string(global_scans_) +
+          " scans could be located on the map without a doubt; give --initial-pose \"X Y "
+          "THETA\" or check that the map is of this building; nothing written\n" +
+          FormatGlobalAttempts(report_.global_attempts));
+    }
+    return false;
+  }
+
   // Starts the session at the first laser line (nullptr: the log has none),
   // whose laser and robot poses give the sensor mounting (else the
   // parameters'), so that the session starts with its final options.
   void StartSession(const log_formats::CarmenRecord* first_scan) {
-    report_.sensor_mount = params_.sensor_mount;
-    if (first_scan != nullptr && first_scan->laser_pose && first_scan->robot_pose) {
-      report_.sensor_mount = geometry::Between(*first_scan->robot_pose, *first_scan->laser_pose);
-      params_.sensor_mount = report_.sensor_mount;
-    }
+    report_.sensor_mount = SensorMount(first_scan);
+    params_.sensor_mount = report_.sensor_mount;
+    report_.initial_pose = *initial_pose_;
     params_.max_beams = std::max(params_.max_beams, 4096);
     session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
                                                  localisation_core::Scheduling::kInOrder);
-    session_->ExpectInitialPose(*o_.initial_pose, TrackingSession::InitialPoseWhen::kAtFirstScan);
+    session_->ExpectInitialPose(*initial_pose_, TrackingSession::InitialPoseWhen::kAtFirstScan);
     for (const auto& odometry : early_odometry_) AddOdometry(odometry.stamp, odometry.pose);
     early_odometry_.clear();
   }
@@ -171,7 +227,7 @@ class Replayer {
     if (!first_odometry_) first_odometry_ = *report.odometry;
     // Odometry alone, carried from the initial pose.
     const geometry::Pose2D dead_reckoned =
-        geometry::Compose(*o_.initial_pose, geometry::Between(*first_odometry_, *report.odometry));
+        geometry::Compose(*initial_pose_, geometry::Between(*first_odometry_, *report.odometry));
     odometry_only_.push_back({report.stamp, dead_reckoned});
     if (o_.no_map) {
       PassThrough(scan, report, dead_reckoned);
@@ -320,7 +376,10 @@ class Replayer {
   std::unique_ptr<config::OutputFile> plot_;
   localisation_core::LocaliserOptions params_;
   localisation_core::SessionOptions session_options_;
-  std::unique_ptr<TrackingSession> session_;  // from the first laser line on
+  std::unique_ptr<TrackingSession> session_;      // from the first (located) laser line on
+  std::optional<geometry::Pose2D> initial_pose_;  // given, or found by global_
+  std::unique_ptr<localisation_core::GlobalLocaliser> global_;  // without an initial pose
+  size_t global_scans_ = 0;                                     // scans it has tried
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
   std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled
@@ -338,6 +397,31 @@ class Replayer {
 
 ReplayReport RunReplay(const ReplayOptions& options) {
   return Replayer(options).Run();
+}
+
+std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  auto pose = [&out](const localisation_core::GlobalCandidate& c) {
+    out << std::setprecision(2) << "(" << c.pose.x << " m, " << c.pose.y << " m, "
+        << std::setprecision(1) << c.pose.theta * 180.0 / geometry::kPi << " deg) explaining "
+        << std::setprecision(0) << 100.0 * c.score << " %";
+  };
+  for (const auto& a : attempts) {
+    out << "global localisation, scan " << a.scan << " (line " << a.line
+        << "): " << localisation_core::ToString(a.result.decision);
+    if (a.result.best) {
+      out << ", laser at ";
+      pose(*a.result.best);
+    }
+    if (a.result.runner_up) {
+      out << "; runner-up ";
+      pose(*a.result.runner_up);
+    }
+    if (!a.result.reason.empty()) out << "; " << a.result.reason;
+    out << std::setprecision(2) << " (" << a.seconds << " s)\n";
+  }
+  return out.str();
 }
 
 std::string FormatInputSummary(const ReplayReport& r) {
@@ -360,6 +444,12 @@ std::string FormatReport(const ReplayReport& r) {
   std::ostringstream out;
   out.setf(std::ios::fixed);
   out.precision(1);
+  out << FormatGlobalAttempts(r.global_attempts);
+  if (!r.global_attempts.empty()) {
+    out << std::setprecision(2) << "tracking started from robot pose (" << r.initial_pose.x
+        << " m, " << r.initial_pose.y << " m, " << r.initial_pose.theta << " rad)\n"
+        << std::setprecision(1);
+  }
   out << FormatInputSummary(r);
   if (r.no_map) {
     out << "features matched per scan: n/a (--no-map: odometry passed through; prefilter and "

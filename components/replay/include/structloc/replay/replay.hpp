@@ -8,6 +8,12 @@
 // Every input is read and checked before any output is opened; outputs are
 // written to temporary files renamed only when the run succeeded, and never
 // over an input. A run that localises no scan is an error.
+//
+// Without an initial pose the robot is first located globally: the first
+// scans are tried one after the other against the whole map
+// (localisation_core::GlobalLocaliser) until one gives a "found" pose, which
+// then starts the tracking exactly as --initial-pose would; if none of the
+// first global_attempts scans does, the run is an error.
 #pragma once
 
 #include <functional>
@@ -16,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "structloc/localisation_core/global_localiser.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/replay/trajectory_error.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -25,8 +32,11 @@ namespace structloc::replay {
 struct ReplayOptions {
   std::string map_path;                          // world model (unless no_map)
   std::string log_path;                          // CARMEN log (plain or .gz)
-  std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot
-  std::string out_tum;                           // estimate, one line per scan
+  std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot;
+                                                 // none: located globally
+  size_t global_attempts = 50;  // without initial_pose: scans tried before giving up
+  localisation_core::GlobalLocaliserOptions global;
+  std::string out_tum;      // estimate, one line per scan
   std::string params_path;  // localisation parameters (default: built-in defaults)
   std::string truth_path;   // optional TUM ground truth
   std::string plot_path;    // optional picture (.png)
@@ -36,6 +46,15 @@ struct ReplayOptions {
   world_model::WorldLimits world_limits;  // walls per map, coordinate bounds
   // Called every few percent of the log with the scans done so far.
   std::function<void(size_t scans, double fraction)> progress;
+};
+
+// One scan tried by the global localisation (replay without an initial pose).
+struct GlobalAttempt {
+  size_t scan = 0;  // laser line number in the log, from 1
+  size_t line = 0;  // line in the log
+  double stamp = 0.0;
+  localisation_core::GlobalResult result;  // laser poses
+  double seconds = 0.0;
 };
 
 struct ReplayReport {
@@ -53,12 +72,17 @@ struct ReplayReport {
   std::optional<TrajectoryError> estimate_error;
   std::optional<TrajectoryError> odometry_error;
   std::vector<log_formats::StampedPose> estimate;
+  std::vector<GlobalAttempt> global_attempts;  // empty when an initial pose was given
+  geometry::Pose2D initial_pose;               // robot pose tracking started from
 };
 
 // Throws std::runtime_error (or config::ConfigError) with a message a user can
 // act on when an input is unusable, no scan could be localised, or an output
 // could not be written; outputs are then left as they were.
 ReplayReport RunReplay(const ReplayOptions& options);
+
+// The global localisation's attempts, one line each, as printed by "structloc replay".
+std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts);
 
 // The summary as printed by "structloc replay".
 std::string FormatReport(const ReplayReport& report);

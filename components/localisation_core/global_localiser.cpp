@@ -1,0 +1,381 @@
+// Global localisation against the whole map (see header).
+#include "structloc/localisation_core/global_localiser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace structloc::localisation_core {
+namespace {
+
+constexpr double kMaxCells = 50e6;
+
+void RequirePositive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw std::invalid_argument(std::string("global localiser option ") + name +
+                                " must be a positive number");
+}
+
+void Check(const GlobalLocaliserOptions& o) {
+  RequirePositive(o.grid_resolution_m, "grid_resolution_m");
+  RequirePositive(o.max_range_m, "max_range_m");
+  RequirePositive(o.coarse_step_m, "coarse_step_m");
+  RequirePositive(o.coarse_heading_step_rad, "coarse_heading_step_rad");
+  RequirePositive(o.truncation_m, "truncation_m");
+  RequirePositive(o.rank_truncation_m, "rank_truncation_m");
+  RequirePositive(o.distinct_distance_m, "distinct_distance_m");
+  RequirePositive(o.distinct_heading_rad, "distinct_heading_rad");
+  if (!(o.grid_margin_m >= 0.0) || !(o.min_range_m >= 0.0) || !(o.clearance_m >= 0.0) ||
+      !(o.coarse_blur_m >= 0.0) || !(o.see_through_margin_m >= 0.0) || !(o.ambiguity_margin >= 0.0))
+    throw std::invalid_argument(
+        "global localiser options grid_margin_m, min_range_m, clearance_m, coarse_blur_m, "
+        "see_through_margin_m and ambiguity_margin must not be negative");
+  if (!(o.min_score >= 0.0 && o.min_score <= 1.0))
+    throw std::invalid_argument("global localiser option min_score must lie in [0, 1]");
+  if (o.max_points < 3 || o.coarse_points < 3 || o.min_points < 3 || o.rank_points < 3 ||
+      o.coarse_keep < 1 || o.ranked < 2)
+    throw std::invalid_argument(
+        "global localiser options max_points, coarse_points, rank_points and min_points must be "
+        "at least 3, coarse_keep at least 1 and ranked at least 2");
+}
+
+// Every `step`-th of the points, at most `most` of them, spread over the scan.
+std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, int most) {
+  if (points.size() <= static_cast<size_t>(most)) return points;
+  std::vector<Eigen::Vector2d> out;
+  const double step = static_cast<double>(points.size()) / most;
+  for (int i = 0; i < most; ++i) out.push_back(points[static_cast<size_t>(i * step)]);
+  return out;
+}
+
+bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
+              const GlobalLocaliserOptions& o) {
+  return std::hypot(a.x - b.x, a.y - b.y) > o.distinct_distance_m ||
+         std::abs(geometry::WrapAngle(a.theta - b.theta)) > o.distinct_heading_rad;
+}
+
+struct CoarseHit {
+  float score;
+  int position;
+  int heading;
+};
+
+}  // namespace
+
+const char* ToString(GlobalDecision decision) {
+  switch (decision) {
+    case GlobalDecision::kFound:
+      return "found";
+    case GlobalDecision::kAmbiguous:
+      return "ambiguous";
+    case GlobalDecision::kNotFound:
+      return "not found";
+  }
+  return "?";
+}
+
+std::vector<Eigen::Vector2d> ScanPointsInLaserFrame(const std::vector<float>& ranges,
+                                                    double angle_min, double angle_increment,
+                                                    double min_range_m, double max_range_m) {
+  std::vector<Eigen::Vector2d> points;
+  for (size_t i = 0; i < ranges.size(); ++i) {
+    const double r = ranges[i];
+    if (!std::isfinite(r) || r < min_range_m || r > max_range_m) continue;
+    const double a = angle_min + static_cast<double>(i) * angle_increment;
+    points.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return points;
+}
+
+GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
+                                 const GlobalLocaliserOptions& options)
+    : options_(options) {
+  Check(options);
+  const double res = options.grid_resolution_m;
+  const Eigen::Vector4d bounds = world.Bounds();
+  cells_.x0 = bounds[0] - options.grid_margin_m;
+  cells_.y0 = bounds[1] - options.grid_margin_m;
+  const double columns = std::ceil((bounds[2] + options.grid_margin_m - cells_.x0) / res);
+  const double rows = std::ceil((bounds[3] + options.grid_margin_m - cells_.y0) / res);
+  if (columns * rows > kMaxCells)
+    throw std::invalid_argument(
+        "global localiser: the map needs a distance field of more than 50 million cells; "
+        "choose a coarser grid_resolution_m");
+  cells_.width = std::max(1, static_cast<int>(columns));
+  cells_.height = std::max(1, static_cast<int>(rows));
+
+  // Walls and pillar outlines drawn at a quarter-cell spacing.
+  cv::Mat image(cells_.height, cells_.width, CV_8U, cv::Scalar(255));
+  auto mark = [&](const Eigen::Vector2d& p) {
+    const int c = static_cast<int>(std::floor((p.x() - cells_.x0) / res));
+    const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
+    if (c >= 0 && r >= 0 && c < cells_.width && r < cells_.height) image.at<uchar>(r, c) = 0;
+  };
+  for (const auto& wall : world.Walls()) {
+    const int n = static_cast<int>(std::ceil(wall.Length() / (0.25 * res)));
+    for (int i = 0; i <= n; ++i) mark(wall.a + (wall.b - wall.a) * (double(i) / n));
+  }
+  for (const auto& pillar : world.Cylinders()) {
+    const int n =
+        std::max(16, static_cast<int>(std::ceil(2 * geometry::kPi * pillar.radius / (0.25 * res))));
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * geometry::kPi * i / n;
+      mark(pillar.centre + pillar.radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+  }
+  cv::Mat distance;
+  cv::distanceTransform(image, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+
+  const size_t count = static_cast<size_t>(cells_.width) * static_cast<size_t>(cells_.height);
+  fine_gain_.resize(count);
+  rank_gain_.resize(count);
+  coarse_gain_.resize(count);
+  wall_.resize(count);
+  const double t = options.truncation_m, tr = options.rank_truncation_m;
+  for (int r = 0; r < cells_.height; ++r) {
+    for (int c = 0; c < cells_.width; ++c) {
+      const size_t i = static_cast<size_t>(r) * cells_.width + c;
+      const double d = distance.at<float>(r, c) * res;
+      const double fine = std::min(d, t),
+                   coarse = std::min(std::max(0.0, d - options.coarse_blur_m), t);
+      fine_gain_[i] = static_cast<float>(1.0 - fine * fine / (t * t));
+      const double sharp = std::min(d, tr);
+      rank_gain_[i] = static_cast<float>(1.0 - sharp * sharp / (tr * tr));
+      coarse_gain_[i] = static_cast<float>(1.0 - coarse * coarse / (t * t));
+      wall_[i] = image.at<uchar>(r, c) == 0 ? 1 : 0;
+    }
+  }
+
+  // Coarse candidate positions: a lattice over the map's bounds, clear of walls.
+  for (double y = bounds[1]; y <= bounds[3]; y += options.coarse_step_m) {
+    for (double x = bounds[0]; x <= bounds[2]; x += options.coarse_step_m) {
+      const int c = static_cast<int>(std::floor((x - cells_.x0) / res));
+      const int r = static_cast<int>(std::floor((y - cells_.y0) / res));
+      if (distance.at<float>(r, c) * res >= options.clearance_m) positions_.emplace_back(x, y);
+    }
+  }
+}
+
+double GlobalLocaliser::Gain(const std::vector<float>& gain, double x, double y) const {
+  const double gx = (x - cells_.x0) / options_.grid_resolution_m - 0.5;
+  const double gy = (y - cells_.y0) / options_.grid_resolution_m - 0.5;
+  const int c = static_cast<int>(std::floor(gx)), r = static_cast<int>(std::floor(gy));
+  if (c < 0 || r < 0 || c + 1 >= cells_.width || r + 1 >= cells_.height) return 0.0;
+  const double fx = gx - c, fy = gy - r;
+  const size_t i = static_cast<size_t>(r) * cells_.width + c;
+  const size_t w = static_cast<size_t>(cells_.width);
+  const double bottom = (1 - fx) * gain[i] + fx * gain[i + 1];
+  const double top = (1 - fx) * gain[i + w] + fx * gain[i + w + 1];
+  return (1 - fy) * bottom + fy * top;
+}
+
+std::vector<Eigen::Vector2d> GlobalLocaliser::UsablePoints(
+    const std::vector<Eigen::Vector2d>& points) const {
+  std::vector<Eigen::Vector2d> usable;
+  for (const auto& p : points) {
+    const double r = p.norm();
+    if (std::isfinite(r) && r >= options_.min_range_m && r <= options_.max_range_m)
+      usable.push_back(p);
+  }
+  return Spread(usable, options_.rank_points);
+}
+
+double GlobalLocaliser::FineScore(const std::vector<float>& gain,
+                                  const std::vector<Eigen::Vector2d>& points,
+                                  const geometry::Pose2D& pose) const {
+  double sum = 0.0;
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  for (const auto& p : points)
+    sum += Gain(gain, pose.x + c * p.x() - s * p.y(), pose.y + s * p.x() + c * p.y());
+  return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
+}
+
+bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+  const double res = options_.grid_resolution_m;
+  const double length = (to - from).norm();
+  const int steps = static_cast<int>(length / (0.5 * res));
+  for (int i = 1; i < steps; ++i) {
+    const Eigen::Vector2d p = from + (to - from) * (double(i) / steps);
+    const int c = static_cast<int>(std::floor((p.x() - cells_.x0) / res));
+    const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
+    if (c < 0 || r < 0 || c >= cells_.width || r >= cells_.height) return false;
+    if (wall_[static_cast<size_t>(r) * cells_.width + c]) return true;
+  }
+  return false;
+}
+
+double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
+                                  const geometry::Pose2D& pose) const {
+  if (points.empty()) return 0.0;
+  const Eigen::Vector2d origin = pose.Translation();
+  double sum = 0.0;
+  for (const auto& p : points) {
+    const Eigen::Vector2d q = pose.Apply(p);
+    const double range = p.norm();
+    if (range > options_.see_through_margin_m) {
+      const Eigen::Vector2d short_end =
+          origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
+      if (CrossesWall(origin, short_end)) continue;
+    }
+    sum += Gain(rank_gain_, q.x(), q.y());
+  }
+  return sum / static_cast<double>(points.size());
+}
+
+double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
+                              const geometry::Pose2D& laser_pose) const {
+  return RankScore(UsablePoints(points), laser_pose);
+}
+
+// Hill climbing on the fine field: moves of one step in x, y or heading while
+// they raise the score, halving the steps when none does.
+geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
+                                         const std::vector<Eigen::Vector2d>& points,
+                                         geometry::Pose2D pose, double step, double turn) const {
+  double score = FineScore(gain, points, pose);
+  while (step > 0.005) {
+    bool improved = false;
+    const geometry::Pose2D moves[6] = {{step, 0, 0},  {-step, 0, 0}, {0, step, 0},
+                                       {0, -step, 0}, {0, 0, turn},  {0, 0, -turn}};
+    for (const auto& m : moves) {
+      const geometry::Pose2D trial{pose.x + m.x, pose.y + m.y,
+                                   geometry::WrapAngle(pose.theta + m.theta)};
+      const double s = FineScore(gain, points, trial);
+      if (s > score) {
+        score = s;
+        pose = trial;
+        improved = true;
+      }
+    }
+    if (!improved) {
+      step *= 0.5;
+      turn *= 0.5;
+    }
+  }
+  return pose;
+}
+
+GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_points) const {
+  GlobalResult result;
+  const std::vector<Eigen::Vector2d> all = UsablePoints(scan_points);
+  const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
+  result.points_used = all.size();
+  if (all.size() < static_cast<size_t>(options_.min_points)) {
+    result.reason = "only " + std::to_string(points.size()) + " readings within " +
+                    std::to_string(options_.min_range_m) + ".." +
+                    std::to_string(options_.max_range_m) + " m";
+    return result;
+  }
+  const std::vector<Eigen::Vector2d> coarse = Spread(points, options_.coarse_points);
+
+  // Coarse search: every candidate position at every heading, scan points
+  // looked up in the blurred field.
+  const double res = options_.grid_resolution_m;
+  const int headings = std::max(
+      1, static_cast<int>(std::ceil(2 * geometry::kPi / options_.coarse_heading_step_rad)));
+  const double heading_step = 2 * geometry::kPi / headings;
+  std::vector<float> offsets;  // per heading, per point: x, y in cells
+  offsets.reserve(static_cast<size_t>(headings) * coarse.size() * 2);
+  for (int h = 0; h < headings; ++h) {
+    const double c = std::cos(h * heading_step), s = std::sin(h * heading_step);
+    for (const auto& p : coarse) {
+      offsets.push_back(static_cast<float>((c * p.x() - s * p.y()) / res));
+      offsets.push_back(static_cast<float>((s * p.x() + c * p.y()) / res));
+    }
+  }
+  const int separation =
+      std::max(1, static_cast<int>(std::ceil(options_.distinct_heading_rad * 2 / heading_step)));
+  std::vector<CoarseHit> hits;
+  hits.reserve(positions_.size() * 2);
+  std::vector<float> scores(static_cast<size_t>(headings));
+  const size_t n = coarse.size();
+  for (size_t k = 0; k < positions_.size(); ++k) {
+    const float px = static_cast<float>((positions_[k].x() - cells_.x0) / res);
+    const float py = static_cast<float>((positions_[k].y() - cells_.y0) / res);
+    for (int h = 0; h < headings; ++h) {
+      const float* o = &offsets[static_cast<size_t>(h) * n * 2];
+      float sum = 0.0f;
+      for (size_t i = 0; i < n; ++i) {
+        const int c = static_cast<int>(px + o[2 * i]);
+        const int r = static_cast<int>(py + o[2 * i + 1]);
+        if (c >= 0 && r >= 0 && c < cells_.width && r < cells_.height)
+          sum += coarse_gain_[static_cast<size_t>(r) * cells_.width + c];
+      }
+      scores[static_cast<size_t>(h)] = sum;
+    }
+    // The best heading here, and the best one clearly turned from it.
+    const int best =
+        static_cast<int>(std::max_element(scores.begin(), scores.end()) - scores.begin());
+    int second = -1;
+    for (int h = 0; h < headings; ++h) {
+      const int apart = std::min(std::abs(h - best), headings - std::abs(h - best));
+      if (apart >= separation && (second < 0 || scores[h] > scores[second])) second = h;
+    }
+    hits.push_back({scores[best], static_cast<int>(k), best});
+    if (second >= 0) hits.push_back({scores[second], static_cast<int>(k), second});
+  }
+  const size_t keep = std::min(hits.size(), static_cast<size_t>(options_.coarse_keep));
+  std::partial_sort(hits.begin(), hits.begin() + keep, hits.end(),
+                    [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
+
+  // Refinement on the fine field; poses that converged to the same place
+  // count once.
+  auto by_score = [](const GlobalCandidate& a, const GlobalCandidate& b) {
+    return a.score > b.score;
+  };
+  std::vector<GlobalCandidate> converged;
+  for (size_t i = 0; i < keep; ++i) {
+    const auto& hit = hits[i];
+    const geometry::Pose2D start{positions_[hit.position].x(), positions_[hit.position].y(),
+                                 geometry::WrapAngle(hit.heading * heading_step)};
+    const geometry::Pose2D pose = Refine(fine_gain_, points, start, 0.5 * options_.coarse_step_m,
+                                         0.5 * options_.coarse_heading_step_rad);
+    converged.push_back({pose, FineScore(fine_gain_, points, pose)});
+  }
+  std::sort(converged.begin(), converged.end(), by_score);
+  std::vector<GlobalCandidate> refined;
+  for (const auto& candidate : converged) {
+    if (refined.size() >= static_cast<size_t>(options_.ranked)) break;
+    bool seen = false;
+    for (const auto& r : refined) {
+      seen = seen || (std::hypot(r.pose.x - candidate.pose.x, r.pose.y - candidate.pose.y) < 0.1 &&
+                      std::abs(geometry::WrapAngle(r.pose.theta - candidate.pose.theta)) < 0.035);
+    }
+    if (!seen) refined.push_back(candidate);
+  }
+  // Polishing on the sharp field with all points, and ranking.
+  for (auto& candidate : refined) {
+    candidate.pose = Refine(rank_gain_, all, candidate.pose, 0.05, 0.01);
+    candidate.score = RankScore(all, candidate.pose);
+  }
+  std::sort(refined.begin(), refined.end(), by_score);
+  if (refined.empty()) {
+    result.reason =
+        "the map has no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
+    return result;
+  }
+  result.best = refined.front();
+  for (size_t i = 1; i < refined.size(); ++i) {
+    if (Distinct(refined[i].pose, refined.front().pose, options_)) {
+      result.runner_up = refined[i];
+      break;
+    }
+  }
+  if (result.best->score < options_.min_score) {
+    result.decision = GlobalDecision::kNotFound;
+    result.reason = "the best pose explains only " +
+                    std::to_string(static_cast<int>(100 * result.best->score)) +
+                    " % of the scan (at least " +
+                    std::to_string(static_cast<int>(100 * options_.min_score)) + " % needed)";
+  } else if (result.runner_up &&
+             result.runner_up->score > result.best->score - options_.ambiguity_margin) {
+    result.decision = GlobalDecision::kAmbiguous;
+    result.reason = "a distinct pose explains the scan nearly as well";
+  } else {
+    result.decision = GlobalDecision::kFound;
+  }
+  return result;
+}
+
+}  // namespace structloc::localisation_core

@@ -1,0 +1,120 @@
+// Global localisation: the laser poses that explain one scan against the whole
+// map, for a robot with no initial pose or one that was carried away. The
+// thesis' position update needs a prior pose; this search gives it one. The
+// map's walls and pillar outlines are drawn into a grid and turned into a
+// distance field (OpenCV's distance transform); a coarse search over positions
+// and headings with a blurred field keeps the best candidates, each is refined
+// by a local search on the fine field, and the distinct refined poses are
+// polished and ranked by the share of scan points they explain (beams that
+// would pass through a wall explain nothing). The best pose is "found" only
+// when it explains enough points and no distinct runner-up explains nearly as
+// many; two equally good poses (a symmetric corridor) give "ambiguous" rather
+// than a guess. DDS-free, deterministic (no randomness).
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+#include "structloc/world_model/world_model.hpp"
+
+namespace structloc::localisation_core {
+
+// The search's parameters. A separate struct with documented defaults rather
+// than a section of the localisation parameter file: it is used where there is
+// no pose to track yet (replay without --initial-pose, tests), and its
+// defaults were tuned on the Freiburg 079 and Intel recordings and the
+// simulated office, so no shipped parameter file needs to override them.
+struct GlobalLocaliserOptions {
+  double grid_resolution_m = 0.05;  // distance-field cell
+  double grid_margin_m = 1.0;       // field border around the map's bounds
+  double min_range_m = 0.1;         // readings closer are the robot itself
+  double max_range_m = 30.0;        // farther readings are too noisy in angle
+  int max_points = 90;              // scan points used by the refinement (evenly subsampled)
+  int coarse_points = 60;           // of them, used by the coarse search
+  int min_points = 20;              // fewer usable points: "not found"
+  double clearance_m = 0.1;         // candidate laser positions this far from any wall
+  double coarse_step_m = 0.25;      // coarse grid of positions
+  double coarse_heading_step_rad = 1.5 * geometry::kPi / 180.0;  // coarse headings
+  double coarse_blur_m = 0.15;        // coarse field: distances shortened by this much
+  int coarse_keep = 1000;             // coarse candidates refined
+  double truncation_m = 0.3;          // refinement: points farther from a surface count nothing
+  int ranked = 30;                    // distinct refined poses polished and ranked
+  double rank_truncation_m = 0.15;    // ranking: a point farther than this explains nothing
+  int rank_points = 360;              // scan points used for polishing and ranking
+  double see_through_margin_m = 0.3;  // a beam crossing a wall this far before its end
+                                      // explains nothing
+  double min_score = 0.45;            // best pose's share of explained points for "found"
+  double ambiguity_margin = 0.08;     // runner-up within this of the best: "ambiguous"
+  double distinct_distance_m = 0.5;   // a runner-up is at least this far from the best ...
+  double distinct_heading_rad = 10.0 * geometry::kPi / 180.0;  // ... or turned this much
+};
+
+enum class GlobalDecision { kFound, kAmbiguous, kNotFound };
+const char* ToString(GlobalDecision decision);
+
+struct GlobalCandidate {
+  geometry::Pose2D pose;  // laser pose in the map frame
+  double score = 0.0;     // share of the scan's points explained, 0..1
+};
+
+struct GlobalResult {
+  GlobalDecision decision = GlobalDecision::kNotFound;
+  std::optional<GlobalCandidate> best;
+  std::optional<GlobalCandidate> runner_up;  // best pose distinct from `best`
+  size_t points_used = 0;
+  std::string reason;  // why not found or ambiguous, for the user
+};
+
+// Points of a scan in the laser frame from its ranges (beam i at angle_min +
+// i * angle_increment); non-finite and out-of-range readings are left out.
+std::vector<Eigen::Vector2d> ScanPointsInLaserFrame(const std::vector<float>& ranges,
+                                                    double angle_min, double angle_increment,
+                                                    double min_range_m, double max_range_m);
+
+class GlobalLocaliser {
+ public:
+  // Draws the world and computes its distance field. Throws
+  // std::invalid_argument naming the option when an option is out of range
+  // or the grid would exceed 50 million cells.
+  GlobalLocaliser(const world_model::WorldModel& world, const GlobalLocaliserOptions& options);
+
+  // The laser poses explaining `points` (laser frame, metres).
+  GlobalResult Locate(const std::vector<Eigen::Vector2d>& points) const;
+
+  // Share of `points` explained at `laser_pose` (as used for ranking).
+  double Score(const std::vector<Eigen::Vector2d>& points,
+               const geometry::Pose2D& laser_pose) const;
+
+  size_t CandidatePositions() const { return positions_.size(); }
+
+ private:
+  struct Cells {
+    int width = 0;
+    int height = 0;
+    double x0 = 0.0;
+    double y0 = 0.0;
+  };
+
+  std::vector<Eigen::Vector2d> UsablePoints(const std::vector<Eigen::Vector2d>& points) const;
+  double FineScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
+                   const geometry::Pose2D& pose) const;
+  double RankScore(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& pose) const;
+  bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame
+  geometry::Pose2D Refine(const std::vector<float>& gain,
+                          const std::vector<Eigen::Vector2d>& points, geometry::Pose2D pose,
+                          double step, double turn) const;
+
+  GlobalLocaliserOptions options_;
+  Cells cells_;
+  std::vector<float> fine_gain_;     // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
+  std::vector<float> rank_gain_;     // the same with the ranking truncation
+  std::vector<float> coarse_gain_;   // the same with d shortened by coarse_blur_m
+  std::vector<unsigned char> wall_;  // per cell: a wall or pillar outline passes through
+  std::vector<Eigen::Vector2d> positions_;  // coarse candidate laser positions
+};
+
+}  // namespace structloc::localisation_core
