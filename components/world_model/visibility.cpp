@@ -18,6 +18,8 @@ constexpr double kMaxIntervals = 1e12;
 // Surfaces this close to the region a ray may cross are kept as possible
 // occluders, so that rounding never drops a real one.
 constexpr double kSelectionSlackM = 1e-6;
+// Samples of one wall sharing one occluder selection (0.8 m at 5 cm spacing).
+constexpr int64_t kStretchSamples = 16;
 
 inline double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
@@ -75,13 +77,42 @@ bool Hidden(const Scene& scene, const std::vector<int>& segments, const Eigen::V
   if (dist <= margin) return false;
   const Eigen::Vector2d d = delta / dist;
   const double reach = dist - margin;
+  // A segment whose bounding box misses the sight line's cannot hide the target.
+  const double min_x = std::min(origin.x(), target.x()) - kSelectionSlackM;
+  const double min_y = std::min(origin.y(), target.y()) - kSelectionSlackM;
+  const double max_x = std::max(origin.x(), target.x()) + kSelectionSlackM;
+  const double max_y = std::max(origin.y(), target.y()) + kSelectionSlackM;
   for (int s : segments) {
-    if (RaySegment(origin, d, scene.segments[static_cast<size_t>(s)]) < reach) return true;
+    const Segment& g = scene.segments[static_cast<size_t>(s)];
+    if (std::max(g.a.x(), g.b.x()) < min_x || std::min(g.a.x(), g.b.x()) > max_x ||
+        std::max(g.a.y(), g.b.y()) < min_y || std::min(g.a.y(), g.b.y()) > max_y) {
+      continue;
+    }
+    if (RaySegment(origin, d, g) < reach) return true;
   }
   for (const auto& c : scene.circles) {
     if (RayCircle(origin, d, c) < reach) return true;
   }
   return false;
+}
+
+// The segments of `from` that may cross the triangle (o, p, q): bounding boxes
+// first (cheap), then the separating axes.
+void SelectOccluders(const Scene& scene, const std::vector<int>& from, const Eigen::Vector2d& o,
+                     const Eigen::Vector2d& p, const Eigen::Vector2d& q, std::vector<int>& out) {
+  out.clear();
+  const double min_x = std::min({o.x(), p.x(), q.x()}) - kSelectionSlackM;
+  const double min_y = std::min({o.y(), p.y(), q.y()}) - kSelectionSlackM;
+  const double max_x = std::max({o.x(), p.x(), q.x()}) + kSelectionSlackM;
+  const double max_y = std::max({o.y(), p.y(), q.y()}) + kSelectionSlackM;
+  for (int s : from) {
+    const Segment& g = scene.segments[static_cast<size_t>(s)];
+    if (std::max(g.a.x(), g.b.x()) < min_x || std::min(g.a.x(), g.b.x()) > max_x ||
+        std::max(g.a.y(), g.b.y()) < min_y || std::min(g.a.y(), g.b.y()) > max_y) {
+      continue;
+    }
+    if (MayCross(g, o, p, q)) out.push_back(s);
+  }
 }
 
 }  // namespace
@@ -99,6 +130,7 @@ void Visibility::Reserve(const WorldModel& world, const Scene& scene) {
   cylinders.reserve(world.Cylinders().size());
   near_segments.reserve(scene.segments.size());
   wall_occluders.reserve(scene.segments.size());
+  stretch_occluders.reserve(scene.segments.size());
 }
 
 void ComputeVisibility(const WorldModel& world, const Scene& scene, const geometry::Pose2D& sensor,
@@ -155,20 +187,20 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
       hi = k;
     }
     if (lo < 0) continue;
-    result.wall_occluders.clear();
-    const Eigen::Vector2d p_lo = sample(lo), p_hi = sample(hi);
-    for (int s : result.near_segments) {
-      if (MayCross(scene.segments[static_cast<size_t>(s)], origin, p_lo, p_hi)) {
-        result.wall_occluders.push_back(s);
-      }
-    }
+    SelectOccluders(scene, result.near_segments, origin, sample(lo), sample(hi),
+                    result.wall_occluders);
     VisibleWall vw;
     vw.index = static_cast<int>(i);
     bool any = false;
     for (int64_t k = lo; k <= hi; ++k) {
+      // Stretches of kStretchSamples samples, each with its own narrower occluders.
+      if ((k - lo) % kStretchSamples == 0) {
+        SelectOccluders(scene, result.wall_occluders, origin, sample(k),
+                        sample(std::min(hi, k + kStretchSamples - 1)), result.stretch_occluders);
+      }
       const Eigen::Vector2d p = sample(k);
       if (!facing(p)) continue;
-      if (Hidden(scene, result.wall_occluders, origin, p, o.occlusion_margin_m)) continue;
+      if (Hidden(scene, result.stretch_occluders, origin, p, o.occlusion_margin_m)) continue;
       if (!any) vw.first = p;
       vw.last = p;
       vw.visible_length_m += step;

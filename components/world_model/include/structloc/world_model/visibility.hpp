@@ -40,10 +40,12 @@ struct Visibility {
   std::vector<VisibleWall> walls;
   std::vector<int> corners;    // indices into WorldModel::Corners()
   std::vector<int> cylinders;  // indices into WorldModel::Cylinders()
-  // Work space of ComputeVisibility: the scene's segments within range, and
-  // those of them that may hide (part of) one wall.
+  // Work space of ComputeVisibility: the scene's segments within range, those
+  // of them that may hide (part of) one wall, and of those the ones that may
+  // hide a short stretch of it.
   std::vector<int> near_segments;
   std::vector<int> wall_occluders;
+  std::vector<int> stretch_occluders;
 
   void Reserve(const WorldModel& world, const Scene& scene);
 };
