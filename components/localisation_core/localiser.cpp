@@ -269,7 +269,10 @@ void Localiser::SolveAndGate(const geometry::Pose2D& sensor_prior,
   r.dof = solve_.dof;
   const Eigen::Vector3d correction(solve_.pose.x - sensor_prior.x, solve_.pose.y - sensor_prior.y,
                                    geometry::WrapAngle(solve_.pose.theta - sensor_prior.theta));
-  if (!geometry::IsFinite(solve_.pose) || !solve_.covariance.allFinite()) {
+  // A covariance that is not symmetric positive definite (e.g. inflated by
+  // chi2 / dof over many underdetermined scans) would make every later prior
+  // unusable: the fit failed.
+  if (!geometry::IsFinite(solve_.pose) || !ValidCovariance(solve_.covariance)) {
     r.lost = true;
     r.lost_reason = LostReason::kSolverFailed;
   } else if (correction.head<2>().norm() > options_.max_correction_m ||
