@@ -20,6 +20,10 @@ constexpr double kMaxIntervals = 1e12;
 constexpr double kSelectionSlackM = 1e-6;
 // Samples of one wall sharing one occluder selection (0.8 m at 5 cm spacing).
 constexpr int64_t kStretchSamples = 16;
+// Near segments subtending more than this at the sensor are candidates for
+// every wall; the others only for walls whose angular span meets theirs.
+constexpr double kWideRad = 0.2;
+constexpr double kAngleSlackRad = 1e-6;
 
 inline double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
@@ -96,6 +100,48 @@ bool Hidden(const Scene& scene, const std::vector<int>& segments, const Eigen::V
   return false;
 }
 
+// The bearings from o that segment (a, b) covers: [start, start + span], span
+// < pi. False when the segment passes (nearly) through o.
+bool AngularSpan(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                 double& start, double& span) {
+  if (SquaredDistance(o, {a, b}) < 1e-6) return false;
+  const double ta = std::atan2(a.y() - o.y(), a.x() - o.x());
+  const double tb = std::atan2(b.y() - o.y(), b.x() - o.x());
+  const double d = geometry::WrapAngle(tb - ta);
+  start = d >= 0.0 ? ta : tb;
+  span = std::abs(d);
+  return true;
+}
+
+// The near segments whose angular span may meet that of the wall part (p, q):
+// every wide one, and the narrow ones starting within kWideRad before it.
+void AngularCandidates(const Visibility& v, const Eigen::Vector2d& o, const Eigen::Vector2d& p,
+                       const Eigen::Vector2d& q, std::vector<int>& out) {
+  out.clear();
+  double start = 0.0, span = 0.0;
+  if (!AngularSpan(o, p, q, start, span)) {
+    out.insert(out.end(), v.near_segments.begin(), v.near_segments.end());
+    return;
+  }
+  out.insert(out.end(), v.wide_segments.begin(), v.wide_segments.end());
+  auto add = [&](double lo, double hi) {
+    auto it = std::lower_bound(v.narrow_segments.begin(), v.narrow_segments.end(),
+                               std::make_pair(lo, -1));
+    for (; it != v.narrow_segments.end() && it->first <= hi; ++it) out.push_back(it->second);
+  };
+  const double lo = start - kWideRad - kAngleSlackRad, hi = start + span + kAngleSlackRad;
+  constexpr double kTwoPi = 2.0 * geometry::kPi;
+  if (lo < -geometry::kPi) {
+    add(lo + kTwoPi, kTwoPi);
+    add(-kTwoPi, hi);
+  } else if (hi > geometry::kPi) {
+    add(lo, kTwoPi);
+    add(-kTwoPi, hi - kTwoPi);
+  } else {
+    add(lo, hi);
+  }
+}
+
 // The segments of `from` that may cross the triangle (o, p, q): bounding boxes
 // first (cheap), then the separating axes.
 void SelectOccluders(const Scene& scene, const std::vector<int>& from, const Eigen::Vector2d& o,
@@ -129,6 +175,9 @@ void Visibility::Reserve(const WorldModel& world, const Scene& scene) {
   corners.reserve(world.Corners().size());
   cylinders.reserve(world.Cylinders().size());
   near_segments.reserve(scene.segments.size());
+  narrow_segments.reserve(scene.segments.size());
+  wide_segments.reserve(scene.segments.size());
+  wall_candidates.reserve(scene.segments.size());
   wall_occluders.reserve(scene.segments.size());
   stretch_occluders.reserve(scene.segments.size());
 }
@@ -144,11 +193,20 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
   const double cos_max_incidence = std::cos(o.max_incidence_rad);
   // A surface that hides a target within range crosses the range circle.
   const double reach = o.max_range_m + kSelectionSlackM;
+  result.narrow_segments.clear();
+  result.wide_segments.clear();
   for (size_t s = 0; s < scene.segments.size(); ++s) {
-    if (SquaredDistance(origin, scene.segments[s]) <= reach * reach) {
-      result.near_segments.push_back(static_cast<int>(s));
+    const Segment& g = scene.segments[s];
+    if (SquaredDistance(origin, g) > reach * reach) continue;
+    result.near_segments.push_back(static_cast<int>(s));
+    double start = 0.0, span = 0.0;
+    if (AngularSpan(origin, g.a, g.b, start, span) && span <= kWideRad) {
+      result.narrow_segments.emplace_back(start, static_cast<int>(s));
+    } else {
+      result.wide_segments.push_back(static_cast<int>(s));
     }
   }
+  std::sort(result.narrow_segments.begin(), result.narrow_segments.end());
   for (size_t i = 0; i < world.Walls().size(); ++i) {
     const auto& w = world.Walls()[i];
     const double length = w.Length();
@@ -187,7 +245,8 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
       hi = k;
     }
     if (lo < 0) continue;
-    SelectOccluders(scene, result.near_segments, origin, sample(lo), sample(hi),
+    AngularCandidates(result, origin, sample(lo), sample(hi), result.wall_candidates);
+    SelectOccluders(scene, result.wall_candidates, origin, sample(lo), sample(hi),
                     result.wall_occluders);
     VisibleWall vw;
     vw.index = static_cast<int>(i);

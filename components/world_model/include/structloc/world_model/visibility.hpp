@@ -5,6 +5,7 @@
 // (thesis 3.5.3).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -44,6 +45,11 @@ struct Visibility {
   // of them that may hide (part of) one wall, and of those the ones that may
   // hide a short stretch of it.
   std::vector<int> near_segments;
+  // The near segments that subtend a small angle at the sensor, sorted by the
+  // bearing their angular span starts at, and the others.
+  std::vector<std::pair<double, int>> narrow_segments;
+  std::vector<int> wide_segments;
+  std::vector<int> wall_candidates;  // near segments whose span meets one wall's
   std::vector<int> wall_occluders;
   std::vector<int> stretch_occluders;
 
