@@ -147,7 +147,8 @@ TEST(Visibility, RangeOcclusionAndFieldOfView) {
   // Wall 1 is beyond range, wall 3 hidden behind wall 2.
   EXPECT_EQ(walls, (std::vector<int>{0, 2}));
   EXPECT_EQ(v.cylinders, (std::vector<int>{0}));
-  o.field_of_view_rad = kPi / 3;  // +-30 deg along +x: wall 0 only beyond range, so only the pillar
+  o.view_min_rad = -kPi / 6;  // +-30 deg along +x: wall 0 only beyond range, so only the pillar
+  o.view_max_rad = kPi / 6;
   world_model::ComputeVisibility(world, scene, {0, 0, 0}, o, v);
   EXPECT_TRUE(v.walls.empty());
   EXPECT_EQ(v.cylinders, (std::vector<int>{0}));

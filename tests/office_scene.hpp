@@ -15,20 +15,20 @@ struct OfficeScene {
   world_model::Scene scene;
   localisation_core::LocaliserOptions options;
   geometry::Pose2D truth{19.5, 6.5, 0.2};  // robot base in the east hall
+  double field_of_view_rad;                // of the scans cast; the localiser reads it from them
 
-  explicit OfficeScene(double field_of_view_rad)
+  explicit OfficeScene(double field_of_view)
       : world(world_model::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) +
                                           "/maps/office_floor.xml")),
         scene(world_model::Scene::FromWorld(world)),
         options(localisation_core::LoadLocaliserOptions(std::string(STRUCTLOC_SOURCE_DIR) +
-                                                        "/maps/params/office_sick.xml")) {
-    options.visibility.field_of_view_rad = field_of_view_rad;
-  }
+                                                        "/maps/params/office_sick.xml")),
+        field_of_view_rad(field_of_view) {}
 
   // A noisy scan from the true sensor pose.
   SyntheticScan Scan(int beams, std::mt19937& rng) const {
     const geometry::Pose2D sensor = geometry::Compose(truth, options.sensor_mount);
-    return CastScan(scene, sensor, {beams, options.visibility.field_of_view_rad, 30.0, 0.01}, rng);
+    return CastScan(scene, sensor, {beams, field_of_view_rad, 30.0, 0.01}, rng);
   }
 
   localisation_core::UpdateInput Input(const SyntheticScan& scan) const {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "structloc/localisation_core/feature_kinds.hpp"
+#include "structloc/localisation_core/scan_visibility.hpp"
 
 namespace structloc::localisation_core {
 namespace {
@@ -105,11 +106,8 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
     for (int w : lines_[l].walls) wall_line_of_[static_cast<size_t>(w)] = static_cast<int>(l);
   }
   const size_t beams = static_cast<size_t>(options_.max_beams);
-  const size_t nw = world.Walls().size(), nc = world.Corners().size(),
-               ny = world.Cylinders().size();
-  visibility_.walls.reserve(nw);
-  visibility_.corners.reserve(nc);
-  visibility_.cylinders.reserve(ny);
+  const size_t nc = world.Corners().size(), ny = world.Cylinders().size();
+  visibility_.Reserve(world, scene_);
   directions_.Reserve(beams);
   points_.Reserve(beams);
   keep_.reserve(beams);
@@ -128,23 +126,19 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   }
 }
 
-void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose) {
+void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan) {
   const auto& v = options_.visibility;
-  const bool full_circle = v.field_of_view_rad >= 2 * geometry::kPi - 1e-9;
-  if (visibility_valid_ &&
+  const world_model::VisibilityOptions view = ScanVisibility(options_, scan);
+  const bool full_circle = view.view_max_rad - view.view_min_rad >= 2 * geometry::kPi - 1e-9;
+  if (visibility_valid_ && SameView(view, visibility_view_) &&
       (sensor_pose.Translation() - visibility_pose_.Translation()).norm() < v.refresh_distance_m &&
       (full_circle || std::abs(geometry::WrapAngle(sensor_pose.theta - visibility_pose_.theta)) <
                           v.refresh_angle_rad)) {
     return;
   }
-  world_model::VisibilityOptions o;
-  o.min_range_m = options_.prefilter.min_range_m;
-  o.max_range_m = options_.prefilter.max_range_m;
-  o.field_of_view_rad = v.field_of_view_rad;
-  o.min_visible_length_m = v.min_visible_length_m;
-  o.max_incidence_rad = v.max_incidence_rad;
-  world_model::ComputeVisibility(world_, scene_, sensor_pose, o, visibility_);
+  world_model::ComputeVisibility(world_, scene_, sensor_pose, view, visibility_);
   visibility_pose_ = sensor_pose;
+  visibility_view_ = view;
   visibility_valid_ = true;
 }
 
@@ -201,7 +195,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   const Eigen::Matrix3d jm = ComposeJacobian(input.odometry_pose, options_.sensor_mount);
   const Eigen::Matrix3d sensor_prior_cov = jm * input.odometry_covariance * jm.transpose();
 
-  RefreshVisibility(sensor_prior);
+  RefreshVisibility(sensor_prior, scan);
   ComputeExpectedFeatures(world_, lines_, wall_line_of_, visibility_, sensor_prior, expected_);
 
   // 1. Prefilter (+ de-skew before the neighbourhood tests).
@@ -275,7 +269,10 @@ void Localiser::SolveAndGate(const geometry::Pose2D& sensor_prior,
   r.dof = solve_.dof;
   const Eigen::Vector3d correction(solve_.pose.x - sensor_prior.x, solve_.pose.y - sensor_prior.y,
                                    geometry::WrapAngle(solve_.pose.theta - sensor_prior.theta));
-  if (!geometry::IsFinite(solve_.pose) || !solve_.covariance.allFinite()) {
+  // A covariance that is not symmetric positive definite (e.g. inflated by
+  // chi2 / dof over many underdetermined scans) would make every later prior
+  // unusable: the fit failed.
+  if (!geometry::IsFinite(solve_.pose) || !ValidCovariance(solve_.covariance)) {
     r.lost = true;
     r.lost_reason = LostReason::kSolverFailed;
   } else if (correction.head<2>().norm() > options_.max_correction_m ||

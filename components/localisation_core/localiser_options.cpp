@@ -66,9 +66,9 @@ LocaliserOptionTable SolverSection() {
 }
 
 LocaliserOptionTable VisibilitySection() {
-  LocaliserOptionTable t("visibility", "which model features are expected in the scan");
-  t.Number("field_of_view_rad", &O::visibility, &VisibilitySettings::field_of_view_rad,
-           Range::LeftOpen(0, 2 * geometry::kPi + 1e-9), "rad", "the scanner's field of view");
+  LocaliserOptionTable t("visibility",
+                         "which model features are expected in the scan (its own angular range "
+                         "decides the rest)");
   t.Number("min_visible_length_m", &O::visibility, &VisibilitySettings::min_visible_length_m,
            Range::NonNegative(), "m", "shorter visible wall parts are not expected");
   t.Number("max_incidence_rad", &O::visibility, &VisibilitySettings::max_incidence_rad,
@@ -76,7 +76,7 @@ LocaliserOptionTable VisibilitySection() {
   t.Number("refresh_distance_m", &O::visibility, &VisibilitySettings::refresh_distance_m,
            Range::Positive(), "m", "recompute visibility after this much travel");
   t.Number("refresh_angle_rad", &O::visibility, &VisibilitySettings::refresh_angle_rad,
-           Range::Positive(), "rad", "... or rotation (limited fields of view only)");
+           Range::Positive(), "rad", "... or rotation (scans short of a full circle only)");
   return t;
 }
 

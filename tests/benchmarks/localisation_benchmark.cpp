@@ -12,6 +12,7 @@
 #include "structloc/localisation_core/corner_extraction.hpp"
 #include "structloc/localisation_core/cylinder_extraction.hpp"
 #include "structloc/localisation_core/kohonen_clustering.hpp"
+#include "structloc/localisation_core/scan_visibility.hpp"
 
 namespace structloc {
 namespace {
@@ -52,10 +53,7 @@ struct Prepared {
     for (size_t l = 0; l < lines.size(); ++l) {
       for (int w : lines[l].walls) line_of[static_cast<size_t>(w)] = static_cast<int>(l);
     }
-    world_model::VisibilityOptions vo;
-    vo.min_range_m = office.options.prefilter.min_range_m;
-    vo.max_range_m = office.options.prefilter.max_range_m;
-    vo.field_of_view_rad = office.options.visibility.field_of_view_rad;
+    const auto vo = localisation_core::ScanVisibility(office.options, scan.View());
     world_model::Visibility visibility;
     ComputeVisibility(office.world, office.scene, sensor_prior, vo, visibility);
     ComputeExpectedFeatures(office.world, lines, line_of, visibility, sensor_prior, expected);

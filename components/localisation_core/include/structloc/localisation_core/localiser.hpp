@@ -88,7 +88,9 @@ class Localiser {
   const world_model::WorldModel& World() const { return world_; }
 
  private:
-  void RefreshVisibility(const geometry::Pose2D& sensor_pose);
+  // Recomputes which features are visible when the sensor has moved or turned
+  // enough, or the scan's geometry differs from the last one's.
+  void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.
   void ExtractFeatures(const geometry::Pose2D& sensor_prior);
@@ -108,6 +110,7 @@ class Localiser {
   world_model::Visibility visibility_;
   bool visibility_valid_ = false;
   geometry::Pose2D visibility_pose_;
+  world_model::VisibilityOptions visibility_view_;  // the view visibility_ was computed for
 
   BeamDirections directions_;
   ScanPoints points_;

@@ -23,12 +23,14 @@ namespace structloc::localisation_core {
 
 enum class WallStrategy { kExpectation, kKohonen };
 
+// Which model features are expected in a scan. The scan's own angular range
+// (ScanView) and the prefilter's range limits decide the rest
+// (scan_visibility.hpp); there is no field-of-view option.
 struct VisibilitySettings {
-  double field_of_view_rad = 2.0 * geometry::kPi;  // thesis scanner: full circle
-  double min_visible_length_m = 0.3;               // shorter visible wall parts are not expected
-  double max_incidence_rad = 1.309;                // 75 deg: more oblique views are not expected
-  double refresh_distance_m = 0.25;                // recompute visibility after this much travel
-  double refresh_angle_rad = 0.2;                  // ... or rotation (limited fields of view only)
+  double min_visible_length_m = 0.3;  // shorter visible wall parts are not expected
+  double max_incidence_rad = 1.309;   // 75 deg: more oblique views are not expected
+  double refresh_distance_m = 0.25;   // recompute visibility after this much travel
+  double refresh_angle_rad = 0.2;     // ... or rotation (scans short of a full circle only)
 };
 
 // Upper bounds on the work one scan may cost, so that a typo such as
