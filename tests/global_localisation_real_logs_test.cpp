@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ostream>
 #include <random>
 #include <string>
 
@@ -27,6 +28,11 @@ struct Recording {
   const char* map;
   int right_percent;  // least share placed right (see the figures in the README)
 };
+
+// How ctest lists the case: the recording's file name.
+void PrintTo(const Recording& recording, std::ostream* out) {
+  *out << recording.log;
+}
 
 class GlobalOnRealLog : public ::testing::TestWithParam<Recording> {};
 
