@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "file_names.hpp"
 #include "map_action.hpp"
 #include "map_picture.hpp"
 #include "map_subcommands.hpp"
@@ -17,15 +18,6 @@
 
 namespace structloc::cli {
 namespace {
-
-std::string FileName(const std::string& path) {
-  return path.substr(path.find_last_of('/') + 1);
-}
-
-std::string Stem(const std::string& path) {
-  const std::string name = FileName(path);
-  return name.substr(0, name.find('.'));
-}
 
 void PrintSupport(const map_building::MapBuildResult& result) {
   std::cout << "  wall  length_m  points  scans  rms_mm\n" << std::fixed;
@@ -74,8 +66,8 @@ int MapBuildCommand(const Invocation& inv) {
                                std::to_string(result.wall_report.segments) +
                                " scan segments); see structloc params --map-build");
     }
-    const auto world =
-        map_building::MakeWorld(cli.GetOr("name", Stem(log_path)), result.walls, result.pillars);
+    const auto world = map_building::MakeWorld(cli.GetOr("name", Stem(log_path, "built")),
+                                               result.walls, result.pillars);
     const auto& r = result.wall_report;
     world_model::WriteWorldModel(
         world,
@@ -107,7 +99,7 @@ int MapBuildCommand(const Invocation& inv) {
     if (!cli.Has("quiet")) PrintSupport(result);
     if (!plot_path.empty()) {
       MapPicture picture;
-      picture.title = "map build: " + Stem(log_path);
+      picture.title = "map build: " + Stem(log_path, "built");
       picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 500));
       picture.legend = {{rendering::colours::kWall, "walls and pillars built"},
                         {cv::Scalar(200, 200, 200), "readings"}};

@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "file_names.hpp"
 #include "map_action.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
@@ -34,18 +35,6 @@ std::vector<std::string> SplitLayers(const std::string& text) {
   if (layers.empty())
     throw config::ConfigError("--layers names no layer: give e.g. --layers WALLS,PILLARS");
   return layers;
-}
-
-std::string FileName(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-std::string Stem(const std::string& path) {
-  std::string name = FileName(path);
-  const auto dot = name.find_last_of('.');
-  if (dot != std::string::npos && dot > 0) name.resize(dot);
-  return name.empty() ? "imported" : name;
 }
 
 std::vector<std::string> CommentLines(const std::string& dxf_path,
@@ -94,7 +83,7 @@ int MapImportDxfCommand(const Invocation& inv) {
     map_building::DxfImportOptions options;
     options.layers = SplitLayers(cli.Required("layers"));
     if (cli.Has("units")) options.units = map_building::ParseLengthUnit(cli.Required("units"));
-    options.world_name = Stem(dxf_path);
+    options.world_name = Stem(dxf_path, "imported");
 
     const auto drawing = map_formats::ReadDxfDrawing(dxf_path);
     const auto imported = map_building::ImportDrawing(drawing, options);

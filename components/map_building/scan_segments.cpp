@@ -19,10 +19,6 @@ struct GrowingLine {
   LineEstimate Fit() const { return FitLine(sums, origin.x(), origin.y()); }
 };
 
-double Distance(const LineEstimate& line, const Eigen::Vector2d& p) {
-  return std::abs(p.x() * line.cos_alpha + p.y() * line.sin_alpha - line.r);
-}
-
 }  // namespace
 
 std::vector<ScanSegment> ExtractScanSegments(const std::vector<Eigen::Vector2d>& points,
@@ -46,7 +42,7 @@ std::vector<ScanSegment> ExtractScanSegments(const std::vector<Eigen::Vector2d>&
     }
     size_t j = i + w;
     while (j < n && (points[j] - points[j - 1]).norm() <= options.max_point_gap_m &&
-           Distance(fit, points[j]) <= options.max_point_distance_m) {
+           fit.DistanceTo(points[j].x(), points[j].y()) <= options.max_point_distance_m) {
       line.Add(points[j]);
       fit = line.Fit();
       ++j;

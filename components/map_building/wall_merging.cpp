@@ -14,10 +14,6 @@ Eigen::Vector2d Direction(const LineEstimate& fit) {
   return {-fit.sin_alpha, fit.cos_alpha};
 }
 
-double Distance(const LineEstimate& fit, const Eigen::Vector2d& p) {
-  return std::abs(p.x() * fit.cos_alpha + p.y() * fit.sin_alpha - fit.r);
-}
-
 // Distance between the intervals [a0, a1] and [b0, b1] (0 when they overlap).
 double IntervalGap(double a0, double a1, double b0, double b1) {
   return std::max({0.0, b0 - a1, a0 - b1});
@@ -50,7 +46,8 @@ bool WallAccumulator::Accepts(const Candidate& wall, const Eigen::Vector2d& firs
   // |sin| of the angle between the segment and the wall's line.
   if (std::abs(dir.x() * d.y() - dir.y() * d.x()) / length > std::sin(options_.max_angle_rad))
     return false;
-  const double d0 = Distance(wall.fit, first), d1 = Distance(wall.fit, last);
+  const double d0 = wall.fit.DistanceTo(first.x(), first.y());
+  const double d1 = wall.fit.DistanceTo(last.x(), last.y());
   if (d0 > options_.max_offset_m || d1 > options_.max_offset_m) return false;
   const double s0 = dir.dot(first), s1 = dir.dot(last);
   const double w0 = dir.dot(wall.low), w1 = dir.dot(wall.high);
@@ -116,8 +113,8 @@ void WallAccumulator::Keep(const std::vector<Eigen::Vector2d>& points,
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<size_t> kept;
     std::vector<Eigen::Vector2d> kept_points;
+    const Eigen::Vector2d n(std::cos(fit.line.alpha), std::sin(fit.line.alpha));
     for (const size_t i : inliers) {
-      const Eigen::Vector2d n(std::cos(fit.line.alpha), std::sin(fit.line.alpha));
       if (std::abs(n.dot(points[i]) - fit.line.r) <= options_.inlier_distance_m) {
         kept.push_back(i);
         kept_points.push_back(points[i]);

@@ -52,6 +52,10 @@ struct LineEstimate {
   double ym = 0.0;
   bool degenerate = true;  // points have no preferred direction (or n < 2)
   double Alpha() const { return std::atan2(sin_alpha, cos_alpha); }
+  // Perpendicular distance of (x, y) from the line.
+  double DistanceTo(double x, double y) const {
+    return std::abs(x * cos_alpha + y * sin_alpha - r);
+  }
 };
 
 // Total least squares line of the summed points; (ox, oy) is the origin the
