@@ -25,6 +25,11 @@ namespace {
 using localisation_core::ScanReport;
 using localisation_core::TrackingSession;
 
+// Why a scan was not used, with the session's detail when it gives one.
+std::string RejectionReason(const ScanReport& report) {
+  return report.reason.empty() ? localisation_core::ToString(report.rejection) : report.reason;
+}
+
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -221,7 +226,7 @@ class Replayer {
   void Handle(const ScanReport& report) {
     const auto& scan = report.scan;
     if (!report.odometry) {
-      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
+      ++report_.scans_rejected[RejectionReason(report)];
       return;
     }
     if (!first_odometry_) first_odometry_ = *report.odometry;
@@ -235,7 +240,7 @@ class Replayer {
     }
     times_us_.push_back(report.update_us);
     if (report.kind != ScanReport::Kind::kTracked) {
-      ++report_.scans_rejected[report.reason];
+      ++report_.scans_rejected[RejectionReason(report)];
       return;
     }
     const auto& r = *report.result;
@@ -270,7 +275,7 @@ class Replayer {
     times_us_.push_back(
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
     if (report.kind == ScanReport::Kind::kRejected) {
-      ++report_.scans_rejected[localisation_core::ToString(report.rejection)];
+      ++report_.scans_rejected[RejectionReason(report)];
       return;
     }
     ++report_.scans_used;
