@@ -324,6 +324,7 @@ void Localiser::FinishResult(const UpdateInput& input, const geometry::Pose2D& s
   r.pose = geometry::Compose(sensor_pose, unmount);
   const Eigen::Matrix3d ju = ComposeJacobian(sensor_pose, unmount);
   r.covariance = ju * sensor_cov * ju.transpose();
+  r.covariance = 0.5 * (r.covariance + r.covariance.transpose());  // exact, despite rounding
   if (r.lost_reason == LostReason::kCorrectionTooLarge ||
       r.lost_reason == LostReason::kSolverFailed) {
     r.pose = input.odometry_pose;
