@@ -105,7 +105,7 @@ void LocalisationComponent::Worker() {
       pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
       tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
       features = ToScanFeatures(r, report->stamp, options_.frames);
-      status = ToStatus(r, session_.Stats(), session_.Dropped(), report->stamp, options_.frames);
+      status = ToStatus(r, report->lost ? report->lost_reason : "", session_.Stats(), session_.Dropped(), report->stamp, options_.frames);
     }
     // Published outside every lock: neither the DDS threads delivering scans
     // and odometry nor the main thread wait for these writes.

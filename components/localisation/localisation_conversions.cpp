@@ -112,6 +112,7 @@ structloc_msgs::msg::ScanFeatures ToScanFeatures(const localisation_core::Locali
 }
 
 structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::LocalisationResult& r,
+                                                 const char* lost_reason,
                                                  const localisation_core::TrackerStats& stats,
                                                  uint64_t dropped, double stamp,
                                                  const dds_common::FrameIds& frames) {
@@ -119,8 +120,9 @@ structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::Locali
   s.header().stamp(dds_common::ToRosTime(stamp));
   s.header().frame_id(frames.map);
   s.quality(r.quality);
-  s.lost(r.lost);
-  s.lost_reason(r.lost ? localisation_core::ToString(r.lost_reason) : "");
+  const bool lost = lost_reason != nullptr && lost_reason[0] != '\0';
+  s.lost(lost);
+  s.lost_reason(lost ? lost_reason : "");
   for (const auto& kind : r.features) {
     structloc_msgs::msg::FeatureCount c;
     c.kind(kind.kind);

@@ -1,6 +1,8 @@
 // Feature kind "corners" (see header): the extractor and the kind's options block.
 #include "structloc/localisation_core/corner_extractor.hpp"
 
+#include "structloc/localisation_core/point_gate.hpp"
+
 #include <cmath>
 #include <optional>
 
@@ -28,6 +30,11 @@ std::vector<LocaliserOptionTable> CornerSections() {
            Range::Positive(), "m", "a matched wall passes through a corner within this");
   t.Number("redundant_min_sin", &O::corners, &CornerOptions::redundant_min_sin, Range::Closed(0, 1),
            "", "two such walls at an angle with a larger sine make the corner redundant");
+  t.Number("map_sigma_m", &O::corners, &CornerOptions::map_sigma_m, Range::NonNegative(), "m",
+           "the map's error of a corner, 1 sigma (0: exact map)");
+  t.Number("gate_chi2", &O::corners, &CornerOptions::gate_chi2, Range::NonNegative(), "",
+           "Mahalanobis gate (2 dof) under the prior's, the fit's and the map's covariance (0: "
+           "fixed gate only)");
   return {t};
 }
 
@@ -74,6 +81,10 @@ void CornerExtractor::Extract(const ExtractionInput& in, Measurements& all,
     m.sensor = in.thesis_values ? c.mean : c.refined;
     m.covariance = c.covariance;
     m.world = e.world;
+    if (!GatePoint(m.sensor, m.covariance, m.world, in.sensor_prior, in.sensor_prior_covariance,
+                   options_.map_sigma_m, options_.gate_chi2)) {
+      continue;
+    }
     m.use_in_weighted = !RedundantWithWalls(e.world, all.lines);
     FeatureMatch match;
     match.model_id = e.model_id;

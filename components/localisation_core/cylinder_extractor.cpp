@@ -1,6 +1,8 @@
 // Feature kind "cylinders" (see header): the extractor and the kind's options block.
 #include "structloc/localisation_core/cylinder_extractor.hpp"
 
+#include "structloc/localisation_core/point_gate.hpp"
+
 namespace structloc::localisation_core {
 namespace {
 
@@ -22,6 +24,12 @@ std::vector<LocaliserOptionTable> CylinderSections() {
            "", "minimum number of circle fits in a cluster");
   t.Number("min_point_sigma_m", &O::cylinders, &CylinderOptions::min_point_sigma_m,
            Range::Positive(), "m", "floor of the per-point noise for the covariance");
+  t.Number("map_sigma_m", &O::cylinders, &CylinderOptions::map_sigma_m, Range::NonNegative(), "m",
+           "the map's error of a pillar centre, 1 sigma (0: exact map)");
+  t.Number("gate_chi2", &O::cylinders, &CylinderOptions::gate_chi2,
+           Range::NonNegative(), "",
+           "Mahalanobis gate (2 dof) under the prior's, the fit's and the map's covariance (0: "
+           "fixed gate only)");
   return {t};
 }
 
@@ -52,6 +60,10 @@ void CylinderExtractor::Extract(const ExtractionInput& in, Measurements& all,
     m.sensor = in.thesis_values ? c.mean : c.refined;
     m.covariance = c.covariance;
     m.world = e.world;
+    if (!GatePoint(m.sensor, m.covariance, m.world, in.sensor_prior, in.sensor_prior_covariance,
+                   options_.map_sigma_m, options_.gate_chi2)) {
+      continue;
+    }
     m.cylinder = true;
     FeatureMatch match;
     match.model_id = e.model_id;

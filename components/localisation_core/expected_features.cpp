@@ -1,6 +1,7 @@
 // Expected features (see header).
 #include "structloc/localisation_core/expected_features.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace structloc::localisation_core {
@@ -24,8 +25,9 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
   return lines;
 }
 
-void ExpectedFeatures::Reserve(size_t l, size_t c, size_t y) {
+void ExpectedFeatures::Reserve(size_t l, size_t w, size_t c, size_t y) {
   walls.reserve(l);
+  extents.reserve(w);
   corners.reserve(c);
   cylinders.reserve(y);
 }
@@ -36,6 +38,7 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
                              const world_model::Visibility& visibility,
                              const geometry::Pose2D& pose, ExpectedFeatures& out) {
   out.walls.clear();
+  out.extents.clear();
   out.corners.clear();
   out.cylinders.clear();
   for (const auto& vw : visibility.walls) {
@@ -44,10 +47,16 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     const double cw = std::cos(model.line.alpha), sw = std::sin(model.line.alpha);
     const double t1 = -sw * vw.first.x() + cw * vw.first.y();
     const double t2 = -sw * vw.last.x() + cw * vw.last.y();
+    const auto& wall = world.Walls()[static_cast<size_t>(vw.index)];
+    const double centre = 0.5 * (-sw * (wall.a.x() + wall.b.x()) +
+                                 cw * (wall.a.y() + wall.b.y()));
     ExpectedWall* existing = nullptr;
     for (auto& e : out.walls) {
       if (e.line_index == line_index) existing = &e;
     }
+    const int index = existing != nullptr ? static_cast<int>(existing - out.walls.data())
+                                          : static_cast<int>(out.walls.size());
+    out.extents.push_back({index, std::min(t1, t2), std::max(t1, t2), centre, 0.5 * wall.Length()});
     if (existing != nullptr) {
       existing->extent_lo = std::min({existing->extent_lo, t1, t2});
       existing->extent_hi = std::max({existing->extent_hi, t1, t2});
@@ -75,6 +84,19 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     const auto& c = world.Cylinders()[static_cast<size_t>(i)];
     out.cylinders.push_back({i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius});
   }
+}
+
+double ExpectedFeatures::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
+  double best = 1e300;
+  for (const auto& x : extents) {
+    if (x.expected_index != e) continue;
+    const double d = std::max({x.lo - t, t - x.hi, 0.0});
+    if (d < best) {
+      best = d;
+      if (wall != nullptr) *wall = &x;
+    }
+  }
+  return best;
 }
 
 }  // namespace structloc::localisation_core

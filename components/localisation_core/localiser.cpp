@@ -112,7 +112,7 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   points_.Reserve(beams);
   keep_.reserve(beams);
   windows_.reserve(beams);
-  expected_.Reserve(lines_.size(), nc, ny);
+  expected_.Reserve(lines_.size(), world.Walls().size(), nc, ny);
   measurements_.lines.reserve(lines_.size());
   measurements_.points.reserve(nc + ny);
   solve_.Reserve(lines_.size(), nc + ny);
@@ -209,7 +209,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   FitWindowLines(points_, options_.line_fit, windows_);
   const auto t2 = Clock::now();
   // 3. The feature kinds (walls, corners, cylinders, ...), each timed.
-  ExtractFeatures(sensor_prior);
+  ExtractFeatures(sensor_prior, sensor_prior_cov);
   const auto t3 = Clock::now();
   // 4. Pose.
   geometry::Pose2D sensor_pose = sensor_prior;
@@ -228,8 +228,10 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   return result_;
 }
 
-void Localiser::ExtractFeatures(const geometry::Pose2D& sensor_prior) {
+void Localiser::ExtractFeatures(const geometry::Pose2D& sensor_prior,
+                                const Eigen::Matrix3d& sensor_prior_cov) {
   ExtractionInput in;
+  in.sensor_prior_covariance = sensor_prior_cov;
   in.expected = &expected_;
   in.windows = &windows_;
   in.points = &points_;
@@ -325,6 +327,13 @@ void Localiser::FinishResult(const UpdateInput& input, const geometry::Pose2D& s
   const Eigen::Matrix3d ju = ComposeJacobian(sensor_pose, unmount);
   r.covariance = ju * sensor_cov * ju.transpose();
   r.covariance = 0.5 * (r.covariance + r.covariance.transpose());  // exact, despite rounding
+  r.information.setZero();
+  r.chi2_scale = r.dof > 0 ? std::max(1.0, r.chi2 / r.dof) : 1.0;
+  if (!r.lost || r.lost_reason == LostReason::kUnderdetermined) {
+    const Eigen::Matrix3d ju_inv = ju.inverse();
+    r.information = ju_inv.transpose() * solve_.feature_information * ju_inv;
+    r.information = 0.5 * (r.information + r.information.transpose());
+  }
   if (r.lost_reason == LostReason::kCorrectionTooLarge ||
       r.lost_reason == LostReason::kSolverFailed) {
     r.pose = input.odometry_pose;

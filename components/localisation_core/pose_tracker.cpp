@@ -2,7 +2,10 @@
 #include "structloc/localisation_core/pose_tracker.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace structloc::localisation_core {
@@ -61,9 +64,27 @@ uint64_t TrackerStats::Rejected() const {
   return n;
 }
 
+namespace {
+OdometryFilterOptions FilterOptions(const TrackerOptions& o) {
+  OdometryFilterOptions f;
+  f.sigma_xy_per_m = o.odometry_sigma_xy_per_m;
+  f.sigma_theta_per_m = o.odometry_sigma_theta_per_m;
+  f.sigma_theta_per_rad = o.odometry_sigma_theta_per_rad;
+  f.scale_sigma = o.odometry_scale_sigma;
+  f.drift_sigma_rad_per_m = o.odometry_drift_sigma_rad_per_m;
+  f.calibration_walk_per_m = o.calibration_walk_per_m;
+  f.weak_std_m = o.weak_std_m;
+  f.weak_std_rad = o.weak_std_rad;
+  return f;
+}
+}  // namespace
+
 PoseTracker::PoseTracker(const world_model::WorldModel& world,
                          const LocaliserOptions& localiser_options, const TrackerOptions& options)
-    : localiser_(world, localiser_options), options_(options), history_(4096) {
+    : localiser_(world, localiser_options),
+      options_(options),
+      history_(4096),
+      filter_(FilterOptions(options)) {
   options_.Validate();
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
 }
@@ -126,7 +147,8 @@ std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometr
   const geometry::Pose2D odom = *history_.At(t);
   map_to_odom_ = geometry::Compose(pose, geometry::Inverse(odom));
   odom_at_last_update_ = odom;
-  covariance_ = covariance;
+  filter_.Reset(pose, covariance);
+  corrected_ = false;
   initialised_ = true;
   return std::nullopt;
 }
@@ -134,7 +156,8 @@ std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometr
 std::optional<TrackedPose> PoseTracker::Latest() const {
   if (!initialised_ || history_.Empty()) return std::nullopt;
   const geometry::Pose2D odom = *history_.At(history_.Newest());
-  return TrackedPose{history_.Newest(), geometry::Compose(map_to_odom_, odom), covariance_};
+  return TrackedPose{history_.Newest(), geometry::Compose(map_to_odom_, odom),
+                     filter_.PoseCovariance()};
 }
 
 PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double waited_s) {
@@ -185,12 +208,9 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   if (options_.deskew && scan.time_increment > 0 && !deskew) ++stats_.scans_not_deskewed;
   last_scan_stamp_ = scan.stamp;
 
-  // The prior: the last correction carried forward, uncertainty grown with the motion.
-  const geometry::Pose2D moved = geometry::Between(odom_at_last_update_, odom);
-  const double d = moved.Translation().norm();
-  const double sxy = options_.odometry_sigma_xy_per_m * d;
-  const double st = options_.odometry_sigma_theta_per_m * d +
-                    options_.odometry_sigma_theta_per_rad * std::abs(moved.theta);
+  // The prior: the filter carried forward by the (calibrated) odometry step.
+  filter_.Predict(geometry::Between(odom_at_last_update_, odom));
+  odom_at_last_update_ = odom;
   UpdateInput in;
   in.scan.ranges = scan.ranges;
   in.scan.count = scan.count;
@@ -199,37 +219,71 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   in.scan.time_increment = scan.time_increment;
   in.scan.range_min = scan.range_min;
   in.scan.range_max = scan.range_max;
-  in.odometry_pose = geometry::Compose(map_to_odom_, odom);
-  in.odometry_covariance = covariance_;
-  in.odometry_covariance(0, 0) += sxy * sxy + 1e-8;
-  in.odometry_covariance(1, 1) += sxy * sxy + 1e-8;
-  in.odometry_covariance(2, 2) += st * st + 1e-10;
+  in.odometry_pose = filter_.Pose();
+  in.odometry_covariance = filter_.PoseCovariance();
   in.motion = deskew ? &motion_ : nullptr;
   const LocalisationResult& r = localiser_.Update(in);
+  ScanOutcome out;
   if (r.rejection != nullptr) {
-    // The localiser refused its input: nothing was measured, the prior stays.
-    covariance_ = in.odometry_covariance;
-    odom_at_last_update_ = odom;
+    // The localiser refused its input: nothing was measured, the prediction stays.
+    map_to_odom_ = geometry::Compose(filter_.Pose(), geometry::Inverse(odom));
     return Reject(Rejection::kLocaliserRejected, r.rejection);
   }
   ++stats_.scans_processed;
-  if (r.lost) ++stats_.scans_lost;
-  // A lost update leaves the correction alone (dead reckoning continues) but
-  // keeps the grown uncertainty; underdetermined updates still correct the
-  // determined directions, since the solver held the others at the prior.
-  const bool use = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
-  if (use) {
-    map_to_odom_ = geometry::Compose(r.pose, geometry::Inverse(odom));
-    covariance_ = UsableCovariance(r.covariance, in.odometry_covariance);
-  } else {
-    covariance_ = in.odometry_covariance;
+  out.pinned_directions = Correct(r, in, odom);
+  map_to_odom_ = geometry::Compose(filter_.Pose(), geometry::Inverse(odom));
+  const Eigen::Matrix3d covariance = filter_.PoseCovariance();
+  const double sigma_xy = std::sqrt(
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>())
+          .eigenvalues()
+          .maxCoeff());
+  const bool contradicted = r.lost_reason == LostReason::kCorrectionTooLarge ||
+                            r.lost_reason == LostReason::kSolverFailed;
+  if (out.pinned_directions == 0 && (contradicted || sigma_xy > options_.lost_sigma_m)) {
+    out.lost = true;
+    out.lost_reason = contradicted ? ToString(r.lost_reason)
+                                   : "position uncertainty beyond lost_sigma_m without a usable scan";
+    ++stats_.scans_lost;
   }
-  odom_at_last_update_ = odom;
-  ScanOutcome out;
   out.verdict = ScanVerdict::kProcessed;
   out.result = &r;
-  out.pose = {scan.stamp, geometry::Compose(map_to_odom_, odom), covariance_};
+  out.pose = {scan.stamp, filter_.Pose(), covariance};
   return out;
+}
+
+int PoseTracker::Correct(const LocalisationResult& r, const UpdateInput& in,
+                         const geometry::Pose2D& odom) {
+  // Underdetermined scans still pin some directions; the filter keeps those.
+  if (r.lost && r.lost_reason != LostReason::kUnderdetermined) return 0;
+  if (corrected_) {
+    const geometry::Pose2D moved = geometry::Between(odom_at_last_correction_, odom);
+    if (moved.Translation().norm() < options_.min_update_travel_m &&
+        std::abs(moved.theta) < options_.min_update_turn_rad) {
+      return 0;
+    }
+  }
+  // The solve about the prior gives the posterior r.pose; in information form
+  // its gradient is (P^-1 + I)(posterior - prior) = I (z - prior).
+  const Eigen::Vector3d delta(r.pose.x - in.odometry_pose.x, r.pose.y - in.odometry_pose.y,
+                              geometry::WrapAngle(r.pose.theta - in.odometry_pose.theta));
+  const Eigen::Matrix3d prior_information =
+      in.odometry_covariance.ldlt().solve(Eigen::Matrix3d::Identity());
+  const Eigen::Vector3d gradient = (prior_information + r.information) * delta;
+  const int used = filter_.Update(r.information / r.chi2_scale, gradient / r.chi2_scale);
+  if (std::getenv("SLDBG")) {
+    fprintf(stderr, "DBG prior %.3f %.3f %.4f post %.3f %.3f %.4f filt %.3f %.3f %.4f used %d chi2 %.1f/%d cal %.4f %.4f %.5f\n",
+            in.odometry_pose.x, in.odometry_pose.y, in.odometry_pose.theta, r.pose.x, r.pose.y,
+            r.pose.theta, filter_.Pose().x, filter_.Pose().y, filter_.Pose().theta, used, r.chi2, r.dof,
+            filter_.Calibration()(0), filter_.Calibration()(1), filter_.Calibration()(2));
+    for (const auto& k : r.features)
+      for (const auto& m : k.matches)
+        fprintf(stderr, "   %s id %d mem %d r %.3f a %.3f x %.3f y %.3f res %.3f used %d\n", k.kind, m.model_id, m.members, m.r_m, m.alpha_rad, m.x_m, m.y_m, m.residual_m, (int)m.used);
+  }
+  if (used > 0) {
+    corrected_ = true;
+    odom_at_last_correction_ = odom;
+  }
+  return used;
 }
 
 }  // namespace structloc::localisation_core

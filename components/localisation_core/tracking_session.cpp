@@ -155,7 +155,7 @@ std::optional<ScanReport> TrackingSession::Next(double now, bool end_of_input) {
   }
   if (report.kind == ScanReport::Kind::kTracked) {
     const auto& r = *report.result;
-    if (r.lost) {
+    if (report.lost) {
       if (!lost_) {
         ++lost_periods_;
         lost_since_ = now;
@@ -163,8 +163,8 @@ std::optional<ScanReport> TrackingSession::Next(double now, bool end_of_input) {
         lost_seconds_ += now - last_processed_s_;
       }
     }
-    lost_ = r.lost;
-    lost_reason_ = r.lost ? ToString(r.lost_reason) : "";
+    lost_ = report.lost;
+    lost_reason_ = report.lost_reason;
     last_quality_ = r.quality;
     last_processed_s_ = now;
   }
@@ -228,6 +228,8 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
   report.stamp = scan.geometry.stamp;
   report.result = outcome.result;
   report.pose = outcome.pose;
+  report.lost = outcome.lost;
+  report.lost_reason = outcome.lost_reason;
   report.odometry = odom;
   report.update_us = update_us;
   return report;

@@ -20,9 +20,17 @@ std::vector<LocaliserOptionTable> WallSections() {
   t.Number("min_cluster_size", &O::walls, &WallClusterOptions::min_cluster_size, Range::AtLeast(1),
            "", "Table 6: minimum number of window lines in a cluster");
   t.Number("extent_margin_m", &O::walls, &WallClusterOptions::extent_margin_m, Range::Any(), "m",
-           "a window must lie within the visible wall plus this (<= 0 disables the check)");
+           "a window must lie within the visible part of one map wall plus this (<= 0 disables "
+           "the check)");
   t.Number("min_point_sigma_m", &O::walls, &WallClusterOptions::min_point_sigma_m,
            Range::Positive(), "m", "floor of the per-point noise used for covariances");
+  t.Number("map_sigma_r_m", &O::walls, &WallClusterOptions::map_sigma_r_m, Range::NonNegative(),
+           "m", "the map's error: a wall's offset at its centre, 1 sigma (0: exact map)");
+  t.Number("map_sigma_alpha_rad", &O::walls, &WallClusterOptions::map_sigma_alpha_rad,
+           Range::NonNegative(), "rad", "the map's error: a wall's angle, 1 sigma (0: exact map)");
+  t.Number("gate_chi2", &O::walls, &WallClusterOptions::gate_chi2, Range::NonNegative(), "",
+           "Mahalanobis gate (2 dof) of a pairing under the prior's, the fit's and the map's "
+           "covariance; pairings inside two walls' gates are dropped (0: fixed gates only)");
   LocaliserOptionTable k("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
   k.Number("iterations", &O::kohonen, &KohonenOptions::iterations,
            Range::Closed(1, LocaliserLimits::kMaxKohonenIterations), "", "training steps per scan");
@@ -60,10 +68,12 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
   if (strategy_ == WallStrategy::kKohonen) {
     AssignWindowsByKohonen(*in.windows, expected, options_, kohonen_, rng_, assignment_);
   } else {
-    AssignWindowsByExpectation(*in.windows, expected, in.sensor_prior, options_, assignment_);
+    AssignWindowsByExpectation(*in.windows, expected, in.sensor_prior,
+                               in.sensor_prior_covariance, options_, assignment_);
   }
   BuildWallClusters(*in.windows, assignment_, *in.points, in.window_points, expected, options_,
                     work_, clusters_);
+  GateWallClusters(expected, in.sensor_prior, in.sensor_prior_covariance, options_, clusters_);
   for (const auto& c : clusters_) {
     const auto& e = expected.walls[static_cast<size_t>(c.expected_index)];
     WallMeasurement m;

@@ -246,9 +246,9 @@ class Replayer {
     const auto& r = *report.result;
     ++report_.scans_used;
     features_ += r.Matched();
-    if (r.lost) ++report_.scans_lost;
+    if (report.lost) ++report_.scans_lost;
     Emit(scan, report.pose.pose);
-    if (fixes_ && !r.lost) {
+    if (fixes_ && !report.lost) {
       const auto& c = report.pose.covariance;
       fixes_->Fix(report.stamp, report.pose.pose, c(0, 0), c(1, 1), c(2, 2));
     }

@@ -57,7 +57,8 @@ struct Prepared {
     world_model::Visibility visibility;
     ComputeVisibility(office.world, office.scene, sensor_prior, vo, visibility);
     ComputeExpectedFeatures(office.world, lines, line_of, visibility, sensor_prior, expected);
-    AssignWindowsByExpectation(windows, expected, sensor_prior, office.options.walls, assignment);
+    AssignWindowsByExpectation(windows, expected, sensor_prior, Eigen::Matrix3d::Identity(),
+                               office.options.walls, assignment);
     BuildWallClusters(windows, assignment, points, office.options.line_fit.window_points, expected,
                       office.options.walls, wall_work, walls);
   }
@@ -89,7 +90,8 @@ void BM_LineFit(benchmark::State& state) {
 void BM_WallClustering(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, p.office.options.walls,
+    AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, Eigen::Matrix3d::Identity(),
+                               p.office.options.walls,
                                p.assignment);
     BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
                       p.expected, p.office.options.walls, p.wall_work, p.walls);

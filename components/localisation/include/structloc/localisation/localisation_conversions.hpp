@@ -39,8 +39,9 @@ tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& map_to_odom, doub
 structloc_msgs::msg::ScanFeatures ToScanFeatures(
     const localisation_core::LocalisationResult& result, double stamp,
     const dds_common::FrameIds& frames);
+// `lost_reason`: the tracker's verdict on the scan (empty: not lost).
 structloc_msgs::msg::LocalisationStatus ToStatus(
-    const localisation_core::LocalisationResult& result,
+    const localisation_core::LocalisationResult& result, const char* lost_reason,
     const localisation_core::TrackerStats& stats, uint64_t dropped, double stamp,
     const dds_common::FrameIds& frames);
 

@@ -36,7 +36,17 @@ struct ExpectedWall {
   double world_c = 1.0;  // cos/sin of the world line's alpha
   double world_s = 0.0;
   double extent_lo = 0.0;  // visible extent along the world line direction (-sin, cos)
-  double extent_hi = 0.0;
+  double extent_hi = 0.0;  // (of all visible walls on the line, gaps included)
+};
+
+// The visible part of one map wall on an expected wall line, along the world
+// line direction (-sin, cos): a scan segment pairs with a line only where it
+// overlaps one of these, not across a doorway between two of them.
+struct ExpectedExtent {
+  int expected_index = 0;  // into ExpectedFeatures::walls
+  double lo = 0.0, hi = 0.0;
+  double wall_centre = 0.0;  // centre of the whole map wall (its errors pivot there)
+  double wall_half_length = 0.0;
 };
 
 // An expected corner or cylinder centre.
@@ -50,9 +60,13 @@ struct ExpectedPoint {
 
 struct ExpectedFeatures {
   std::vector<ExpectedWall> walls;
+  std::vector<ExpectedExtent> extents;  // one per visible map wall
   std::vector<ExpectedPoint> corners;
   std::vector<ExpectedPoint> cylinders;
-  void Reserve(size_t lines, size_t corners, size_t cylinders);
+  void Reserve(size_t lines, size_t walls, size_t corners, size_t cylinders);
+  // The extent of expected wall `e` nearest to `t` (along its world line):
+  // the distance outside it (0 inside) and, through `wall`, that extent.
+  double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const;
 };
 
 // `wall_line_of` maps a wall index to its WallLineModel index.

@@ -63,6 +63,11 @@ struct LocalisationResult {
   StepTimes times;
   double chi2 = 0.0;
   int dof = 0;
+  // What the features alone say about the robot pose (x, y, theta), at the
+  // solution, before chi2_scale; zero when nothing was solved. A filter around
+  // the localiser (odometry_filter.hpp) fuses the scan through it.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  double chi2_scale = 1.0;  // max(1, chi2 / dof): the covariance's inflation for misfit
 
   // The entry of kind `name`, or nullptr when that kind is not enabled.
   const FeatureKindResult* Kind(const char* name) const;
@@ -93,7 +98,7 @@ class Localiser {
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.
-  void ExtractFeatures(const geometry::Pose2D& sensor_prior);
+  void ExtractFeatures(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov);
   // Sets sensor_pose / sensor_cov to the solved sensor pose, or to the prior when lost.
   void SolveAndGate(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov,
                     geometry::Pose2D& sensor_pose, Eigen::Matrix3d& sensor_cov);

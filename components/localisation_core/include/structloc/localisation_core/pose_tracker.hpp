@@ -15,6 +15,7 @@
 #include <string>
 
 #include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/odometry_filter.hpp"
 #include "structloc/localisation_core/odometry_history.hpp"
 
 namespace structloc::localisation_core {
@@ -36,6 +37,21 @@ struct TrackerOptions {
   double initial_sigma_xy_m = 0.05;  // uncertainty of a given initial pose
   double initial_sigma_theta_rad = 0.03;
   bool deskew = true;  // de-skew scans from the odometry history
+  // Odometry calibration in the filter (odometry_filter.hpp): initial sigma of
+  // the distance and turn scale factors and of the heading drift, and how fast
+  // they may change. 0 leaves the odometry uncorrected.
+  double odometry_scale_sigma = 0.0;
+  double odometry_drift_sigma_rad_per_m = 0.0;
+  double calibration_walk_per_m = 0.0;
+  // Directions the scan's features pin worse than this stay with odometry.
+  double weak_std_m = 0.05;
+  double weak_std_rad = 0.05;
+  // No update unless the robot moved this far or turned this much since the
+  // last one (a standing robot would pile up the same scan's errors); 0: always.
+  double min_update_travel_m = 0.0;
+  double min_update_turn_rad = 0.0;
+  // Without a usable scan, the tracker is lost once its position sigma exceeds this.
+  double lost_sigma_m = 0.2;
   void Validate() const;
   // The covariance of a given initial pose (from the initial sigmas).
   Eigen::Matrix3d InitialCovariance() const;
@@ -111,6 +127,14 @@ class PoseTracker {
     const char* detail = nullptr;                 // the localiser's own reason, if any
     const LocalisationResult* result = nullptr;   // when kProcessed
     TrackedPose pose;                             // when kProcessed
+    // The tracker's verdict (when kProcessed): lost when the scan contradicts
+    // the tracked pose (correction beyond the gates, solver failure) or when,
+    // without a usable scan, the position sigma has grown past lost_sigma_m.
+    // Coasting on odometry within that bound, or correcting only the
+    // directions the scan pins, is not lost.
+    bool lost = false;
+    const char* lost_reason = "";
+    int pinned_directions = 0;  // directions this scan corrected (0..3)
   };
   // `waited_s`: how long the scan has already waited for odometry.
   ScanOutcome ProcessScan(const ScanInput& scan, double waited_s);
@@ -118,21 +142,28 @@ class PoseTracker {
   // The map -> odom correction and the pose carried forward to the newest odometry.
   geometry::Pose2D MapToOdom() const { return map_to_odom_; }
   std::optional<TrackedPose> Latest() const;
+  // The odometry calibration learnt so far: distance scale, turn scale, heading
+  // drift (rad per metre driven).
+  Eigen::Vector3d OdometryCalibration() const { return filter_.Calibration(); }
   const TrackerStats& Stats() const { return stats_; }
   const OdometryHistory& Odometry() const { return history_; }
   const LocaliserOptions& Options() const { return localiser_.Options(); }
 
  private:
   ScanOutcome Reject(Rejection r, const char* detail = nullptr);
+  // Fuses a localised scan into the filter; returns the directions corrected.
+  int Correct(const LocalisationResult& r, const UpdateInput& in, const geometry::Pose2D& odom);
 
   Localiser localiser_;
   TrackerOptions options_;
   OdometryHistory history_;
   BeamMotion motion_;
   bool initialised_ = false;
+  OdometryFilter filter_;  // pose at odom_at_last_update_, with calibration
   geometry::Pose2D map_to_odom_;
-  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Identity();  // at the last update
   geometry::Pose2D odom_at_last_update_;
+  geometry::Pose2D odom_at_last_correction_;  // for min_update_travel_m
+  bool corrected_ = false;
   double last_scan_stamp_ = -1e300;
   TrackerStats stats_;
 };

@@ -45,6 +45,8 @@ struct ScanReport {
   std::string reason;                           // when kRejected: the sentence to show
   const LocalisationResult* result = nullptr;   // when kTracked (valid until the next scan)
   TrackedPose pose;                             // when kTracked
+  bool lost = false;                            // when kTracked: the tracker's verdict
+  const char* lost_reason = "";                 // (PoseTracker::ScanOutcome)
   // In-order scheduling: the odometry pose at the scan, when there was one
   // (then the scan also went through the tracker, if tracking, and update_us
   // is its time there).
