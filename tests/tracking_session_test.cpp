@@ -241,6 +241,7 @@ TEST_F(SessionTest, WithoutAMapScansAreCheckedAndHandedBackWithTheirOdometry) {
 }
 
 TEST_F(SessionTest, LostTimersRunFromTheFirstLostScan) {
+  options.tracker.lost_sigma_m = 1e-6;  // every scan without a usable match is lost
   TrackingSession session(&office.world, office.options, options, Scheduling::kInOrder);
   session.ExpectInitialPose(office.truth, TrackingSession::InitialPoseWhen::kAtFirstScan);
   for (int k = 0; k <= 40; ++k) session.AddOdometry(10.0 + 0.1 * k, {0, 0, 0}, 0.0);
@@ -259,6 +260,7 @@ TEST_F(SessionTest, LostTimersRunFromTheFirstLostScan) {
 
 TEST_F(SessionTest, LiveLostForCountsFromTheFirstLostUpdate) {
   options.lost_error_after_s = 5.0;
+  options.tracker.lost_sigma_m = 1e-6;  // every scan without a usable match is lost
   TrackingSession session(&office.world, office.options, options, Scheduling::kNewestWins);
   session.ExpectInitialPose(office.truth, TrackingSession::InitialPoseWhen::kAtFirstOdometry);
   ASSERT_TRUE(session.AddOdometry(10.0, {0, 0, 0}, 0.0));

@@ -102,10 +102,17 @@ void LocalisationComponent::Worker() {
       const auto report = session_.Next(now);
       if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;
       const auto& r = *report->result;
+      if (report->reacquired) {
+        const auto& p = report->pose.pose;
+        std::cout << "localisation: re-acquired at t=" << report->stamp << " s: (" << p.x << ", "
+                  << p.y << ", " << p.theta << "), a jump of (" << report->jump.x << ", "
+                  << report->jump.y << ", " << report->jump.theta << ")" << std::endl;
+      }
       pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
       tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
       features = ToScanFeatures(r, report->stamp, options_.frames);
-      status = ToStatus(r, report->lost ? report->lost_reason : "", session_.Stats(), session_.Dropped(), report->stamp, options_.frames);
+      status = ToStatus(r, report->lost ? report->lost_reason : "", session_.Stats(),
+                        session_.Dropped(), report->stamp, options_.frames);
     }
     // Published outside every lock: neither the DDS threads delivering scans
     // and odometry nor the main thread wait for these writes.

@@ -26,8 +26,7 @@ std::vector<LocaliserOptionTable> CylinderSections() {
            Range::Positive(), "m", "floor of the per-point noise for the covariance");
   t.Number("map_sigma_m", &O::cylinders, &CylinderOptions::map_sigma_m, Range::NonNegative(), "m",
            "the map's error of a pillar centre, 1 sigma (0: exact map)");
-  t.Number("gate_chi2", &O::cylinders, &CylinderOptions::gate_chi2,
-           Range::NonNegative(), "",
+  t.Number("gate_chi2", &O::cylinders, &CylinderOptions::gate_chi2, Range::NonNegative(), "",
            "Mahalanobis gate (2 dof) under the prior's, the fit's and the map's covariance (0: "
            "fixed gate only)");
   return {t};

@@ -48,8 +48,7 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     const double t1 = -sw * vw.first.x() + cw * vw.first.y();
     const double t2 = -sw * vw.last.x() + cw * vw.last.y();
     const auto& wall = world.Walls()[static_cast<size_t>(vw.index)];
-    const double centre = 0.5 * (-sw * (wall.a.x() + wall.b.x()) +
-                                 cw * (wall.a.y() + wall.b.y()));
+    const double centre = 0.5 * (-sw * (wall.a.x() + wall.b.x()) + cw * (wall.a.y() + wall.b.y()));
     ExpectedWall* existing = nullptr;
     for (auto& e : out.walls) {
       if (e.line_index == line_index) existing = &e;

@@ -256,7 +256,8 @@ geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
   return pose;
 }
 
-GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_points) const {
+GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_points,
+                                     const SearchWindow* window) const {
   GlobalResult result;
   const std::vector<Eigen::Vector2d> all = UsablePoints(scan_points);
   const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
@@ -291,9 +292,19 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
   std::vector<float> scores(static_cast<size_t>(headings));
   const size_t n = coarse.size();
   for (size_t k = 0; k < positions_.size(); ++k) {
+    if (window != nullptr &&
+        (positions_[k] - window->centre.Translation()).norm() > window->radius_m) {
+      continue;
+    }
     const float px = static_cast<float>((positions_[k].x() - cells_.x0) / res);
     const float py = static_cast<float>((positions_[k].y() - cells_.y0) / res);
     for (int h = 0; h < headings; ++h) {
+      scores[static_cast<size_t>(h)] = -1.0f;  // outside the window: never the best
+      if (window != nullptr &&
+          std::abs(geometry::WrapAngle(h * heading_step - window->centre.theta)) >
+              window->heading_rad + 0.5 * heading_step) {
+        continue;
+      }
       const float* o = &offsets[static_cast<size_t>(h) * n * 2];
       float sum = 0.0f;
       for (size_t i = 0; i < n; ++i) {
@@ -313,7 +324,8 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
       if (apart >= separation && (second < 0 || scores[h] > scores[second])) second = h;
     }
     hits.push_back({scores[best], static_cast<int>(k), best});
-    if (second >= 0) hits.push_back({scores[second], static_cast<int>(k), second});
+    if (second >= 0 && scores[second] >= 0.0f)
+      hits.push_back({scores[second], static_cast<int>(k), second});
   }
   const size_t keep = std::min(hits.size(), static_cast<size_t>(options_.coarse_keep));
   std::partial_sort(hits.begin(), hits.begin() + keep, hits.end(),
@@ -351,8 +363,8 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
   }
   std::sort(refined.begin(), refined.end(), by_score);
   if (refined.empty()) {
-    result.reason =
-        "the map has no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
+    result.reason = std::string(window != nullptr ? "the search window has" : "the map has") +
+                    " no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
     return result;
   }
   result.best = refined.front();

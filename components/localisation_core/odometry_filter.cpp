@@ -36,7 +36,8 @@ void OdometryFilter::Reset(const geometry::Pose2D& pose, const Eigen::Matrix3d& 
   if (first) {
     // A factor that is not estimated keeps a tiny variance so the matrix stays invertible.
     const double s2 = std::max(options_.scale_sigma * options_.scale_sigma, 1e-12);
-    const double d2 = std::max(options_.drift_sigma_rad_per_m * options_.drift_sigma_rad_per_m, 1e-12);
+    const double d2 =
+        std::max(options_.drift_sigma_rad_per_m * options_.drift_sigma_rad_per_m, 1e-12);
     covariance_.bottomRightCorner<3, 3>() = Eigen::Vector3d(s2, s2, d2).asDiagonal();
   } else {
     covariance_.bottomRightCorner<3, 3>() = calibration;
@@ -64,13 +65,14 @@ void OdometryFilter::Predict(const geometry::Pose2D& step) {
   dm(2, 2) = d;
   const Eigen::Matrix3d rot = Rotation(pose_.theta);
   f.topRightCorner<3, 3>() = rot * dm;
-  // Random error of the step, in the robot frame.
-  const double sxy = options_.sigma_xy_per_m * d;
-  const double st =
-      options_.sigma_theta_per_m * d + options_.sigma_theta_per_rad * std::abs(step.theta);
+  // Random error of the step, in the robot frame: a random walk, its variance
+  // growing with the distance driven and the angle turned.
+  const double vxy = options_.sigma_xy_per_m * options_.sigma_xy_per_m * d;
+  const double vt =
+      options_.sigma_theta_per_m * options_.sigma_theta_per_m * d +
+      options_.sigma_theta_per_rad * options_.sigma_theta_per_rad * std::abs(step.theta);
   const Eigen::Matrix3d q =
-      rot * Eigen::Vector3d(sxy * sxy + 1e-8, sxy * sxy + 1e-8, st * st + 1e-10).asDiagonal() *
-      rot.transpose();
+      rot * Eigen::Vector3d(vxy + 1e-8, vxy + 1e-8, vt + 1e-10).asDiagonal() * rot.transpose();
   covariance_ = f * covariance_ * f.transpose();
   covariance_.topLeftCorner<3, 3>() += q;
   const double walk = options_.calibration_walk_per_m * options_.calibration_walk_per_m * d;

@@ -17,8 +17,7 @@ bool GatePoint(const Eigen::Vector2d& measured, Eigen::Matrix2d& covariance,
     // d(predicted)/d(x, y, theta), as in the weighted solver's point rows.
     Eigen::Matrix<double, 2, 3> j;
     j << -c, -s, -s * dx + c * dy, s, -c, -c * dx - s * dy;
-    const Eigen::Matrix2d innovation_cov =
-        j * prior_covariance * j.transpose() + covariance + map;
+    const Eigen::Matrix2d innovation_cov = j * prior_covariance * j.transpose() + covariance + map;
     const Eigen::Vector2d nu = measured - predicted;
     if (!(nu.dot(innovation_cov.ldlt().solve(nu)) <= gate_chi2)) return false;
   }

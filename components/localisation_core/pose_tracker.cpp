@@ -3,9 +3,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 
 namespace structloc::localisation_core {
@@ -85,6 +84,10 @@ PoseTracker::PoseTracker(const world_model::WorldModel& world,
       options_(options),
       history_(4096),
       filter_(FilterOptions(options)) {
+  if (options_.min_explained_share > 0.0) {
+    search_ = std::make_unique<GlobalLocaliser>(world, GlobalLocaliserOptions{});
+    check_points_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
+  }
   options_.Validate();
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
 }
@@ -230,25 +233,103 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     return Reject(Rejection::kLocaliserRejected, r.rejection);
   }
   ++stats_.scans_processed;
-  out.pinned_directions = Correct(r, in, odom);
+  const bool usable = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
+  bool refused = false;
+  double share = -1.0;
+  if (search_ != nullptr) {
+    CollectCheckPoints(scan);
+    // The correction must not make the map explain less of the scan. Below a
+    // centimetre and a quarter of a degree the scan cannot tell: checked once.
+    share = ExplainedShare(in.odometry_pose);
+    const geometry::Pose2D moved = geometry::Between(in.odometry_pose, r.pose);
+    if (usable && (moved.Translation().norm() > 0.01 || std::abs(moved.theta) > 0.005)) {
+      const double corrected = ExplainedShare(r.pose);
+      refused = corrected < share - options_.min_share_drop;
+      if (!refused) share = corrected;
+    }
+    if (refused) ++stats_.corrections_refused;
+  }
+  out.pinned_directions = refused ? 0 : Correct(r, in, odom);
   map_to_odom_ = geometry::Compose(filter_.Pose(), geometry::Inverse(odom));
+  if (search_ != nullptr) {
+    out.explained_share = share;  // at the prior or the localiser's correction of it
+    Reacquire(scan, out);
+  }
   const Eigen::Matrix3d covariance = filter_.PoseCovariance();
-  const double sigma_xy = std::sqrt(
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>())
-          .eigenvalues()
-          .maxCoeff());
+  const double sigma_xy =
+      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>())
+                    .eigenvalues()
+                    .maxCoeff());
   const bool contradicted = r.lost_reason == LostReason::kCorrectionTooLarge ||
                             r.lost_reason == LostReason::kSolverFailed;
-  if (out.pinned_directions == 0 && (contradicted || sigma_xy > options_.lost_sigma_m)) {
+  if (!out.lost && out.pinned_directions == 0 && !out.reacquired &&
+      (contradicted || sigma_xy > options_.lost_sigma_m)) {
     out.lost = true;
-    out.lost_reason = contradicted ? ToString(r.lost_reason)
-                                   : "position uncertainty beyond lost_sigma_m without a usable scan";
-    ++stats_.scans_lost;
+    out.lost_reason = contradicted
+                          ? ToString(r.lost_reason)
+                          : "position uncertainty beyond lost_sigma_m without a usable scan";
   }
+  if (out.lost) ++stats_.scans_lost;
   out.verdict = ScanVerdict::kProcessed;
   out.result = &r;
   out.pose = {scan.stamp, filter_.Pose(), covariance};
   return out;
+}
+
+void PoseTracker::CollectCheckPoints(const ScanInput& scan) {
+  check_points_.clear();
+  const auto& o = search_->Options();
+  const double lo = std::max(o.min_range_m, scan.range_min);
+  const double hi = std::min(o.max_range_m, scan.range_max > 0 ? scan.range_max : o.max_range_m);
+  // As many points as the search's refinement uses: the check runs on every scan.
+  const size_t step = std::max<size_t>(1, scan.count / static_cast<size_t>(o.max_points));
+  for (size_t i = 0; i < scan.count; i += step) {
+    const double range = scan.ranges[i];
+    if (!std::isfinite(range) || range < lo || range >= hi) continue;
+    const double a = scan.angle_min + scan.angle_increment * static_cast<double>(i);
+    check_points_.emplace_back(range * std::cos(a), range * std::sin(a));
+  }
+}
+
+double PoseTracker::ExplainedShare(const geometry::Pose2D& pose) const {
+  return search_->ExplainedShare(check_points_,
+                                 geometry::Compose(pose, localiser_.Options().sensor_mount));
+}
+
+void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
+  const auto& o = search_->Options();
+  if (out.explained_share >= options_.min_explained_share ||
+      check_points_.size() < static_cast<size_t>(o.min_points)) {
+    low_share_since_ = -1.0;
+    return;
+  }
+  if (low_share_since_ < 0.0) low_share_since_ = scan.stamp;
+  if (scan.stamp - low_share_since_ < options_.reacquire_after_s) return;
+  // Lost: search around the tracked pose, as far as its uncertainty says.
+  const Eigen::Matrix3d p = filter_.PoseCovariance();
+  const double sigma_xy = std::sqrt(std::max(p(0, 0), p(1, 1)));
+  const geometry::Pose2D mount = localiser_.Options().sensor_mount;
+  SearchWindow window;
+  window.centre = geometry::Compose(filter_.Pose(), mount);
+  window.radius_m = std::clamp(3.0 * sigma_xy + 0.5, 0.5, options_.reacquire_max_radius_m);
+  window.heading_rad = std::clamp(3.0 * std::sqrt(p(2, 2)) + 0.2, 0.2, geometry::kPi);
+  const GlobalResult found = search_->Locate(check_points_, &window);
+  low_share_since_ = scan.stamp;  // search again after another reacquire_after_s
+  if (found.decision != GlobalDecision::kFound ||
+      found.best->score < options_.min_explained_share) {
+    out.lost = true;
+    out.lost_reason = "the map explains too little of the scan around the tracked pose";
+    return;
+  }
+  const geometry::Pose2D pose = geometry::Compose(found.best->pose, geometry::Inverse(mount));
+  const geometry::Pose2D before = filter_.Pose();
+  out.jump = {pose.x - before.x, pose.y - before.y, geometry::WrapAngle(pose.theta - before.theta)};
+  filter_.Reset(pose, options_.InitialCovariance());
+  map_to_odom_ = geometry::Compose(pose, geometry::Inverse(odom_at_last_update_));
+  out.reacquired = true;
+  out.explained_share = found.best->score;
+  low_share_since_ = -1.0;
+  ++stats_.reacquisitions;
 }
 
 int PoseTracker::Correct(const LocalisationResult& r, const UpdateInput& in,
@@ -270,15 +351,6 @@ int PoseTracker::Correct(const LocalisationResult& r, const UpdateInput& in,
       in.odometry_covariance.ldlt().solve(Eigen::Matrix3d::Identity());
   const Eigen::Vector3d gradient = (prior_information + r.information) * delta;
   const int used = filter_.Update(r.information / r.chi2_scale, gradient / r.chi2_scale);
-  if (std::getenv("SLDBG")) {
-    fprintf(stderr, "DBG prior %.3f %.3f %.4f post %.3f %.3f %.4f filt %.3f %.3f %.4f used %d chi2 %.1f/%d cal %.4f %.4f %.5f\n",
-            in.odometry_pose.x, in.odometry_pose.y, in.odometry_pose.theta, r.pose.x, r.pose.y,
-            r.pose.theta, filter_.Pose().x, filter_.Pose().y, filter_.Pose().theta, used, r.chi2, r.dof,
-            filter_.Calibration()(0), filter_.Calibration()(1), filter_.Calibration()(2));
-    for (const auto& k : r.features)
-      for (const auto& m : k.matches)
-        fprintf(stderr, "   %s id %d mem %d r %.3f a %.3f x %.3f y %.3f res %.3f used %d\n", k.kind, m.model_id, m.members, m.r_m, m.alpha_rad, m.x_m, m.y_m, m.residual_m, (int)m.used);
-  }
   if (used > 0) {
     corrected_ = true;
     odom_at_last_correction_ = odom;

@@ -52,6 +52,8 @@ SessionHealth AssessHealth(const TrackingSession& session, const HealthInputs& i
                    {"scans_dropped", std::to_string(session.Dropped())},
                    {"scans_rejected", std::to_string(stats.Rejected())},
                    {"scans_not_deskewed", std::to_string(stats.scans_not_deskewed)},
+                   {"corrections_refused", std::to_string(stats.corrections_refused)},
+                   {"reacquisitions", std::to_string(stats.reacquisitions)},
                    {"quality", std::to_string(session.LastQuality())},
                    {"last_problem", problem ? problem->first : ""},
                    {"last_problem_age_s", problem ? Seconds(problem->second) : ""}};

@@ -161,6 +161,7 @@ std::optional<ScanReport> TrackingSession::Next(double now, bool end_of_input) {
         lost_since_ = now;
       } else {
         lost_seconds_ += now - last_processed_s_;
+        longest_lost_s_ = std::max(longest_lost_s_, now - lost_since_);
       }
     }
     lost_ = report.lost;
@@ -230,6 +231,8 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
   report.pose = outcome.pose;
   report.lost = outcome.lost;
   report.lost_reason = outcome.lost_reason;
+  report.reacquired = outcome.reacquired;
+  report.jump = outcome.jump;
   report.odometry = odom;
   report.update_us = update_us;
   return report;

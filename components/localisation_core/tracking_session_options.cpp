@@ -41,13 +41,13 @@ config::OptionFile<SessionOptions> SessionOptionFile() {
   t.Number("initial_sigma_theta_rad", &S::tracker, &T::initial_sigma_theta_rad, Range::Positive(),
            "rad", "uncertainty of a given initial heading");
   t.Flag("deskew", &S::tracker, &T::deskew, "de-skew scans from the odometry history");
-  t.Number("odometry_scale_sigma", &S::tracker, &T::odometry_scale_sigma, Range::Closed(0, 0.5),
-           "", "initial sigma of the odometry's distance and turn scale factors (0: not learnt)");
+  t.Number("odometry_scale_sigma", &S::tracker, &T::odometry_scale_sigma, Range::Closed(0, 0.5), "",
+           "initial sigma of the odometry's distance and turn scale factors (0: not learnt)");
   t.Number("odometry_drift_sigma_rad_per_m", &S::tracker, &T::odometry_drift_sigma_rad_per_m,
            Range::Closed(0, 0.5), "rad/m",
            "initial sigma of the odometry's heading drift per metre (0: not learnt)");
-  t.Number("calibration_walk_per_m", &S::tracker, &T::calibration_walk_per_m,
-           Range::Closed(0, 0.1), "1/sqrt(m)", "how fast those factors may change while driving");
+  t.Number("calibration_walk_per_m", &S::tracker, &T::calibration_walk_per_m, Range::Closed(0, 0.1),
+           "1/sqrt(m)", "how fast those factors may change while driving");
   t.Number("weak_std_m", &S::tracker, &T::weak_std_m, Range::Positive(), "m",
            "directions a scan's features pin worse than this stay with odometry");
   t.Number("weak_std_rad", &S::tracker, &T::weak_std_rad, Range::Positive(), "rad",
@@ -59,6 +59,15 @@ config::OptionFile<SessionOptions> SessionOptionFile() {
            "see min_update_travel_m");
   t.Number("lost_sigma_m", &S::tracker, &T::lost_sigma_m, Range::Positive(), "m",
            "without a usable scan, lost once the position sigma exceeds this");
+  t.Number("min_explained_share", &S::tracker, &T::min_explained_share, Range::Closed(0, 1), "",
+           "whole-scan check: below this share of the scan explained by the map the tracker "
+           "re-acquires (0: no check)");
+  t.Number("min_share_drop", &S::tracker, &T::min_share_drop, Range::Closed(0, 1), "",
+           "a correction lowering the explained share by more than this is refused");
+  t.Number("reacquire_after_s", &S::tracker, &T::reacquire_after_s, Range::NonNegative(), "s",
+           "how long the share may stay low before a local search");
+  t.Number("reacquire_max_radius_m", &S::tracker, &T::reacquire_max_radius_m, Range::Positive(),
+           "m", "the local search's largest radius around the tracked pose");
   t.Number("state_period_s", &S::state_period_s, Range::Positive(), "s",
            "how often the pose is due to be saved");
   t.Number("lost_error_after_s", &S::lost_error_after_s, Range::NonNegative(), "s",

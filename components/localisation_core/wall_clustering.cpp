@@ -18,8 +18,7 @@ double MapAngleSigma(const WallClusterOptions& o, const ExpectedExtent* wall) {
 
 // Variance of a map wall's offset `lever_m` along the line from its centre:
 // offset error plus the angle error over the lever arm.
-double MapOffsetVariance(const WallClusterOptions& o, const ExpectedExtent* wall,
-                         double lever_m) {
+double MapOffsetVariance(const WallClusterOptions& o, const ExpectedExtent* wall, double lever_m) {
   const double sa = MapAngleSigma(o, wall) * lever_m;
   return o.map_sigma_r_m * o.map_sigma_r_m + sa * sa;
 }
@@ -144,8 +143,7 @@ void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& 
           expected.DistanceOutside(static_cast<int>(f), t) > o.extent_margin_m) {
         continue;
       }
-      if (ClusterDistance(c, expected, static_cast<int>(f), pose, cov, o, nullptr) <=
-          o.gate_chi2) {
+      if (ClusterDistance(c, expected, static_cast<int>(f), pose, cov, o, nullptr) <= o.gate_chi2) {
         keep = false;  // two walls explain it: ambiguous
       }
     }

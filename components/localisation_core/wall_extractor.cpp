@@ -68,8 +68,8 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
   if (strategy_ == WallStrategy::kKohonen) {
     AssignWindowsByKohonen(*in.windows, expected, options_, kohonen_, rng_, assignment_);
   } else {
-    AssignWindowsByExpectation(*in.windows, expected, in.sensor_prior,
-                               in.sensor_prior_covariance, options_, assignment_);
+    AssignWindowsByExpectation(*in.windows, expected, in.sensor_prior, in.sensor_prior_covariance,
+                               options_, assignment_);
   }
   BuildWallClusters(*in.windows, assignment_, *in.points, in.window_points, expected, options_,
                     work_, clusters_);

@@ -114,17 +114,19 @@ class Replayer {
     Drain(true);
     report_.lost_periods = session_->LostPeriods();
     report_.lost_duration_s = session_->LostSeconds();
+    report_.longest_lost_s = session_->LongestLostSeconds();
+    report_.corrections_refused = session_->Stats().corrections_refused;
     report_.log = reader_->Stats();
     if (report_.scans_used == 0) {
       throw std::runtime_error(o_.log_path + ": no scan could be localised, nothing written\n" +
                                FormatInputSummary(report_));
     }
-    if (!o_.no_map && report_.scans_lost == report_.scans_used) {
-      throw std::runtime_error(
-          o_.log_path + ": all " + std::to_string(report_.scans_used) +
-          " scans were lost, the map explains none of them; check --initial-pose, that the map "
-          "is in metres and in the log's frame; nothing written\n" +
-          FormatInputSummary(report_));
+    if (!o_.no_map && report_.scans_matched == 0) {
+      throw std::runtime_error(o_.log_path + ": none of the " + std::to_string(report_.scans_used) +
+                               " scans matched the map, the map explains none of them; check "
+                               "--initial-pose, that the map "
+                               "is in metres and in the log's frame; nothing written\n" +
+                               FormatInputSummary(report_));
     }
     Finish();
     // Every output reaches the disk before any replaces an existing file.
@@ -247,8 +249,13 @@ class Replayer {
     ++report_.scans_used;
     features_ += r.Matched();
     if (report.lost) ++report_.scans_lost;
+    if (r.Matched() > 0) ++report_.scans_matched;
+    if (report.reacquired) {
+      report_.reacquisitions.push_back({report.stamp, report.pose.pose, report.jump});
+    }
     Emit(scan, report.pose.pose);
-    if (fixes_ && !report.lost) {
+    // A fix for calibration only where the scan alone pinned every direction.
+    if (fixes_ && !report.lost && !r.lost) {
       const auto& c = report.pose.covariance;
       fixes_->Fix(report.stamp, report.pose.pose, c(0, 0), c(1, 1), c(2, 2));
     }
@@ -463,7 +470,23 @@ std::string FormatReport(const ReplayReport& r) {
     out << "features matched per scan: " << r.mean_features << "\n";
   }
   out << "lost: " << r.scans_lost << " scans in " << r.lost_periods << " periods ("
-      << r.lost_duration_s << " s)\n";
+      << r.lost_duration_s << " s, the longest " << r.longest_lost_s << " s)\n";
+  if (r.corrections_refused > 0) {
+    out << "corrections refused by the whole-scan check: " << r.corrections_refused << "\n";
+  }
+  out << "re-acquired: " << r.reacquisitions.size() << " times\n";
+  out.precision(3);
+  const size_t shown = std::min<size_t>(r.reacquisitions.size(), 10);
+  for (size_t i = 0; i < shown; ++i) {
+    const auto& a = r.reacquisitions[i];
+    out << "  at " << a.stamp << " s: locked on at (" << a.pose.x << " m, " << a.pose.y << " m, "
+        << a.pose.theta << " rad), a jump of (" << a.jump.x << " m, " << a.jump.y << " m, "
+        << a.jump.theta << " rad)\n";
+  }
+  if (shown < r.reacquisitions.size()) {
+    out << "  (" << r.reacquisitions.size() - shown << " more)\n";
+  }
+  out.precision(1);
   out.precision(1);
   out << "time per update: median " << r.median_update_us << " us, p99 " << r.p99_update_us
       << " us\n";

@@ -91,8 +91,7 @@ void BM_WallClustering(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, Eigen::Matrix3d::Identity(),
-                               p.office.options.walls,
-                               p.assignment);
+                               p.office.options.walls, p.assignment);
     BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
                       p.expected, p.office.options.walls, p.wall_work, p.walls);
     benchmark::DoNotOptimize(p.walls.data());

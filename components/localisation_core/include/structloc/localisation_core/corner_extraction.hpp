@@ -23,9 +23,8 @@ struct CornerOptions {
   // weighted solver leaves such a corner out so that its covariance does not lie.
   double redundant_wall_distance_m = 0.05;
   double redundant_min_sin = 0.5;  // sin of 30 deg
-  double map_sigma_m = 0.0;  // the map's error of a corner, 1 sigma per axis (0: exact)
-  double gate_chi2 = 0.0;    // Mahalanobis gate, 2 dof (point_gate.hpp; 0: gate_m only)
-          
+  double map_sigma_m = 0.0;        // the map's error of a corner, 1 sigma per axis (0: exact)
+  double gate_chi2 = 0.0;          // Mahalanobis gate, 2 dof (point_gate.hpp; 0: gate_m only)
 };
 
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,

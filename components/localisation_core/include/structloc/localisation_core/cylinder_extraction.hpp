@@ -23,7 +23,6 @@ struct CylinderOptions {
   double min_point_sigma_m = 0.002;  // floor of the per-point noise for the covariance
   double map_sigma_m = 0.0;  // the map's error of a pillar centre, 1 sigma per axis (0: exact)
   double gate_chi2 = 0.0;    // Mahalanobis gate, 2 dof (point_gate.hpp; 0: gate_m only)
-           
 };
 
 struct CircleFit {

@@ -52,7 +52,7 @@ struct ExtractionInput {
   const ScanPoints* points = nullptr;                // prefiltered points, sensor frame
   geometry::Pose2D sensor_prior;                     // odometric sensor pose
   Eigen::Matrix3d sensor_prior_covariance = Eigen::Matrix3d::Identity();  // of that pose
-  int window_points = 0;                             // points per window line
+  int window_points = 0;                                                  // points per window line
   bool thesis_values = false;  // measure with the thesis' means, not the refined fits
 };
 

@@ -60,6 +60,15 @@ struct GlobalCandidate {
   double score = 0.0;     // share of the scan's points explained, 0..1
 };
 
+// Where a local search looks: laser positions within radius_m of the centre,
+// headings within heading_rad of its heading (re-acquisition after tracking
+// was lost, over the odometric uncertainty).
+struct SearchWindow {
+  geometry::Pose2D centre;
+  double radius_m = 1.0;
+  double heading_rad = geometry::kPi;
+};
+
 struct GlobalResult {
   GlobalDecision decision = GlobalDecision::kNotFound;
   std::optional<GlobalCandidate> best;
@@ -81,14 +90,22 @@ class GlobalLocaliser {
   // or the grid would exceed 50 million cells.
   GlobalLocaliser(const world_model::WorldModel& world, const GlobalLocaliserOptions& options);
 
-  // The laser poses explaining `points` (laser frame, metres).
-  GlobalResult Locate(const std::vector<Eigen::Vector2d>& points) const;
+  // The laser poses explaining `points` (laser frame, metres), over the whole
+  // map or, with `window`, only there.
+  GlobalResult Locate(const std::vector<Eigen::Vector2d>& points,
+                      const SearchWindow* window = nullptr) const;
 
   // Share of `points` explained at `laser_pose` (as used for ranking).
   double Score(const std::vector<Eigen::Vector2d>& points,
                const geometry::Pose2D& laser_pose) const;
+  // The same for points already within the options' range limits (no copy).
+  double ExplainedShare(const std::vector<Eigen::Vector2d>& usable_points,
+                        const geometry::Pose2D& laser_pose) const {
+    return RankScore(usable_points, laser_pose);
+  }
 
   size_t CandidatePositions() const { return positions_.size(); }
+  const GlobalLocaliserOptions& Options() const { return options_; }
 
  private:
   struct Cells {

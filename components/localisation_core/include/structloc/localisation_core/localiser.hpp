@@ -98,7 +98,8 @@ class Localiser {
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.
-  void ExtractFeatures(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov);
+  void ExtractFeatures(const geometry::Pose2D& sensor_prior,
+                       const Eigen::Matrix3d& sensor_prior_cov);
   // Sets sensor_pose / sensor_cov to the solved sensor pose, or to the prior when lost.
   void SolveAndGate(const geometry::Pose2D& sensor_prior, const Eigen::Matrix3d& sensor_prior_cov,
                     geometry::Pose2D& sensor_pose, Eigen::Matrix3d& sensor_cov);

@@ -15,11 +15,11 @@
 namespace structloc::localisation_core {
 
 struct OdometryFilterOptions {
-  double sigma_xy_per_m = 0.02;        // random odometry error per metre driven (1 sigma)
-  double sigma_theta_per_m = 0.01;     // rad per metre driven
-  double sigma_theta_per_rad = 0.02;   // rad per radian turned
-  double scale_sigma = 0.0;            // initial sigma of the scale factors (0: not estimated)
-  double drift_sigma_rad_per_m = 0.0;  // initial sigma of the heading drift per metre
+  double sigma_xy_per_m = 0.02;         // random odometry error per metre driven (1 sigma)
+  double sigma_theta_per_m = 0.01;      // rad per metre driven
+  double sigma_theta_per_rad = 0.02;    // rad per radian turned
+  double scale_sigma = 0.0;             // initial sigma of the scale factors (0: not estimated)
+  double drift_sigma_rad_per_m = 0.0;   // initial sigma of the heading drift per metre
   double calibration_walk_per_m = 0.0;  // growth of the factors' sigma per sqrt(metre)
   double weak_std_m = 0.05;             // directions the features pin worse than this ...
   double weak_std_rad = 0.05;           // ... (or this) are left to odometry

@@ -11,9 +11,11 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "structloc/localisation_core/global_localiser.hpp"
 #include "structloc/localisation_core/localiser.hpp"
 #include "structloc/localisation_core/odometry_filter.hpp"
 #include "structloc/localisation_core/odometry_history.hpp"
@@ -52,6 +54,15 @@ struct TrackerOptions {
   double min_update_turn_rad = 0.0;
   // Without a usable scan, the tracker is lost once its position sigma exceeds this.
   double lost_sigma_m = 0.2;
+  // The whole-scan check (0 disables it and re-acquisition): the share of the
+  // scan's points the map explains at the tracked pose. A correction that
+  // lowers it by more than min_share_drop is refused; below min_explained_share
+  // for reacquire_after_s the tracker is lost and searches around its pose, as
+  // far as the odometric uncertainty says (at most reacquire_max_radius_m).
+  double min_explained_share = 0.0;
+  double min_share_drop = 0.05;
+  double reacquire_after_s = 1.0;
+  double reacquire_max_radius_m = 2.0;
   void Validate() const;
   // The covariance of a given initial pose (from the initial sigmas).
   Eigen::Matrix3d InitialCovariance() const;
@@ -81,7 +92,9 @@ struct TrackerStats {
   std::array<uint64_t, static_cast<size_t>(Rejection::kCount)> rejected{};
   uint64_t scans_processed = 0;
   uint64_t scans_lost = 0;
-  uint64_t scans_not_deskewed = 0;  // processed although odometry did not cover every beam
+  uint64_t scans_not_deskewed = 0;   // processed although odometry did not cover every beam
+  uint64_t corrections_refused = 0;  // by the whole-scan check
+  uint64_t reacquisitions = 0;       // local searches that moved the pose
   uint64_t Rejected() const;
 };
 
@@ -134,7 +147,10 @@ class PoseTracker {
     // directions the scan pins, is not lost.
     bool lost = false;
     const char* lost_reason = "";
-    int pinned_directions = 0;  // directions this scan corrected (0..3)
+    int pinned_directions = 0;    // directions this scan corrected (0..3)
+    double explained_share = -1;  // whole-scan check at the tracked pose (-1: not checked)
+    bool reacquired = false;      // a local search moved the pose (jump: by how much)
+    geometry::Pose2D jump;
   };
   // `waited_s`: how long the scan has already waited for odometry.
   ScanOutcome ProcessScan(const ScanInput& scan, double waited_s);
@@ -153,6 +169,13 @@ class PoseTracker {
   ScanOutcome Reject(Rejection r, const char* detail = nullptr);
   // Fuses a localised scan into the filter; returns the directions corrected.
   int Correct(const LocalisationResult& r, const UpdateInput& in, const geometry::Pose2D& odom);
+  // The whole-scan check's points (laser frame) of this scan, and their share
+  // explained by the map at robot pose `pose`.
+  void CollectCheckPoints(const ScanInput& scan);
+  double ExplainedShare(const geometry::Pose2D& pose) const;
+  // Below min_explained_share for long enough: a local search, and the filter
+  // reset where it finds the scan explained.
+  void Reacquire(const ScanInput& scan, ScanOutcome& out);
 
   Localiser localiser_;
   TrackerOptions options_;
@@ -164,6 +187,9 @@ class PoseTracker {
   geometry::Pose2D odom_at_last_update_;
   geometry::Pose2D odom_at_last_correction_;  // for min_update_travel_m
   bool corrected_ = false;
+  std::unique_ptr<GlobalLocaliser> search_;  // whole-scan check and re-acquisition
+  std::vector<Eigen::Vector2d> check_points_;
+  double low_share_since_ = -1.0;  // stamp the share fell below min_explained_share, or -1
   double last_scan_stamp_ = -1e300;
   TrackerStats stats_;
 };

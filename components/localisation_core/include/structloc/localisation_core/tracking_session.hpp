@@ -47,6 +47,8 @@ struct ScanReport {
   TrackedPose pose;                             // when kTracked
   bool lost = false;                            // when kTracked: the tracker's verdict
   const char* lost_reason = "";                 // (PoseTracker::ScanOutcome)
+  bool reacquired = false;                      // a local search moved the pose by `jump`
+  geometry::Pose2D jump;
   // In-order scheduling: the odometry pose at the scan, when there was one
   // (then the scan also went through the tracker, if tracking, and update_us
   // is its time there).
@@ -112,6 +114,7 @@ class TrackingSession {
   const std::string& LostReason() const { return lost_reason_; }
   size_t LostPeriods() const { return lost_periods_; }
   double LostSeconds() const { return lost_seconds_; }
+  double LongestLostSeconds() const { return longest_lost_s_; }  // one period, the longest
   double LastQuality() const { return last_quality_; }
 
   // The newest refused input as a sentence ("scan rejected: ..."), if it came
@@ -150,6 +153,7 @@ class TrackingSession {
   double last_processed_s_ = 0.0;
   size_t lost_periods_ = 0;
   double lost_seconds_ = 0.0;
+  double longest_lost_s_ = 0.0;
   std::string lost_reason_;
   double last_quality_ = 0.0;
   std::optional<double> last_state_save_s_;

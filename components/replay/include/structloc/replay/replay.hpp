@@ -63,8 +63,18 @@ struct ReplayReport {
   size_t scans_used = 0;
   std::map<std::string, size_t> scans_rejected;  // reason -> count
   size_t scans_lost = 0;
+  size_t scans_matched = 0;  // scans with at least one feature matched to the map
   size_t lost_periods = 0;
   double lost_duration_s = 0.0;
+  double longest_lost_s = 0.0;
+  // Where a local search found the robot again after tracking was lost.
+  struct Reacquisition {
+    double stamp = 0.0;
+    geometry::Pose2D pose;  // robot pose after the search
+    geometry::Pose2D jump;  // how far the search moved it (map frame)
+  };
+  std::vector<Reacquisition> reacquisitions;
+  uint64_t corrections_refused = 0;  // by the whole-scan check
   double mean_features = 0.0;
   double median_update_us = 0.0;
   double p99_update_us = 0.0;
