@@ -90,12 +90,13 @@ int MapBuildCommand(const Invocation& inv) {
               << options.walls.min_scans << " scans, " << r.too_few_points << " with fewer than "
               << options.walls.min_points << " points, " << r.too_rough << " rougher than "
               << 1000.0 * options.walls.max_rms_m << " mm RMS, " << r.too_short << " shorter than "
-              << options.walls.min_length_m << " m, " << result.walls_on_pillars
-              << " on a pillar\n  " << world.Walls().size() << " walls, " << result.corners_joined
-              << " corners joined (" << world.Corners().size() << " corners derived), "
-              << world.Cylinders().size() << " pillars (" << result.pillar_report.sightings
-              << " arc sightings, " << result.pillar_report.too_few_scans
-              << " seen too rarely)\n  wrote " << out_path << "\n";
+              << options.walls.min_length_m << " m, " << result.walls_on_pillars << " on a pillar, "
+              << result.shadow_walls << " shadows of longer walls\n  " << world.Walls().size()
+              << " walls, " << result.corners_joined << " corners joined ("
+              << world.Corners().size() << " corners derived), " << world.Cylinders().size()
+              << " pillars (" << result.pillar_report.sightings << " arc sightings, "
+              << result.pillar_report.too_few_scans << " seen too rarely)\n  wrote " << out_path
+              << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
     if (!plot_path.empty()) {
       MapPicture picture;

@@ -1,10 +1,12 @@
 // "structloc synthesise-odometry --log CORRECTED.log --out EVAL.log --truth
 // TRUTH.tum [--scale-error X] [--heading-drift DEG_PER_M] [--noise-xy M]
-// [--noise-theta DEG] [--seed N] [--restamp SPEED]": turns a recording whose
+// [--noise-theta DEG] [--seed N] [--restamp SPEED] [--scans A:B]": turns a recording whose
 // poses are SLAM-corrected into an evaluation log for `structloc replay`: the
 // same scans, with odometry re-synthesised from the corrected poses with
 // documented systematic errors and noise (none: the corrected poses as perfect
-// odometry), and the corrected poses as ground truth (TUM).
+// odometry), and the corrected poses as ground truth (TUM). --scans keeps one
+// part of the recording (numbered as `structloc map build --scans` numbers
+// them), to localise on a part the map was not built from.
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -13,6 +15,7 @@
 #include "structloc/geometry/pose2d.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
+#include "structloc/map_building/posed_scans.hpp"
 #include "structloc/simulation_core/odometry_errors.hpp"
 #include "subcommands.hpp"
 
@@ -43,6 +46,9 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       {"restamp", true,
        "new stamps as if driven at this speed, m/s (and 0.5 rad/s, at least 0.1 s apart), for "
        "logs whose stamps are not motion times (default: keep the log's stamps)"},
+      {"scans", true,
+       "use only the scans FIRST:LAST of the log (numbered from 0 as by map build --scans, LAST "
+       "not included; default: all)"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
@@ -60,6 +66,8 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       restamp.enabled = true;
       restamp.speed_m_s = cli.NumberIn("restamp", restamp.speed_m_s, 0.01, 100.0);
     }
+    const auto [first, last] =
+        map_building::ParseScanRange(cli.Has("scans") ? cli.Required("scans") : ":");
     log_formats::CarmenReader reader(log_path);
     log_formats::CarmenWriter out(out_path, {log_path});
     log_formats::TumWriter truth(truth_path, {log_path, out_path});
@@ -68,7 +76,7 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
     log_formats::CarmenRecord record;
     geometry::Pose2D previous_known;
     double stamp = 0.0;
-    size_t scans = 0, without_pose = 0;
+    size_t scans = 0, without_pose = 0, index = 0;
     while (reader.Next(record)) {
       if (record.kind != log_formats::CarmenRecord::Kind::kScan) continue;
       const auto& known = record.robot_pose ? record.robot_pose : record.laser_pose;
@@ -76,6 +84,11 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
         ++without_pose;
         continue;
       }
+      if (index < first || index >= last) {
+        ++index;
+        continue;
+      }
+      ++index;
       const geometry::Pose2D mount = record.robot_pose && record.laser_pose
                                          ? geometry::Between(*record.robot_pose, *record.laser_pose)
                                          : geometry::Pose2D{};
@@ -97,7 +110,8 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       ++scans;
     }
     if (scans == 0)
-      throw config::ConfigError(log_path + ": no laser scan with a pose to make odometry from");
+      throw config::ConfigError(log_path + ": no laser scan with a pose to make odometry from" +
+                                (cli.Has("scans") ? " in --scans " + cli.Required("scans") : ""));
     out.Flush();
     truth.Flush();
     out.Close();

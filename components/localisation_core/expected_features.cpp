@@ -13,7 +13,11 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
     const auto& w = world.Walls()[i];
     bool grouped = false;
     for (auto& l : lines) {
-      if (std::abs(l.line.r - w.line.r) <= r_tolerance_m &&
+      // Both ends on the group's line (a small angle over a long distance is
+      // a large offset), and the same direction.
+      const Eigen::Vector2d n(std::cos(l.line.alpha), std::sin(l.line.alpha));
+      if (std::abs(n.dot(w.a) - l.line.r) <= r_tolerance_m &&
+          std::abs(n.dot(w.b) - l.line.r) <= r_tolerance_m &&
           std::abs(geometry::WrapAngle(l.line.alpha - w.line.alpha)) <= alpha_tolerance_rad) {
         l.walls.push_back(static_cast<int>(i));
         grouped = true;

@@ -315,8 +315,11 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   window.heading_rad = std::clamp(3.0 * std::sqrt(p(2, 2)) + 0.2, 0.2, geometry::kPi);
   const GlobalResult found = search_->Locate(check_points_, &window);
   low_share_since_ = scan.stamp;  // search again after another reacquire_after_s
+  // A jump must be worth it: the found pose explains at least min_explained_share
+  // more of the scan than the tracked one (an unmapped room explains little
+  // anywhere; coasting on odometry through it beats jumping to a chance fit).
   if (found.decision != GlobalDecision::kFound ||
-      found.best->score < options_.min_explained_share) {
+      found.best->score < out.explained_share + options_.min_explained_share) {
     out.lost = true;
     out.lost_reason = "the map explains too little of the scan around the tracked pose";
     return;

@@ -63,6 +63,18 @@ Table WallsSection() {
   return t;
 }
 
+Table ShadowsSection() {
+  using S = ShadowWallOptions;
+  Table t("shadows", "the shorter of two nearly parallel walls side by side is a shadow, dropped");
+  t.Number("max_offset_m", &O::shadows, &S::max_offset_m, Range::NonNegative(), "m",
+           "both ends of the shorter wall this close to the longer's line (0: keep shadows)");
+  t.Number("max_angle_rad", &O::shadows, &S::max_angle_rad, Range::Open(0, 1.5707963), "rad",
+           "... the two walls within this angle");
+  t.Number("min_overlap", &O::shadows, &S::min_overlap, Range::Closed(0, 1), "",
+           "... and at least this share of the shorter alongside the longer");
+  return t;
+}
+
 Table CornersSection() {
   using C = CornerJoinOptions;
   Table t("corners", "wall ends pulled to where two walls meet (corners are derived there)");
@@ -99,9 +111,9 @@ Table PillarsSection() {
 }
 
 config::OptionFile<O> MapBuildOptionFile() {
-  return config::OptionFile<O>(
-      "map_build_params",
-      {ScansSection(), SegmentsSection(), WallsSection(), CornersSection(), PillarsSection()});
+  return config::OptionFile<O>("map_build_params",
+                               {ScansSection(), SegmentsSection(), WallsSection(), ShadowsSection(),
+                                CornersSection(), PillarsSection()});
 }
 
 }  // namespace

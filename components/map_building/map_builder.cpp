@@ -16,7 +16,7 @@ MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptio
       map_points.clear();
       for (size_t i = segment.first; i < segment.last; ++i)
         map_points.push_back(scan.laser_pose.Apply(scan.points[i]));
-      walls.Add(id, map_points);
+      walls.Add(id, scan.laser_pose.Translation(), map_points);
     }
     pillars.Add(id, scan.laser_pose, scan.points);
   }
@@ -34,6 +34,7 @@ MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptio
   const auto kept = std::remove_if(result.walls.begin(), result.walls.end(), on_pillar);
   result.walls_on_pillars = static_cast<size_t>(result.walls.end() - kept);
   result.walls.erase(kept, result.walls.end());
+  result.shadow_walls = DropShadowWalls(result.walls, options.shadows);
   result.corners_joined = JoinCorners(result.walls, options.corners);
   return result;
 }

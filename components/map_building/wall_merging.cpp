@@ -80,8 +80,11 @@ void WallAccumulator::Absorb(Candidate& wall, const std::vector<Eigen::Vector2d>
   wall.scans.insert(wall.scans.end(), scans.begin(), scans.end());
 }
 
-void WallAccumulator::Add(uint32_t scan, const std::vector<Eigen::Vector2d>& points) {
+void WallAccumulator::Add(uint32_t scan, const Eigen::Vector2d& viewpoint,
+                          const std::vector<Eigen::Vector2d>& points) {
   if (points.size() < 2) return;
+  if (viewpoints_.size() <= scan) viewpoints_.resize(scan + 1, viewpoint);
+  viewpoints_[scan] = viewpoint;
   ++segments_;
   Candidate* best = nullptr;
   double best_score = INFINITY;
@@ -149,6 +152,9 @@ void WallAccumulator::Keep(const std::vector<Eigen::Vector2d>& points,
     }
     FittedWall wall = FitWall(piece);
     wall.sources = DistinctScans(piece_scans);
+    Eigen::Vector2d viewpoint = Eigen::Vector2d::Zero();
+    for (const uint32_t s : piece_scans) viewpoint += viewpoints_[s];
+    wall.viewpoint = viewpoint / static_cast<double>(piece_scans.size());
     if (static_cast<int>(wall.sources) < options_.min_scans) {
       ++report.too_few_scans;
     } else if (wall.rms_m > options_.max_rms_m) {

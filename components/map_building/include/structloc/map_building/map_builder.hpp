@@ -13,6 +13,7 @@
 #include "structloc/map_building/pillar_finding.hpp"
 #include "structloc/map_building/posed_scans.hpp"
 #include "structloc/map_building/scan_segments.hpp"
+#include "structloc/map_building/shadow_walls.hpp"
 #include "structloc/map_building/wall_fitting.hpp"
 #include "structloc/map_building/wall_merging.hpp"
 
@@ -25,6 +26,7 @@ struct MapBuildOptions {
   PosedScanOptions scans;
   ScanSegmentOptions segments;
   WallMergeOptions walls;
+  ShadowWallOptions shadows;
   CornerJoinOptions corners;
   PillarOptions pillars;
   // Throws std::invalid_argument naming the section and key of the first bad value.
@@ -39,6 +41,7 @@ struct MapBuildResult {
   std::vector<world_model::Cylinder> pillars;
   size_t corners_joined = 0;
   size_t walls_on_pillars = 0;  // chords of a pillar's arc, dropped
+  size_t shadow_walls = 0;      // shadows of longer walls, dropped (shadow_walls.hpp)
   WallMergeReport wall_report;
   PillarReport pillar_report;
 };

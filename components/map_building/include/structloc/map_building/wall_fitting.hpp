@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +22,8 @@ struct FittedWall {
   double rms_m = 0.0;  // RMS of the perpendicular residuals
   size_t points = 0;   // supporting points
   size_t sources = 0;  // distinct scans (poses) that saw it; 0 when not known
+  // Where it was seen from on average (map frame); NaN when not known.
+  Eigen::Vector2d viewpoint{std::nan(""), std::nan("")};
   double Length() const { return (b - a).norm(); }
 };
 

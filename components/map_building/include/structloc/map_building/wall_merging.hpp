@@ -42,8 +42,10 @@ class WallAccumulator {
  public:
   explicit WallAccumulator(const WallMergeOptions& options);
 
-  // One segment of scan `scan`, its points in the map frame (at least two).
-  void Add(uint32_t scan, const std::vector<Eigen::Vector2d>& points);
+  // One segment of scan `scan`, its points in the map frame (at least two),
+  // seen from `viewpoint` (the laser's position, map frame).
+  void Add(uint32_t scan, const Eigen::Vector2d& viewpoint,
+           const std::vector<Eigen::Vector2d>& points);
   // The walls (with their support: points, distinct scans, RMS).
   std::vector<FittedWall> Walls(WallMergeReport& report) const;
 
@@ -65,6 +67,7 @@ class WallAccumulator {
 
   WallMergeOptions options_;
   std::vector<Candidate> candidates_;
+  std::vector<Eigen::Vector2d> viewpoints_;  // by scan number
   size_t segments_ = 0;
 };
 
