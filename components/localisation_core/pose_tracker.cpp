@@ -318,10 +318,11 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   // A jump must be worth it: the found pose explains at least min_explained_share
   // more of the scan than the tracked one (an unmapped room explains little
   // anywhere; coasting on odometry through it beats jumping to a chance fit).
+  // Nothing nearby explains the scan better: a part of the building the map
+  // lacks (or changed), not evidence of being lost; the tracker coasts and
+  // its uncertainty decides (lost_sigma_m).
   if (found.decision != GlobalDecision::kFound ||
       found.best->score < out.explained_share + options_.min_explained_share) {
-    out.lost = true;
-    out.lost_reason = "the map explains too little of the scan around the tracked pose";
     return;
   }
   const geometry::Pose2D pose = geometry::Compose(found.best->pose, geometry::Inverse(mount));

@@ -57,8 +57,9 @@ struct TrackerOptions {
   // The whole-scan check (0 disables it and re-acquisition): the share of the
   // scan's points the map explains at the tracked pose. A correction that
   // lowers it by more than min_share_drop is refused; below min_explained_share
-  // for reacquire_after_s the tracker is lost and searches around its pose, as
-  // far as the odometric uncertainty says (at most reacquire_max_radius_m).
+  // for reacquire_after_s the tracker searches around its pose, as far as the
+  // odometric uncertainty says (at most reacquire_max_radius_m), and jumps
+  // where the scan is explained clearly better.
   double min_explained_share = 0.0;
   double min_share_drop = 0.05;
   double reacquire_after_s = 1.0;
