@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The evaluation on real recordings (issue 12), one command: localises the two
+# SLAM-corrected recordings of ../shared/data (Freiburg 079, Intel) with the
+# SICK LMS 2xx preset and prints position RMSE, max, heading RMSE, lost time and
+# time per scan against the corrected poses, for
+#   odometry  perfect (the corrected poses) and perturbed (1.5 % scale error,
+#             0.3 deg/m heading drift, 5 mm and 0.1 deg noise per sqrt(m));
+#   maps      shipped  maps/real/NAME.xml, built from the whole recording;
+#             built    built from one part, localised on another (Freiburg:
+#                      built from scans 719-4790, localised on 0-718; Intel:
+#                      built from 182-909, localised on 0-181);
+#             grid     imported from a 5 cm grid ray-cast from that same part.
+# Pictures of map, scans and trajectories go to OUT_DIR (one PNG per row).
+# The same bars are checked by ctest (tests/real_tracking_test.cpp, label shared_data).
+#
+# Usage: tests/evaluation/real_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
+#        (defaults: real_evaluation, build, ../shared/data)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+out="${1:-real_evaluation}"
+structloc="${2:-$root/build}/bin/structloc"
+data="${3:-$root/../shared/data}"
+params="$root/maps/params/sick_lms2xx.xml"
+mkdir -p "$out"
+
+# The first pose of a TUM file as "X Y THETA".
+first_pose() {
+  awk '!/^#/ { printf "%s %s %.9f\n", $2, $3, 2 * atan2($7, $8); exit }' "$1"
+}
+
+# row NAME PART ODOMETRY MAP_KIND MAP LOG TRUTH
+row() {
+  local report
+  report=$("$structloc" replay --map "$5" --log "$6" --truth "$7" --params "$params" \
+    --initial-pose "$(first_pose "$7")" --out "$out/$1_$2_$3_$4.tum" \
+    --plot "$out/$1_$2_$3_$4.png" 2>&1)
+  local error lost time
+  error=$(sed -n 's/^estimate vs truth: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm, heading RMSE \([0-9.]*\) deg.*/\1 | \2 | \3/p' <<<"$report")
+  lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
+  time=$(sed -n 's/^time per update: median \([0-9.]*\) us.*/\1/p' <<<"$report")
+  printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$1" "$2" "$4" "$3" "$error" "$lost" "$time"
+}
+
+echo "| recording | scans localised | map | odometry | RMSE mm | max mm | heading RMSE deg | longest lost s | median us/scan |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for name in freiburg_079 intel; do
+  log="$data/${name//_/-}-corrected.log.gz"
+  restamp=()
+  if [ "$name" = intel ]; then
+    restamp=(--restamp 0.5)
+    map_part=182: test_part=0:182
+  else
+    map_part=719: test_part=0:719
+  fi
+  "$structloc" map build --log "$log" --scans "$map_part" --out "$out/${name}_built.xml" --quiet >/dev/null
+  "$structloc" map grid --log "$log" --scans "$map_part" --out "$out/${name}_grid.yaml" >/dev/null
+  "$structloc" map import --grid "$out/${name}_grid.yaml" --out "$out/${name}_grid.xml" >/dev/null
+  for odometry in perfect perturbed; do
+    errors=()
+    [ "$odometry" = perturbed ] &&
+      errors=(--scale-error 0.015 --heading-drift 0.3 --noise-xy 0.005 --noise-theta 0.1)
+    for part in all "$test_part"; do
+      tag="$name.$odometry.${part/:/-}"
+      scans=()
+      [ "$part" != all ] && scans=(--scans "$part")
+      "$structloc" synthesise-odometry --log "$log" --out "$out/$tag.log" --truth "$out/$tag.tum" \
+        "${errors[@]}" "${restamp[@]}" "${scans[@]}" >/dev/null
+    done
+    row "$name" all "$odometry" shipped "$root/maps/real/$name.xml" \
+      "$out/$name.$odometry.all.log" "$out/$name.$odometry.all.tum"
+    for kind in built grid; do
+      row "$name" "$test_part" "$odometry" "$kind" "$out/${name}_$kind.xml" \
+        "$out/$name.$odometry.${test_part/:/-}.log" "$out/$name.$odometry.${test_part/:/-}.tum"
+    done
+  done
+done
