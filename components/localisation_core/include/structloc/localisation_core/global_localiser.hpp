@@ -47,7 +47,7 @@ struct GlobalLocaliserOptions {
   double see_through_margin_m = 0.3;  // a beam crossing a wall this far before its end
                                       // explains nothing
   double min_score = 0.45;            // best pose's share of explained points for "found"
-  double ambiguity_margin = 0.08;     // runner-up within this of the best: "ambiguous"
+  double ambiguity_margin = 0.1;      // runner-up within this of the best: "ambiguous"
   double distinct_distance_m = 0.5;   // a runner-up is at least this far from the best ...
   double distinct_heading_rad = 10.0 * geometry::kPi / 180.0;  // ... or turned this much
 };
