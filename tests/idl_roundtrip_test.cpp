@@ -22,6 +22,7 @@
 #include "geometry_msgs/msg/Vector3PubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "std_msgs/msg/EmptyPubSubTypes.h"
 #include "std_msgs/msg/HeaderPubSubTypes.h"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/FeatureCountPubSubTypes.h"
@@ -335,6 +336,15 @@ TEST_F(IdlRoundTrip, PoseWithCovarianceStampedOnRtPoseAndInitialPose) {
   ExpectRoundTrip<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds_common::topics::kInitialPose, "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_",
       fill_.PoseWithCovarianceStamped());
+}
+
+TEST_F(IdlRoundTrip, EmptyOnRtReinitializeGlobalLocalization) {
+  EXPECT_EQ(dds_common::topics::kReinitializeGlobalLocalization.name,
+            "rt/reinitialize_global_localization");
+  std_msgs::msg::Empty sample;
+  sample.structure_needs_at_least_one_member(7);
+  ExpectRoundTrip<std_msgs::msg::EmptyPubSubType>(
+      dds_common::topics::kReinitializeGlobalLocalization, "std_msgs::msg::dds_::Empty_", sample);
 }
 
 TEST_F(IdlRoundTrip, TFMessageOnRtTf) {

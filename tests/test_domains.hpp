@@ -26,6 +26,7 @@ inline constexpr int kBadInputLocalisationSecond = 71;
 inline constexpr int kBadInputConfig = 72;
 inline constexpr int kBadInputCalibration = 73;
 inline constexpr int kDomainPorts = 74;
+inline constexpr int kLocalisationGlobalStart = 75;
 inline constexpr int kComponentTeardown = 81;
 // tests/install/install_test.sh (a script: tests/CMakeLists.txt passes it 82).
 inline constexpr int kInstallTest = 82;
@@ -46,6 +47,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kBadInputConfig,
                                     kBadInputCalibration,
                                     kDomainPorts,
+                                    kLocalisationGlobalStart,
                                     kComponentTeardown,
                                     kInstallTest,
                                     kLatencyBenchmark};

@@ -1,6 +1,7 @@
 // Localisation component (see header).
 #include "structloc/localisation/localisation_component.hpp"
 
+#include <iomanip>
 #include <iostream>
 
 #include "structloc/dds_common/diagnostics.hpp"
@@ -47,9 +48,14 @@ LocalisationComponent::LocalisationComponent(
       session_.NoteProblem(std::string("saved pose ignored: ") + e.what(), started_s_);
     }
   }
+  if (world_) {
+    global_ = std::make_unique<localisation_core::GlobalStart>(
+        *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
+  }
   if (session_.WaitingForInitialPose()) {
-    std::cout << "localisation: waiting for an initial pose on "
-              << dds_common::topics::kInitialPose.name << std::endl;
+    std::cout << "localisation: no initial pose: locating the robot globally from the scans "
+              << "until one pose explains a scan without a doubt (or one comes on "
+              << dds_common::topics::kInitialPose.name << ")" << std::endl;
   }
   // The listeners only copy into the inbox and notify.
   scan_subscription_ = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
@@ -71,12 +77,40 @@ LocalisationComponent::LocalisationComponent(
             in.pose = p.pose;
             inbox_.OfferInitialPose(in);
           });
+  relocalise_subscription_ = node.Subscribe<std_msgs::msg::EmptyPubSubType>(
+      dds_common::topics::kReinitializeGlobalLocalization,
+      [this](const std_msgs::msg::Empty&) { relocalise_requested_ = true; });
   // Started last: if a subscription above throws, no thread is left running.
   worker_ = std::thread([this] { Worker(); });
 }
 
 LocalisationComponent::~LocalisationComponent() {
   Stop();
+}
+
+void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& scan, double now) {
+  const auto attempt = global_->Try(scan);
+  const auto& r = attempt.result;
+  std::cout << std::fixed << std::setprecision(3)
+            << "localisation: global localisation at t=" << scan.geometry.stamp << ": "
+            << localisation_core::ToString(r.decision);
+  if (r.best) {
+    std::cout << ", best laser pose (" << r.best->pose.x << ", " << r.best->pose.y << ", "
+              << r.best->pose.theta << ") explains " << static_cast<int>(100 * r.best->score)
+              << " %";
+  }
+  if (r.runner_up) {
+    std::cout << ", runner-up (" << r.runner_up->pose.x << ", " << r.runner_up->pose.y << ", "
+              << r.runner_up->pose.theta << ") " << static_cast<int>(100 * r.runner_up->score)
+              << " %";
+  }
+  if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
+  std::cout << std::endl;
+  if (!attempt.found) return;
+  session_.SetInitialPose(*attempt.found, "global localisation", now);
+  const auto& p = attempt.found->pose;
+  std::cout << "localisation: initial pose set from global localisation: robot at (" << p.x << ", "
+            << p.y << ", " << p.theta << ")" << std::endl;
 }
 
 void LocalisationComponent::Stop() {
@@ -95,10 +129,19 @@ void LocalisationComponent::Worker() {
     structloc_msgs::msg::LocalisationStatus status;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
+      if (relocalise_requested_.exchange(false) && global_) {
+        session_.ForgetPose();
+        std::cout << "localisation: relocalising globally, as asked on "
+                  << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
+      }
+      std::optional<localisation_core::SessionScan> scan = std::move(inputs.scan);
+      inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
                   << std::endl;
       }
+      if (scan && global_ && session_.WaitingForInitialPose()) TryGlobally(*scan, now);
+      if (scan) session_.AddScan(std::move(*scan), inputs.scan_arrived_s);
       const auto report = session_.Next(now);
       if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;
       const auto& r = *report->result;

@@ -27,6 +27,11 @@ void TrackingSession::ResumeFrom(const SessionState& saved) {
                               InitialPoseWhen::kAtFirstOdometry};
 }
 
+void TrackingSession::ForgetPose() {
+  if (tracker_) tracker_->ForgetPose();
+  pending_pose_.reset();
+}
+
 bool TrackingSession::WaitingForInitialPose() const {
   return tracker_ && !tracker_->HasInitialPose() && !pending_pose_;
 }

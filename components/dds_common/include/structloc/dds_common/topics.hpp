@@ -34,6 +34,10 @@ inline const TopicSpec kCmdVel{"rt/cmd_vel", qos_profiles::kReliableState};
 // Localisation outputs and inputs.
 inline const TopicSpec kPose{"rt/pose", qos_profiles::kReliableState};
 inline const TopicSpec kInitialPose{"rt/initialpose", qos_profiles::kReliableState};
+// A request to drop the pose and locate the robot globally again (as AMCL's
+// reinitialize_global_localization service; std_msgs/Empty).
+inline const TopicSpec kReinitializeGlobalLocalization{"rt/reinitialize_global_localization",
+                                                       qos_profiles::kReliableState};
 inline const TopicSpec kTf{"rt/tf", qos_profiles::kReliableState};
 inline const TopicSpec kFeatures{"rt/structloc/features", qos_profiles::kSensorData};
 inline const TopicSpec kStatus{"rt/structloc/status", qos_profiles::kReliableState};

@@ -7,6 +7,7 @@
 // saves the pose when the session says it is due and publishes diagnostics.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -17,9 +18,11 @@
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "std_msgs/msg/EmptyPubSubTypes.h"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
+#include "structloc/localisation_core/global_start.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -47,6 +50,8 @@ class LocalisationComponent : public dds_common::Component {
  private:
   void Worker();
   void PublishDiagnostics(double now);
+  // Without a pose: the scan against the whole map; a pose found starts tracking.
+  void TryGlobally(const localisation_core::SessionScan& scan, double now);
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
@@ -61,6 +66,9 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::SessionInbox inbox_;  // listeners -> worker; its own lock
   std::mutex session_mutex_;  // the worker (updates) and the main thread (diagnostics, saving)
   localisation_core::TrackingSession session_;
+  // Locates a robot without a pose (none given, none saved, or asked to).
+  std::unique_ptr<localisation_core::GlobalStart> global_;
+  std::atomic<bool> relocalise_requested_{false};
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed
   std::thread worker_;
@@ -68,6 +76,7 @@ class LocalisationComponent : public dds_common::Component {
   dds_common::Subscription scan_subscription_;
   dds_common::Subscription odometry_subscription_;
   dds_common::Subscription initial_pose_subscription_;
+  dds_common::Subscription relocalise_subscription_;
 };
 
 }  // namespace structloc::localisation

@@ -133,6 +133,9 @@ class PoseTracker {
   std::optional<Rejection> SetInitialPose(double stamp, const geometry::Pose2D& pose,
                                           const Eigen::Matrix3d& covariance);
   bool HasInitialPose() const { return initialised_; }
+  // Drops the pose (the robot was carried away): scans are refused until a new
+  // initial pose; odometry and the calibration learnt so far stay.
+  void ForgetPose() { initialised_ = false; }
 
   enum class ScanVerdict { kProcessed, kWaitForOdometry, kRejected };
   struct ScanOutcome {

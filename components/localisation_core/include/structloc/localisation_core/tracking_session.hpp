@@ -74,6 +74,9 @@ class TrackingSession {
   // Resumes from a saved correction at the first odometry sample; its
   // variances are never trusted more than a freshly given initial pose.
   void ResumeFrom(const SessionState& saved);
+  // Drops the current pose and any pending one: the session waits for a new
+  // initial pose (a request to relocalise globally).
+  void ForgetPose();
 
   // Inputs; `now` is the caller's clock. Returns false when it was refused
   // (the reason becomes LastProblem()).
