@@ -23,12 +23,8 @@ void AddLine(ExpectedFeatures& f, double y0, const std::vector<std::pair<double,
   e.r = y0;
   e.c = 0.0;
   e.s = 1.0;
-  e.extent_lo = 1e9;
-  e.extent_hi = -1e9;
   for (const auto& [x0, x1] : spans) {  // along-line coordinate t = -x
     f.extents.push_back({e.line_index, -x1, -x0, -0.5 * (x0 + x1), 0.5 * (x1 - x0)});
-    e.extent_lo = std::min(e.extent_lo, -x1);
-    e.extent_hi = std::max(e.extent_hi, -x0);
   }
   f.walls.push_back(e);
 }

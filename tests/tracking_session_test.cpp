@@ -312,23 +312,5 @@ TEST(SessionInbox, ListenersOnlyLeaveInputsAndTheNewestScanWins) {
   EXPECT_FALSE(inbox.WaitAndTake(std::chrono::milliseconds(1000), inputs));
 }
 
-// Found on the real Freiburg 079 recording: an underdetermined solve returned a
-// positive definite covariance with 8e-8 of asymmetry; kept as the tracker's
-// state, it made the localiser refuse every later scan ("covariance not
-// positive definite") for the rest of the log.
-TEST(UsableCovariance, SymmetrisesRoundingAndFallsBackToThePriorOnAnUnusableSolve) {
-  const Eigen::Matrix3d prior = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
-  Eigen::Matrix3d solved = Eigen::Vector3d(1e-4, 2e-4, 1e-5).asDiagonal();
-  solved(0, 1) = 1e-6 + 8e-8;
-  solved(1, 0) = 1e-6;
-  const Eigen::Matrix3d usable = localisation_core::UsableCovariance(solved, prior);
-  EXPECT_EQ(usable, usable.transpose());
-  EXPECT_NEAR(usable(0, 1), 1e-6 + 4e-8, 1e-15);
-  solved(2, 2) = -1e-5;
-  EXPECT_EQ(localisation_core::UsableCovariance(solved, prior), prior);
-  solved(2, 2) = NAN;
-  EXPECT_EQ(localisation_core::UsableCovariance(solved, prior), prior);
-}
-
 }  // namespace
 }  // namespace structloc::localisation_core

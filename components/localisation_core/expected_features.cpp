@@ -60,11 +60,7 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     const int index = existing != nullptr ? static_cast<int>(existing - out.walls.data())
                                           : static_cast<int>(out.walls.size());
     out.extents.push_back({index, std::min(t1, t2), std::max(t1, t2), centre, 0.5 * wall.Length()});
-    if (existing != nullptr) {
-      existing->extent_lo = std::min({existing->extent_lo, t1, t2});
-      existing->extent_hi = std::max({existing->extent_hi, t1, t2});
-      continue;
-    }
+    if (existing != nullptr) continue;
     ExpectedWall e;
     e.line_index = line_index;
     e.model_id = model.model_id;
@@ -75,8 +71,6 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     const double a = model.line.alpha - pose.theta;
     e.c = std::cos(a);
     e.s = std::sin(a);
-    e.extent_lo = std::min(t1, t2);
-    e.extent_hi = std::max(t1, t2);
     out.walls.push_back(e);
   }
   for (int i : visibility.corners) {

@@ -73,7 +73,10 @@ void OdometryFilter::Predict(const geometry::Pose2D& step) {
       options_.sigma_theta_per_rad * options_.sigma_theta_per_rad * std::abs(step.theta);
   const Eigen::Matrix3d q =
       rot * Eigen::Vector3d(vxy + 1e-8, vxy + 1e-8, vt + 1e-10).asDiagonal() * rot.transpose();
+  // Exactly symmetric despite rounding: the localiser refuses a prior that is
+  // not (an asymmetry of 8e-8 once stalled the tracker on Freiburg 079).
   covariance_ = f * covariance_ * f.transpose();
+  covariance_ = 0.5 * (covariance_ + covariance_.transpose());
   covariance_.topLeftCorner<3, 3>() += q;
   const double walk = options_.calibration_walk_per_m * options_.calibration_walk_per_m * d;
   if (options_.scale_sigma > 0.0) {

@@ -9,13 +9,6 @@
 
 namespace structloc::localisation_core {
 
-Eigen::Matrix3d UsableCovariance(const Eigen::Matrix3d& solved, const Eigen::Matrix3d& prior) {
-  const Eigen::Matrix3d symmetric = 0.5 * (solved + solved.transpose());
-  if (!symmetric.allFinite() || Eigen::LLT<Eigen::Matrix3d>(symmetric).info() != Eigen::Success)
-    return prior;
-  return symmetric;
-}
-
 const char* ToString(Rejection r) {
   switch (r) {
     case Rejection::kEmptyScan:

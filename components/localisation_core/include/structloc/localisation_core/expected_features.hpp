@@ -35,8 +35,6 @@ struct ExpectedWall {
   geometry::Line world;
   double world_c = 1.0;  // cos/sin of the world line's alpha
   double world_s = 0.0;
-  double extent_lo = 0.0;  // visible extent along the world line direction (-sin, cos)
-  double extent_hi = 0.0;  // (of all visible walls on the line, gaps included)
 };
 
 // The visible part of one map wall on an expected wall line, along the world

@@ -115,13 +115,6 @@ struct TrackedPose {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
 };
 
-// The solver's covariance made exactly symmetric, or `prior` when it is not
-// finite or not positive definite: the tracker must never keep a state that
-// makes the localiser refuse every later scan (seen on the real Freiburg 079
-// recording, where 8e-8 of rounding asymmetry did it). The localiser's result
-// is symmetric itself; this keeps the tracker's own state valid whatever it is given.
-Eigen::Matrix3d UsableCovariance(const Eigen::Matrix3d& solved, const Eigen::Matrix3d& prior);
-
 class PoseTracker {
  public:
   PoseTracker(const world_model::WorldModel& world, const LocaliserOptions& localiser_options,
