@@ -201,8 +201,9 @@ TEST(BadInputCalibration, M2_DeadReckoningMustImproveOnNominal) {
   const auto first = calibration_core::Calibrate(inputs.encoders, inputs.fixes, {}, options);
   EXPECT_TRUE(first.success);
   // Re-calibrating the calibrated robot confirms it (no better, no worse).
-  EXPECT_TRUE(calibration_core::Calibrate(inputs.encoders, inputs.fixes, first.parameters, options)
-                  .success);
+  const auto again =
+      calibration_core::Calibrate(inputs.encoders, inputs.fixes, first.parameters, options);
+  EXPECT_TRUE(again.success) << again.failure;
   options.max_dead_reckoning_ratio = 0.001;  // demands a 1000-fold improvement
   const auto report = calibration_core::Calibrate(inputs.encoders, inputs.fixes, {}, options);
   EXPECT_FALSE(report.success);

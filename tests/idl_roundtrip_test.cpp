@@ -190,6 +190,9 @@ class Filler {
     e.steering_ticks(-static_cast<int32_t>(U()));
     e.traction_angle_increment_rad(D());
     e.steering_angle_rad(-D());
+    e.differential(true);
+    e.left_ticks(4294967291u);
+    e.right_ticks(U());
     return e;
   }
   structloc_msgs::msg::WallFeature WallFeature() {
@@ -268,6 +271,10 @@ class Filler {
     p.sensor_x_m(D());
     p.sensor_y_m(-D());
     p.sensor_theta_rad(D());
+    p.differential(true);
+    p.left_wheel_radius_m(D());
+    p.right_wheel_radius_m(D());
+    p.wheel_separation_m(D());
     return p;
   }
   structloc_msgs::msg::CalibrationResult CalibrationResult() {
@@ -282,6 +289,12 @@ class Filler {
     c.fixes_rejected(U());
     c.warnings().push_back(S());
     c.warnings().push_back(S());
+    c.estimated().push_back(S());
+    c.estimated().push_back(S());
+    for (int k = 0; k < 4; ++k) c.covariance().push_back(-D());
+    c.window_start(Time());
+    c.window_end(Time());
+    c.changed().push_back(S());
     return c;
   }
 

@@ -69,7 +69,7 @@ TEST(RobotFile, EveryShippedFileLoadsEveryKeyIntoItsMember) {
   for (const auto& path : ShippedFiles("maps/robots")) {
     const auto p = kinematics::LoadRobotParameters(path);
     const auto doc = Parse(path);
-    ExpectAttributesLoaded(kinematics::RobotParameterTable(), p, *doc->RootElement(), path);
+    ExpectAttributesLoaded(kinematics::RobotParameterTable(p.kind), p, *doc->RootElement(), path);
   }
 }
 
@@ -99,6 +99,7 @@ TEST(RobotFile, AnImplausibleValueOfAnyKeyNamesFileLineSectionAndKey) {
   const TempDir dir;
   for (const auto& [key, value] :
        kinematics::RobotParameterTable().Values(kinematics::RobotParameters{})) {
+    if (key == "kind") continue;  // a choice, not a number: see DriveKind tests
     const std::string bad = key == "traction_counter_bits" ? "4294967328" : "1e300";
     const std::string path = RobotWith(dir, key, bad);
     const auto what = Problem([&] { kinematics::LoadRobotParameters(path); });
@@ -159,6 +160,36 @@ TEST(RobotFile, WrittenFileHoldsEveryKeyAndLoadsBackExactly) {
   const auto doc = Parse(path);
   ExpectAttributesLoaded(kinematics::RobotParameterTable(), back, *doc->RootElement(), path);
   EXPECT_NE(doc->RootElement()->Attribute("sensor_theta"), nullptr);  // optional, still written
+}
+
+TEST(RobotFile, DifferentialDriveFileHasItsOwnKeysAndRoundTrips) {
+  const auto p = kinematics::LoadRobotParameters(SourcePath("maps/robots/differential.xml"));
+  EXPECT_EQ(p.kind, kinematics::DriveKind::kDifferential);
+  EXPECT_DOUBLE_EQ(p.left_wheel_radius, 0.1);
+  EXPECT_DOUBLE_EQ(p.wheel_separation, 0.5);
+  EXPECT_EQ(p.traction_counter_bits, 32);
+  std::ostringstream out;
+  kinematics::WriteRobotParameters(p, out, "written");
+  const TempDir dir;
+  const std::string path = dir.Write("written.xml", out.str());
+  const auto doc = Parse(path);
+  EXPECT_STREQ(doc->RootElement()->Attribute("kind"), "differential");
+  EXPECT_NE(doc->RootElement()->Attribute("ticks_per_rev"), nullptr);
+  EXPECT_EQ(doc->RootElement()->Attribute("wheel_radius"), nullptr);  // a tricycle key
+  const auto back = kinematics::LoadRobotParameters(path);
+  EXPECT_EQ(kinematics::RobotParameterTable(back.kind).Values(back),
+            kinematics::RobotParameterTable(p.kind).Values(p));
+  // A tricycle key in a differential file, and an unknown kind, are errors naming them.
+  const std::string mixed =
+      dir.Write("mixed.xml",
+                "<robot kind=\"differential\" left_wheel_radius=\"0.1\" right_wheel_radius=\"0.1\" "
+                "wheel_separation=\"0.5\" ticks_per_rev=\"4096\" counter_bits=\"32\" "
+                "axle_distance=\"0.6\"/>");
+  EXPECT_NE(Problem([&] { kinematics::LoadRobotParameters(mixed); }).find("axle_distance"),
+            std::string::npos);
+  const std::string bicycle = RobotWith(dir, "kind", "bicycle");
+  const auto what = Problem([&] { kinematics::LoadRobotParameters(bicycle); });
+  EXPECT_NE(what.find("tricycle or differential"), std::string::npos) << what;
 }
 
 TEST(ScenarioFile, EveryShippedFileLoadsEveryAttributeIntoItsMember) {

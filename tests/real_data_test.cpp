@@ -71,7 +71,10 @@ TEST(RealData, TricycleDatasetImprovesDeadReckoningAgainstTheTracker) {
   const auto encoders = calibration_core::ReadEncodersCsv(dir + "/encoders.csv");
   const auto fixes = calibration_core::ReadFixesCsv(dir + "/fixes.csv");
   calibration_core::CalibrationOptions o;
-  o.estimate.fill(true);  // steering gain and sensor mounting included
+  for (int k = 0; k < calibration_core::kParameterCount; ++k) {  // steering gain and mounting too
+    o.estimate[static_cast<size_t>(k)] =
+        calibration_core::AppliesTo(static_cast<calibration_core::Parameter>(k), nominal.kind);
+  }
   const auto r = calibration_core::Calibrate(encoders, fixes.fixes, nominal, o);
   ASSERT_TRUE(r.success);
   const double before = calibration_core::DeadReckoningRms(encoders, fixes.fixes, nominal);

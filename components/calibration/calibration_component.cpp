@@ -18,6 +18,24 @@
 namespace structloc::calibration {
 namespace {
 
+// The estimate in a few lines for the log.
+std::string Summary(const calibration_core::CalibrationReport& report, size_t encoders,
+                    size_t fixes) {
+  std::ostringstream text;
+  text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from " << encoders
+       << " encoder samples and " << fixes << " fixes";
+  for (int k = 0; k < calibration_core::kParameterCount; ++k) {
+    if (!report.estimated[static_cast<size_t>(k)]) continue;
+    text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
+         << " " << calibration_core::ValuesOf(report.parameters)[static_cast<size_t>(k)] << " +- "
+         << report.standard_deviation[static_cast<size_t>(k)];
+  }
+  for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
+  if (!report.success && !report.failure.empty()) text << "\n  FAILED: " << report.failure;
+  for (const auto& cause : report.likely_causes) text << "\n  likely cause: " << cause;
+  return text.str();
+}
+
 void CheckFixTopic(const std::string& topic) {
   const std::string hint =
       "; give a topic of geometry_msgs/PoseWithCovarianceStamped fixes (default rt/pose)";
@@ -63,6 +81,7 @@ void CalibrationComponentOptions::Validate() const {
   if (!(record_s >= 0)) throw config::ConfigError("--record-s must be >= 0");
   try {
     calibration.Validate();
+    if (online) online_options.Validate();
   } catch (const std::invalid_argument& e) {
     throw config::ConfigError(e.what());
   }
@@ -78,22 +97,29 @@ CalibrationComponent::CalibrationComponent(dds_common::Node& node,
           dds_common::topics::kDiagnostics)),
       recorder_(calibration_core::RecorderOptions{options.record_s,
                                                   options.calibration.max_encoder_gap_s}) {
+  if (options_.online) {
+    online_.emplace(options_.nominal, options_.calibration, options_.online_options);
+  }
   encoders_subscription_ = node.Subscribe<structloc_msgs::msg::WheelEncodersPubSubType>(
-      dds_common::topics::kWheelEncoders, [this](const structloc_msgs::msg::WheelEncoders& m) {
-        const auto sample = FromWheelEncoders(m);
-        std::lock_guard<std::mutex> lock(mutex_);
-        recorder_.AddEncoders(sample);
-      });
+      dds_common::topics::kWheelEncoders,
+      [this](const structloc_msgs::msg::WheelEncoders& m) { AddEncoders(m); });
   // Fixes RELIABLE (the reliable_state profile): none may be lost.
   fixes_subscription_ = node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       {options_.fix_topic, dds_common::qos_profiles::kReliableState},
       [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
         const auto fix = FromPoseFix(m);
         std::lock_guard<std::mutex> lock(mutex_);
-        recorder_.AddFix(fix);
+        if (online_) {
+          online_->AddFix(fix);
+        } else {
+          recorder_.AddFix(fix);
+        }
       });
   std::ostringstream length;
-  if (options_.record_s > 0) {
+  if (online_) {
+    length << "ever (estimating over the last " << options_.online_options.window_s << " s every "
+           << options_.online_options.period_s << " s)";
+  } else if (options_.record_s > 0) {
     length << options_.record_s << " s";
   } else {
     length << "until stopped";
@@ -102,14 +128,40 @@ CalibrationComponent::CalibrationComponent(dds_common::Node& node,
             << options_.fix_topic << " for " << length.str() << std::endl;
 }
 
+void CalibrationComponent::AddEncoders(const structloc_msgs::msg::WheelEncoders& m) {
+  const bool differential = options_.nominal.kind == kinematics::DriveKind::kDifferential;
+  const bool fits = m.differential() == differential &&
+                    m.traction_counter_bits() == options_.nominal.traction_counter_bits;
+  const auto sample = FromWheelEncoders(m);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!fits) {
+    if (encoders_wrong_kind_++ == 0) {
+      std::cerr << "calibration: refusing wheel encoders of a "
+                << (m.differential() ? "differential drive" : "tricycle") << " with "
+                << static_cast<int>(m.traction_counter_bits()) << "-bit counters: the robot file "
+                << options_.robot_path << " describes a "
+                << (differential ? "differential drive" : "tricycle") << " with "
+                << options_.nominal.traction_counter_bits << "-bit counters" << std::endl;
+    }
+    return;
+  }
+  if (online_) {
+    online_->AddEncoders(sample);
+  } else {
+    recorder_.AddEncoders(sample);
+  }
+}
+
 void CalibrationComponent::Step() {
   const double now = dds_common::WallClockSeconds();
-  bool due = false;
+  bool due = false, due_online = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    due = recorder_.Due();
+    due = !online_ && recorder_.Due();
+    due_online = online_ && online_->Due();
   }
   if (due) Estimate(false);
+  if (due_online) EstimateOnline();
   if (now - last_diagnostics_s_ >= 1.0) PublishDiagnostics(now);
 }
 
@@ -118,6 +170,7 @@ void CalibrationComponent::Stop() {
   bool early = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (online_) return;  // every window was estimated as it came
     pending = recorder_.WorthEstimating();
     early = recorder_.StopIsEarly();
   }
@@ -142,22 +195,11 @@ void CalibrationComponent::Estimate(bool stopped_early) {
     report.success = false;
     report.failure = e.what();
   }
-  std::ostringstream text;
-  text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from "
-       << encoders.size() << " encoder samples and " << fixes.size() << " fixes";
-  for (int k = 0; k < calibration_core::kParameterCount; ++k) {
-    if (!report.estimated[static_cast<size_t>(k)]) continue;
-    text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
-         << " " << calibration_core::ValuesOf(report.parameters)[static_cast<size_t>(k)] << " +- "
-         << report.standard_deviation[static_cast<size_t>(k)];
-  }
-  for (const auto& w : report.warnings) text << "\n  WARNING: " << w;
-  if (!report.success && !report.failure.empty()) text << "\n  FAILED: " << report.failure;
-  for (const auto& cause : report.likely_causes) text << "\n  likely cause: " << cause;
-  std::cout << text.str() << std::endl;
+  std::cout << Summary(report, encoders.size(), fixes.size()) << std::endl;
   const std::string write_error = WriteResults(encoders, fixes, report);
   if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
-  auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.back().t);
+  auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.front().t,
+                                 encoders.empty() ? 0.0 : encoders.back().t);
   result_.Write(msg);
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string why = !report.failure.empty()   ? report.failure
@@ -171,15 +213,50 @@ void CalibrationComponent::Estimate(bool stopped_early) {
   }
 }
 
+void CalibrationComponent::EstimateOnline() {
+  calibration_core::OnlineEstimate estimate;
+  calibration_core::Recording window;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    estimate = online_->Estimate();
+    window = online_->Window();
+  }
+  std::ostringstream text;
+  text << Summary(estimate.report, window.encoders.size(), window.fixes.size()) << "\n  window "
+       << estimate.window_start_s << " .. " << estimate.window_end_s << " s";
+  for (const auto& change : estimate.changes) {
+    text << "\n  CHANGED: " << calibration_core::Describe(change);
+  }
+  std::cout << text.str() << std::endl;
+  const std::string write_error = WriteResults(window.encoders, window.fixes, estimate.report);
+  if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
+  result_.Write(ToCalibrationResult(estimate));
+  estimated_ = true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  changed_.clear();
+  for (const auto& change : estimate.changes) changed_.push_back(Describe(change));
+  outcome_ =
+      estimate.report.success
+          ? "calibrated over the window ending at " + std::to_string(estimate.window_end_s) + " s"
+          : "calibration of the window failed: " + estimate.report.failure;
+  if (!write_error.empty()) failure_ = "the result could not be written: " + write_error;
+}
+
 std::string CalibrationComponent::WriteResults(
     const std::vector<calibration_core::EncoderSample>& encoders,
     const std::vector<calibration_core::Fix>& fixes,
     const calibration_core::CalibrationReport& report) const {
   if (options_.out_dir.empty()) return "";
   try {
-    log_formats::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv");
-    for (const auto& s : encoders)
-      enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
+    const bool differential = options_.nominal.kind == kinematics::DriveKind::kDifferential;
+    log_formats::EncodersCsvWriter enc(options_.out_dir + "/encoders.csv", {}, differential);
+    for (const auto& s : encoders) {
+      if (differential) {
+        enc.SampleWheels(s.t, s.left_ticks, s.right_ticks);
+      } else {
+        enc.Sample(s.t, s.traction_ticks, static_cast<int64_t>(s.steering_ticks));
+      }
+    }
     log_formats::FixesCsvWriter fix(options_.out_dir + "/fixes.csv", true);
     for (const auto& f : fixes)
       fix.Fix(f.t, f.pose, f.variance.x(), f.variance.y(), f.variance.z());
@@ -208,22 +285,34 @@ void CalibrationComponent::PublishDiagnostics(double now) {
   last_diagnostics_s_ = now;
   dds_common::HealthReport report;
   calibration_core::RecorderStats stats;
+  size_t wrong_kind = 0;
+  std::vector<std::string> changed;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    stats = recorder_.Stats();
-    report.message = recorder_.Finished() ? outcome_ : "recording";
+    stats = online_ ? online_->Stats() : recorder_.Stats();
+    report.message =
+        recorder_.Finished() || (online_ && !outcome_.empty()) ? outcome_ : "recording";
+    wrong_kind = encoders_wrong_kind_;
+    changed = changed_;
   }
-  if (stats.gaps > 0 || stats.encoders_out_of_order > 0)
+  if (stats.gaps > 0 || stats.encoders_out_of_order > 0 || wrong_kind > 0 || !changed.empty())
     report.level = dds_common::HealthLevel::kWarn;
+  for (const auto& change : changed) report.message += "; CHANGED: " + change;
   if (stats.gaps > 0) {
     report.message += "; " + std::to_string(stats.gaps) + " gaps in the encoder stream";
+  }
+  if (wrong_kind > 0) {
+    report.message += "; " + std::to_string(wrong_kind) +
+                      " encoder samples of another drive kind or counter width than the robot "
+                      "file refused";
   }
   report.values = {{"encoder_samples", std::to_string(stats.encoders)},
                    {"fixes", std::to_string(stats.fixes)},
                    {"encoder_gaps", std::to_string(stats.gaps)},
                    {"largest_encoder_gap_s", std::to_string(stats.largest_gap_s)},
                    {"encoders_out_of_order", std::to_string(stats.encoders_out_of_order)},
-                   {"fixes_rejected", std::to_string(stats.fixes_rejected)}};
+                   {"fixes_rejected", std::to_string(stats.fixes_rejected)},
+                   {"encoders_wrong_kind", std::to_string(wrong_kind)}};
   diagnostics_.Write(dds_common::ToDiagnosticArray("calibration", report, now));
 }
 

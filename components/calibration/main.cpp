@@ -14,7 +14,12 @@ int main(int argc, char** argv) {
         "PoseWithCovarianceStamped topic with the fixes (default rt/pose; not empty, not another "
         "structloc topic)"},
        {"estimate", true,
-        "comma-separated parameters (default wheel_radius,axle_distance,steering_offset)"},
+        "comma-separated parameters (default wheel_radius,axle_distance,steering_offset; "
+        "differential drive: left_wheel_radius,right_wheel_radius,wheel_separation)"},
+       {"window-s", true,
+        "online: re-estimate over the last this many seconds of stamp time, again and again "
+        "(0 = one recording of --record-s, the default)"},
+       {"every-s", true, "online: a new estimate every this many seconds (default 30)"},
        {"out-dir", true,
         "write encoders.csv, fixes.csv and calibrated.xml here (created at start-up; must be a "
         "writable folder)"},
@@ -32,6 +37,13 @@ int main(int argc, char** argv) {
           o.out_dir = *dir;
         }
         o.exit_when_done = cli.Has("exit-when-done");
+        o.online_options.window_s = cli.Number("window-s", 0.0);
+        o.online = o.online_options.window_s > 0;
+        o.online_options.period_s = cli.Number("every-s", o.online_options.period_s);
+        if (!(o.online_options.window_s >= 0)) {
+          throw structloc::config::ConfigError("--window-s must be >= 0 (0 = no online mode)");
+        }
+        o.calibration.estimate = structloc::calibration_core::DefaultEstimate(o.nominal.kind);
         if (auto list = cli.Get("estimate")) {
           o.calibration.estimate = structloc::calibration_core::ParseParameterList(*list);
         }

@@ -45,16 +45,15 @@ uint64_t Ticks(const std::string& path, size_t line, const std::string& text, ui
                int bits) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
     throw std::runtime_error(Where(path, line) + "'" + text +
-                             "' is not a non-negative integer (traction_ticks holds the raw "
+                             "' is not a non-negative integer (wheel ticks hold the raw "
                              "counter value)");
   }
   errno = 0;
   const unsigned long long value = std::strtoull(text.c_str(), nullptr, 10);
   if (errno == ERANGE || value > max_value) {
-    throw std::runtime_error(Where(path, line) + "traction_ticks " + text + " does not fit a " +
+    throw std::runtime_error(Where(path, line) + "counter value " + text + " does not fit a " +
                              std::to_string(bits) + "-bit counter (largest " +
-                             std::to_string(max_value) +
-                             "); check traction_counter_bits in the robot file");
+                             std::to_string(max_value) + "); check the robot file's counter bits");
   }
   return value;
 }
@@ -88,7 +87,8 @@ std::string DescribeDropped(const FixesFile& file) {
   return text + "; first at line " + std::to_string(file.first_dropped_line) + ")";
 }
 
-std::vector<EncoderSample> ReadEncodersCsv(const std::string& path, int traction_counter_bits) {
+std::vector<EncoderSample> ReadEncodersCsv(const std::string& path, int traction_counter_bits,
+                                           kinematics::DriveKind kind) {
   if (traction_counter_bits < 1 || traction_counter_bits > 64) {
     throw std::invalid_argument("ReadEncodersCsv: traction_counter_bits must be 1..64");
   }
@@ -96,9 +96,16 @@ std::vector<EncoderSample> ReadEncodersCsv(const std::string& path, int traction
       traction_counter_bits == 64 ? UINT64_MAX : (uint64_t{1} << traction_counter_bits) - 1;
   std::string header;
   auto in = Open(path, &header);
-  if (header != "t,traction_ticks,steering_ticks") {
-    throw std::runtime_error(path + ":1: header must be 't,traction_ticks,steering_ticks', not '" +
-                             header + "'");
+  const bool differential = kind == kinematics::DriveKind::kDifferential;
+  const std::string expected =
+      differential ? "t,left_ticks,right_ticks" : "t,traction_ticks,steering_ticks";
+  if (header != expected) {
+    const std::string other =
+        differential ? "t,traction_ticks,steering_ticks" : "t,left_ticks,right_ticks";
+    throw std::runtime_error(
+        path + ":1: header must be '" + expected + "' for a " +
+        (differential ? "differential-drive" : "tricycle") + " robot, not '" + header + "'" +
+        (header == other ? " (the robot file's kind and the encoder file disagree)" : ""));
   }
   std::vector<EncoderSample> samples;
   std::string line;
@@ -109,8 +116,13 @@ std::vector<EncoderSample> ReadEncodersCsv(const std::string& path, int traction
       throw std::runtime_error(path + ":" + std::to_string(n) + ": expected 3 fields");
     EncoderSample s;
     s.t = Number(path, n, f[0], false);
-    s.traction_ticks = Ticks(path, n, f[1], max_ticks, traction_counter_bits);
-    s.steering_ticks = Number(path, n, f[2], false);
+    if (differential) {
+      s.left_ticks = Ticks(path, n, f[1], max_ticks, traction_counter_bits);
+      s.right_ticks = Ticks(path, n, f[2], max_ticks, traction_counter_bits);
+    } else {
+      s.traction_ticks = Ticks(path, n, f[1], max_ticks, traction_counter_bits);
+      s.steering_ticks = Number(path, n, f[2], false);
+    }
     if (!samples.empty() && !(s.t > samples.back().t)) {
       throw std::runtime_error(path + ":" + std::to_string(n) + ": time " + f[0] +
                                " is not after the previous line's (times must increase)");

@@ -55,6 +55,15 @@ Recording CalibrationRecorder::Finish() {
   return recording_;
 }
 
+void CalibrationRecorder::ForgetBefore(double t) {
+  auto& e = recording_.encoders;
+  e.erase(e.begin(), std::lower_bound(e.begin(), e.end(), t,
+                                      [](const EncoderSample& s, double v) { return s.t < v; }));
+  auto& f = recording_.fixes;
+  f.erase(f.begin(),
+          std::lower_bound(f.begin(), f.end(), t, [](const Fix& x, double v) { return x.t < v; }));
+}
+
 RecorderStats CalibrationRecorder::Stats() const {
   RecorderStats s = stats_;
   s.encoders = recording_.encoders.size();

@@ -12,12 +12,10 @@
 
 namespace structloc::calibration_core {
 
-Eigen::MatrixXd RobustCovariance(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& weights,
-                                 double cost) {
-  const Eigen::MatrixXd h = jacobian.transpose() * weights.asDiagonal() * jacobian;
-  const double dof = std::max(1.0, static_cast<double>(jacobian.rows() - jacobian.cols()));
-  const double scale = std::max(1.0, cost / dof);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(h);
+Eigen::MatrixXd CovarianceFromInformation(const Eigen::MatrixXd& information, double cost,
+                                          double degrees_of_freedom) {
+  const double scale = std::max(1.0, cost / std::max(1.0, degrees_of_freedom));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(information);
   const double largest = eig.eigenvalues().maxCoeff();
   Eigen::VectorXd inv = eig.eigenvalues();
   for (Eigen::Index k = 0; k < inv.size(); ++k)
@@ -57,14 +55,22 @@ void AddFit(CalibrationReport& report, const PrunedFit& pruned,
   report.parameters = WithValues(nominal, fit.values);
   report.estimated = pruned.estimated;
   report.standard_deviation = fit.standard_deviation;
+  report.covariance = fit.covariance;
   report.correlation = Correlation(fit.covariance);
   const Eigen::VectorXd& r = fit.solution.residuals;
   report.residual_rms_after = Rms(r);
+  // Blocks: one per fix, then one per fix interval.
   for (Eigen::Index k = 0; k + 2 < r.size(); k += 3) {
-    if (fit.solution.weights(k) < 0.5) ++report.intervals_downweighted;
+    if (fit.solution.weights(k) >= 0.5) continue;
+    if (static_cast<size_t>(k / 3) < report.fixes_used) {
+      ++report.fixes_downweighted;
+    } else {
+      ++report.intervals_downweighted;
+    }
   }
-  if (report.intervals_downweighted > 0) {
-    report.warnings.push_back(std::to_string(report.intervals_downweighted) +
+  if (report.fixes_downweighted + report.intervals_downweighted > 0) {
+    report.warnings.push_back(std::to_string(report.fixes_downweighted) + " fixes and " +
+                              std::to_string(report.intervals_downweighted) +
                               " fix intervals look like outliers and were down-weighted");
   }
 }
@@ -85,15 +91,19 @@ CalibrationReport Judge(CalibrationReport report, const std::vector<EncoderSampl
     return Fail(std::move(report), encoders, fixes, nominal,
                 "the residuals with the estimated parameters are not finite");
   }
-  const double outlier_fraction = static_cast<double>(report.intervals_downweighted) /
-                                  static_cast<double>(report.intervals_used);
-  if (outlier_fraction > options.max_outlier_fraction) {
-    return Fail(std::move(report), encoders, fixes, nominal,
-                std::to_string(report.intervals_downweighted) + " of " +
-                    std::to_string(report.intervals_used) +
-                    " fix intervals are outliers (more than " +
-                    ShortNumber(100 * options.max_outlier_fraction) +
-                    " %): the odometry model does not explain the fixes");
+  // Either kind of block mostly outlying means the model does not explain the data.
+  const double fix_fraction = static_cast<double>(report.fixes_downweighted) /
+                              static_cast<double>(std::max<size_t>(1, report.fixes_used));
+  const double interval_fraction = static_cast<double>(report.intervals_downweighted) /
+                                   static_cast<double>(std::max<size_t>(1, report.intervals_used));
+  if (std::max(fix_fraction, interval_fraction) > options.max_outlier_fraction) {
+    return Fail(
+        std::move(report), encoders, fixes, nominal,
+        std::to_string(report.fixes_downweighted) + " of " + std::to_string(report.fixes_used) +
+            " fixes and " + std::to_string(report.intervals_downweighted) + " of " +
+            std::to_string(report.intervals_used) + " fix intervals are outliers (more than " +
+            ShortNumber(100 * options.max_outlier_fraction) +
+            " % of either): the odometry model does not explain the fixes");
   }
   try {
     report.parameters.Validate();
@@ -103,9 +113,11 @@ CalibrationReport Judge(CalibrationReport report, const std::vector<EncoderSampl
   }
   report.dead_reckoning_rms_nominal = DeadReckoningRms(encoders, fixes, nominal);
   report.dead_reckoning_rms_calibrated = DeadReckoningRms(encoders, fixes, report.parameters);
-  // Equal is fine: re-calibrating a calibrated robot confirms its parameters.
-  if (!(report.dead_reckoning_rms_calibrated <=
-        options.max_dead_reckoning_ratio * report.dead_reckoning_rms_nominal)) {
+  // Equal is fine: re-calibrating a calibrated robot confirms its parameters
+  // (within their uncertainty, hence the tolerance).
+  if (!(report.dead_reckoning_rms_calibrated <= options.max_dead_reckoning_ratio *
+                                                    (1 + options.dead_reckoning_tolerance) *
+                                                    report.dead_reckoning_rms_nominal)) {
     return Fail(std::move(report), encoders, fixes, nominal,
                 "dead reckoning with the estimate is worse than with the nominal "
                 "parameters (RMS against the fixes " +

@@ -46,6 +46,8 @@ std::string NotObservableWarning(Parameter p) {
   std::string why;
   if (p == kAxleDistance || p == kSteeringOffset || p == kSteeringGain) {
     why = " (the trajectory turns too little: drive curves both ways)";
+  } else if (p == kWheelSeparation) {
+    why = " (the trajectory turns too little: turn on the spot or drive curves)";
   } else if (p == kSensorX || p == kSensorY || p == kSensorTheta) {
     why = " (turn on the spot or in tight curves to separate the sensor's mounting)";
   } else {

@@ -12,6 +12,7 @@
 #include "structloc/calibration_core/odometry_calibration.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/output_file.hpp"
+#include "structloc/config/strict_number.hpp"
 #include "subcommands.hpp"
 
 namespace structloc::cli {
@@ -41,8 +42,10 @@ void PrintReport(const calibration_core::CalibrationReport& report,
     std::cout << "  correlations of the estimated parameters:\n" << report.correlation << "\n";
   }
   if (estimated_any) {
-    std::printf("  weighted residual RMS: %.4g before, %.4g after (%d iterations)\n",
-                report.residual_rms_before, report.residual_rms_after, report.iterations);
+    std::printf(
+        "  weighted residual RMS (poses fitted): %.4g with the nominal parameters, %.4g estimated "
+        "(%d iterations)\n",
+        report.residual_rms_before, report.residual_rms_after, report.iterations);
   } else if (report.intervals_used > 0) {
     std::printf("  weighted residual RMS with the nominal parameters: %.4g\n",
                 report.residual_rms_before);
@@ -53,14 +56,30 @@ void PrintReport(const calibration_core::CalibrationReport& report,
         "%.4g m calibrated\n",
         report.dead_reckoning_rms_nominal, report.dead_reckoning_rms_calibrated);
   }
+  if (!report.observability.empty()) std::printf("  what this trajectory determines:\n");
+  for (const auto& line : report.observability) std::printf("    %s\n", line.c_str());
   for (const auto& w : report.warnings) std::printf("  WARNING: %s\n", w.c_str());
+}
+
+// A variance option's value (a finite number >= 0), or `fallback` when not given.
+double Variance(const config::CommandLine& cli, const char* key, double fallback) {
+  const auto text = cli.Get(key);
+  if (!text) return fallback;
+  const auto value = config::ParseFiniteDouble(*text);
+  if (!value || *value < 0) {
+    throw config::ConfigError(std::string("--") + key + " '" + *text +
+                              "' is not a finite number >= 0");
+  }
+  return *value;
 }
 
 }  // namespace
 
 int CalibrateCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
-      {"encoders", true, "encoders.csv (t,traction_ticks,steering_ticks)"},
+      {"encoders", true,
+       "encoders.csv (t,traction_ticks,steering_ticks; differential drive: "
+       "t,left_ticks,right_ticks)"},
       {"fixes", true, "fixes.csv (t,x,y,theta[,var_x,var_y,var_theta])"},
       {"robot", true, "nominal robot parameter file"},
       {"out", true,
@@ -68,7 +87,12 @@ int CalibrateCommand(const Invocation& inv) {
        "an input)"},
       {"estimate", true,
        "comma-separated parameters (default wheel_radius,axle_distance,steering_offset; also "
-       "steering_rad_per_tick,sensor_x,sensor_y,sensor_theta)"},
+       "steering_rad_per_tick,sensor_x,sensor_y,sensor_theta; differential drive: default "
+       "left_wheel_radius,right_wheel_radius,wheel_separation)"},
+      {"slip-variance-m2-per-m", true,
+       "process noise: wheel slip, variance of the distance per metre rolled (default 1e-6)"},
+      {"heading-variance-rad2-per-m", true,
+       "process noise: heading variance per metre rolled (default 1e-6)"},
       {"advice", false, "print which manoeuvres make which parameter observable, and exit"},
   };
   try {
@@ -78,21 +102,28 @@ int CalibrateCommand(const Invocation& inv) {
       return 0;
     }
     calibration_core::CalibrationOptions options;
-    if (auto list = cli.Get("estimate"))
-      options.estimate = calibration_core::ParseParameterList(*list);
+    options.slip_variance_m2_per_m =
+        Variance(cli, "slip-variance-m2-per-m", options.slip_variance_m2_per_m);
+    options.heading_variance_rad2_per_m =
+        Variance(cli, "heading-variance-rad2-per-m", options.heading_variance_rad2_per_m);
     const std::string robot_path = cli.Required("robot");
     const std::string encoders_path = cli.Required("encoders");
     const std::string fixes_path = cli.Required("fixes");
     config::OutputFile out(cli.Required("out"), {robot_path, encoders_path, fixes_path});
     const auto nominal = kinematics::LoadRobotParameters(robot_path);
-    const auto encoders =
-        calibration_core::ReadEncodersCsv(encoders_path, nominal.traction_counter_bits);
+    options.estimate = calibration_core::DefaultEstimate(nominal.kind);
+    if (auto list = cli.Get("estimate")) {
+      options.estimate = calibration_core::ParseParameterList(*list);
+    }
+    const auto encoders = calibration_core::ReadEncodersCsv(
+        encoders_path, nominal.traction_counter_bits, nominal.kind);
     const auto fixes = calibration_core::ReadFixesCsv(fixes_path);
     const auto report = calibration_core::Calibrate(encoders, fixes.fixes, nominal, options);
-    std::printf("%zu encoder samples, %zu fixes (%s), %zu fix intervals used, %zu skipped\n",
-                encoders.size(), fixes.fixes.size(),
-                calibration_core::DescribeDropped(fixes).c_str(), report.intervals_used,
-                report.intervals_skipped);
+    std::printf(
+        "%zu encoder samples, %zu fixes (%s), %zu inside the encoder recording, %zu fix "
+        "intervals linked by the encoders, %zu not (encoder gaps)\n",
+        encoders.size(), fixes.fixes.size(), calibration_core::DescribeDropped(fixes).c_str(),
+        report.fixes_used, report.intervals_used, report.intervals_skipped);
     PrintReport(report, options, nominal);
     if (!report.success) {
       std::cerr << "structloc calibrate: calibration FAILED: " << report.failure << "\n";

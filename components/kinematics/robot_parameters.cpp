@@ -6,19 +6,66 @@
 
 namespace structloc::kinematics {
 
-config::OptionTable<RobotParameters> RobotParameterTable() {
+namespace {
+
+const std::vector<std::pair<std::string, DriveKind>> kKindNames = {
+    {"tricycle", DriveKind::kTricycle}, {"differential", DriveKind::kDifferential}};
+
+void AddSensorMounting(config::OptionTable<RobotParameters>& t) {
+  using R = RobotParameters;
+  const config::Range mount = config::Range::Closed(-kMaxRobotLength_m, kMaxRobotLength_m);
+  t.Number("sensor_x", &R::sensor, &geometry::Pose2D::x, mount, "m",
+           "calibration fix sensor, ahead of the reference point")
+      .Optional();
+  t.Number("sensor_y", &R::sensor, &geometry::Pose2D::y, mount, "m", "... left of it").Optional();
+  t.Number("sensor_theta", &R::sensor, &geometry::Pose2D::theta,
+           config::Range::Closed(-geometry::kPi, geometry::kPi), "rad",
+           "... its heading on the robot")
+      .Optional();
+}
+
+config::OptionTable<RobotParameters> DifferentialTable() {
   using config::Range;
   using R = RobotParameters;
   const Range length = Range::Closed(kMinRobotLength_m, kMaxRobotLength_m);
-  const Range mount = Range::Closed(-kMaxRobotLength_m, kMaxRobotLength_m);
+  config::OptionTable<R> t("robot",
+                           "differential-drive odometry (reference point: wheel axle middle)");
+  t.Choice("kind", &R::kind, kKindNames, "drive kind");
+  t.Number("left_wheel_radius", &R::left_wheel_radius, length, "m", "left wheel radius");
+  t.Number("right_wheel_radius", &R::right_wheel_radius, length, "m", "right wheel radius");
+  t.Number("wheel_separation", &R::wheel_separation, length, "m",
+           "distance between the wheels' contact points");
+  t.Number("ticks_per_rev", &R::traction_ticks_per_rev,
+           Range::Closed(kMinTicksPerRev, kMaxTicksPerRev), "",
+           "encoder ticks per wheel revolution (both wheels)");
+  t.Number("counter_bits", &R::traction_counter_bits,
+           Range::Closed(kMinCounterBits, kMaxCounterBits), "",
+           "both wheel counters wrap at 2^bits");
+  AddSensorMounting(t);
+  return t;
+}
+
+}  // namespace
+
+config::OptionTable<RobotParameters> RobotParameterTable(DriveKind kind) {
+  using config::Range;
+  using R = RobotParameters;
+  auto wording = [](const std::string& key, const std::string& value, const std::string& valid,
+                    const std::string& unit) {
+    return key + " = " + value + " is implausible; it must be " + valid +
+           (unit.empty() ? "" : " " + unit);
+  };
+  if (kind == DriveKind::kDifferential) {
+    auto t = DifferentialTable();
+    t.Wording(wording);
+    return t;
+  }
+  const Range length = Range::Closed(kMinRobotLength_m, kMaxRobotLength_m);
   config::OptionTable<R> t("robot",
                            "tricycle odometry, thesis 5.2 / EQ 46 (reference point: rear axle "
                            "middle)");
-  t.Wording([](const std::string& key, const std::string& value, const std::string& valid,
-               const std::string& unit) {
-    return key + " = " + value + " is implausible; it must be " + valid +
-           (unit.empty() ? "" : " " + unit);
-  });
+  t.Wording(wording);
+  t.Choice("kind", &R::kind, kKindNames, "drive kind (a file without it is a tricycle)").Optional();
   t.Number("wheel_radius", &R::wheel_radius, length, "m", "traction (front) wheel radius");
   t.Number("axle_distance", &R::axle_distance, length, "m", "front wheel axis to rear axle");
   t.Number("steering_offset", &R::steering_offset, Range::Open(-geometry::kPi, geometry::kPi),
@@ -35,24 +82,22 @@ config::OptionTable<RobotParameters> RobotParameterTable() {
   t.Number("steering_zero_tick", &R::steering_zero_tick,
            Range::Closed(-kMaxSteeringZeroTick, kMaxSteeringZeroTick), "",
            "steering encoder reading at steering_offset");
-  t.Number("sensor_x", &R::sensor, &geometry::Pose2D::x, mount, "m",
-           "calibration fix sensor, ahead of the reference point")
-      .Optional();
-  t.Number("sensor_y", &R::sensor, &geometry::Pose2D::y, mount, "m", "... left of it").Optional();
-  t.Number("sensor_theta", &R::sensor, &geometry::Pose2D::theta,
-           Range::Closed(-geometry::kPi, geometry::kPi), "rad", "... its heading on the robot")
-      .Optional();
+  AddSensorMounting(t);
   return t;
 }
 
 void PrintRobotParameters(std::ostream& out) {
   out << "<robot>: one element; every key is required unless marked [optional]; columns: key, "
-         "default, unit, valid values, meaning\n";
+         "default, unit, valid values, meaning\nkind=\"tricycle\" (or no kind):\n";
   RobotParameterTable().Print(out, RobotParameters{});
+  RobotParameters differential;
+  differential.kind = DriveKind::kDifferential;
+  out << "kind=\"differential\":\n";
+  RobotParameterTable(DriveKind::kDifferential).Print(out, differential);
 }
 
 void RobotParameters::Validate() const {
-  RobotParameterTable().Validate(*this);
+  RobotParameterTable(kind).Validate(*this);
 }
 
 int64_t RobotParameters::TickDelta(uint64_t previous, uint64_t current) const {
@@ -73,7 +118,9 @@ RobotParameters LoadRobotParameters(const std::string& path) {
   const auto& root = file.Root("robot");
   if (root.FirstChildElement() != nullptr) file.Fail(root, "takes no child elements");
   RobotParameters p;
-  RobotParameterTable().Load(file, root, p);
+  const char* kind = root.Attribute("kind");
+  if (kind != nullptr && std::string(kind) == "differential") p.kind = DriveKind::kDifferential;
+  RobotParameterTable(p.kind).Load(file, root, p);
   return p;
 }
 
@@ -91,7 +138,7 @@ std::string XmlCommentBody(const std::string& text) {
 void WriteRobotParameters(const RobotParameters& p, std::ostream& out, const std::string& comment) {
   out << "<?xml version=\"1.0\"?>\n<!-- " << XmlCommentBody(comment) << " -->\n<robot";
   size_t column = 6;  // attributes wrapped within 100 columns, continued under the first
-  for (const auto& [key, value] : RobotParameterTable().Values(p)) {
+  for (const auto& [key, value] : RobotParameterTable(p.kind).Values(p)) {
     const std::string attribute = key + "=\"" + value + "\"";
     if (column > 6 && column + 1 + attribute.size() > 100) {
       out << "\n      ";

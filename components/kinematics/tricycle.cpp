@@ -10,7 +10,10 @@ geometry::Pose2D Advance(const geometry::Pose2D& pose, double wheel_angle, doubl
   const double s = wheel_angle * wheel_radius;  // front wheel path length
   const double ds = s * std::cos(steering);     // reference point travel (EQ 46)
   const double dtheta = s * std::sin(steering) / axle_distance;
-  // Exact integration along the arc (EQ 47 with constant v and omega).
+  return AdvanceArc(pose, ds, dtheta);
+}
+
+geometry::Pose2D AdvanceArc(const geometry::Pose2D& pose, double ds, double dtheta) {
   double fx, fy;
   if (std::abs(dtheta) < 1e-9) {
     fx = ds * (1.0 - dtheta * dtheta / 6.0);
@@ -22,6 +25,11 @@ geometry::Pose2D Advance(const geometry::Pose2D& pose, double wheel_angle, doubl
   const double c = std::cos(pose.theta), sn = std::sin(pose.theta);
   return {pose.x + c * fx - sn * fy, pose.y + sn * fx + c * fy,
           geometry::WrapAngle(pose.theta + dtheta)};
+}
+
+geometry::Pose2D AdvanceDifferential(const geometry::Pose2D& pose, double left_m, double right_m,
+                                     double separation) {
+  return AdvanceArc(pose, 0.5 * (left_m + right_m), (right_m - left_m) / separation);
 }
 
 DeadReckoning::DeadReckoning(const RobotParameters& parameters, const geometry::Pose2D& start)
@@ -36,6 +44,24 @@ void DeadReckoning::Add(uint64_t traction_ticks, double steering_ticks) {
     distance_ += std::abs(wheel * parameters_.wheel_radius);
   }
   last_ticks_ = traction_ticks;
+}
+
+}  // namespace structloc::kinematics
+
+namespace structloc::kinematics {
+
+void DeadReckoning::AddWheels(uint64_t left_ticks, uint64_t right_ticks) {
+  if (last_ticks_) {
+    const double left = parameters_.WheelAngle(parameters_.TickDelta(*last_ticks_, left_ticks)) *
+                        parameters_.left_wheel_radius;
+    const double right =
+        parameters_.WheelAngle(parameters_.TickDelta(last_right_ticks_, right_ticks)) *
+        parameters_.right_wheel_radius;
+    pose_ = AdvanceDifferential(pose_, left, right, parameters_.wheel_separation);
+    distance_ += std::abs(0.5 * (left + right));
+  }
+  last_ticks_ = left_ticks;
+  last_right_ticks_ = right_ticks;
 }
 
 }  // namespace structloc::kinematics

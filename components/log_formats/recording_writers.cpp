@@ -77,10 +77,15 @@ void TumWriter::Close() {
 }
 
 EncodersCsvWriter::EncodersCsvWriter(const std::string& path,
-                                     const std::vector<std::string>& inputs)
+                                     const std::vector<std::string>& inputs, bool differential)
     : file_(path, inputs), out_(file_.Stream()) {
   out_ << std::setprecision(9);
-  out_ << "t,traction_ticks,steering_ticks\n";
+  out_ << (differential ? "t,left_ticks,right_ticks\n" : "t,traction_ticks,steering_ticks\n");
+}
+
+void EncodersCsvWriter::SampleWheels(double t, uint64_t left, uint64_t right) {
+  out_ << std::fixed << std::setprecision(6) << t << "," << left << "," << right << "\n";
+  Check(out_, file_.Path());
 }
 
 void EncodersCsvWriter::Sample(double t, uint64_t traction, int64_t steering) {

@@ -14,7 +14,15 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
   std::filesystem::create_directories(out_dir);
   log_formats::CarmenWriter clf(out_dir + "/run.clf");
   log_formats::TumWriter truth(out_dir + "/truth.tum");
-  log_formats::EncodersCsvWriter encoders(out_dir + "/encoders.csv");
+  const bool differential = scenario.nominal.kind == kinematics::DriveKind::kDifferential;
+  log_formats::EncodersCsvWriter encoders(out_dir + "/encoders.csv", {}, differential);
+  const auto sample = [&](const SimState& s) {
+    if (differential) {
+      encoders.SampleWheels(s.time, s.left_ticks, s.right_ticks);
+    } else {
+      encoders.Sample(s.time, s.traction_ticks, s.steering_ticks);
+    }
+  };
   clf.Comment("scenario " + scenario.name + ", seed " + std::to_string(scenario.seed));
   Simulation sim(scenario);
   // ROBOTLASER1 lines carry no beam timing: this PARAM lets our replay de-skew.
@@ -24,13 +32,13 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
       std::max(1, static_cast<int>(std::lround(1.0 / (scenario.odom_rate_hz * scenario.step_s))));
   // The state at t = 0, so that the first scan (stamped 0) has odometry at its time.
   clf.Odometry(0.0, sim.State().odometry, 0.0, 0.0);
-  encoders.Sample(0.0, sim.State().traction_ticks, sim.State().steering_ticks);
+  sample(sim.State());
   bool first_scan = true;
   for (long step = 1; !sim.Finished(); ++step) {
     const SimState& s = sim.Step();
     if (step % odom_every == 0) {
       clf.Odometry(s.time, s.odometry, s.odom_linear, s.odom_angular);
-      encoders.Sample(s.time, s.traction_ticks, s.steering_ticks);
+      sample(s);
       ++summary.odometry_lines;
     }
     if (auto scan = sim.TakeScan()) {

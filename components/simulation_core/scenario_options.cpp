@@ -40,16 +40,29 @@ OptionTable<TrueRobotErrors> TrueRobotAttributes(int traction_counter_bits) {
   const int bits = std::min(traction_counter_bits, 52);
   OptionTable<T> t("true_robot", "how the real robot differs from the nominal robot file");
   t.Number("wheel_radius_scale", &T::wheel_radius_scale, Range::Positive(), "",
-           "true wheel radius = nominal * scale");
+           "tricycle: true wheel radius = nominal * scale")
+      .Optional();
   t.Number("axle_distance_scale", &T::axle_distance_scale, Range::Positive(), "",
-           "true axle distance = nominal * scale");
+           "tricycle: true axle distance = nominal * scale")
+      .Optional();
   t.Number("steering_offset_rad", &T::steering_offset_rad, Range::Any(), "rad",
-           "added to the nominal steering offset");
+           "tricycle: added to the nominal steering offset")
+      .Optional();
   t.Number("wheel_slip_std", &T::wheel_slip_std, Range::NonNegative(), "",
            "relative wheel slip per 10 ms step (standard deviation)");
   t.Number("traction_start_tick", &T::traction_start_tick,
            Range::Closed(0, static_cast<double>((int64_t{1} << bits) - 1)), "",
-           "initial traction counter (tests the wrap); up to 2^min(counter bits, 52) - 1");
+           "initial traction counter, or both wheel counters of a differential drive (tests "
+           "the wrap); up to 2^min(counter bits, 52) - 1");
+  t.Number("left_wheel_radius_scale", &T::left_wheel_radius_scale, Range::Positive(), "",
+           "differential drive: true left wheel radius = nominal * scale")
+      .Optional();
+  t.Number("right_wheel_radius_scale", &T::right_wheel_radius_scale, Range::Positive(), "",
+           "differential drive: true right wheel radius = nominal * scale")
+      .Optional();
+  t.Number("wheel_separation_scale", &T::wheel_separation_scale, Range::Positive(), "",
+           "differential drive: true wheel separation = nominal * scale")
+      .Optional();
   return t;
 }
 

@@ -61,6 +61,9 @@ kinematics::RobotParameters Scenario::TrueParameters() const {
   p.wheel_radius *= errors.wheel_radius_scale;
   p.axle_distance *= errors.axle_distance_scale;
   p.steering_offset += errors.steering_offset_rad;
+  p.left_wheel_radius *= errors.left_wheel_radius_scale;
+  p.right_wheel_radius *= errors.right_wheel_radius_scale;
+  p.wheel_separation *= errors.wheel_separation_scale;
   return p;
 }
 

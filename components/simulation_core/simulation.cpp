@@ -52,7 +52,13 @@ Simulation::Simulation(const Scenario& scenario)
   state_.traction_ticks =
       static_cast<uint64_t>(static_cast<int64_t>(std::floor(wheel_ticks_))) & mask;
   state_.steering_ticks = static_cast<int64_t>(std::llround(scenario.nominal.steering_zero_tick));
-  dead_reckoning_.Add(state_.traction_ticks, static_cast<double>(state_.steering_ticks));
+  left_wheel_ticks_ = right_wheel_ticks_ = wheel_ticks_;
+  state_.left_ticks = state_.right_ticks = state_.traction_ticks;
+  if (scenario.nominal.kind == kinematics::DriveKind::kDifferential) {
+    dead_reckoning_.AddWheels(state_.left_ticks, state_.right_ticks);
+  } else {
+    dead_reckoning_.Add(state_.traction_ticks, static_cast<double>(state_.steering_ticks));
+  }
   last_truth_ = state_.truth;
   const auto& l = scenario.laser;
   const bool full = l.field_of_view_rad >= 2 * geometry::kPi - 1e-9;
@@ -165,6 +171,10 @@ const SimState& Simulation::Step() {
   last_truth_ = state_.truth;
   last_odometry_ = state_.odometry;
   last_step_time_ = state_.time;
+  if (scenario_.nominal.kind == kinematics::DriveKind::kDifferential) {
+    StepDifferential(wheel_angle, steering_cmd, slip_factor);
+    return state_;
+  }
   state_.truth = kinematics::Advance(state_.truth, wheel_angle * slip_factor, steering_true,
                                      true_params_.wheel_radius, true_params_.axle_distance);
   state_.time += dt;
@@ -186,6 +196,39 @@ const SimState& Simulation::Step() {
   state_.odom_angular = delta.theta / dt;
   CastBeams(last_truth_, state_.truth, last_step_time_, state_.time);
   return state_;
+}
+
+void Simulation::StepDifferential(double wheel_angle, double steering, double slip_factor) {
+  const double dt = scenario_.step_s;
+  // The control law's motion (its virtual tricycle has the default geometry).
+  const kinematics::RobotParameters law;
+  const double path = wheel_angle * law.wheel_radius;
+  const double ds = path * std::cos(steering),
+               dtheta = path * std::sin(steering) / law.axle_distance;
+  // Wheel angles commanded with the nominal parameters; the true ones move the robot.
+  const auto& nominal = scenario_.nominal;
+  const double left_angle =
+      (ds - 0.5 * dtheta * nominal.wheel_separation) / nominal.left_wheel_radius;
+  const double right_angle =
+      (ds + 0.5 * dtheta * nominal.wheel_separation) / nominal.right_wheel_radius;
+  state_.truth = kinematics::AdvanceDifferential(
+      state_.truth, left_angle * true_params_.left_wheel_radius * slip_factor,
+      right_angle * true_params_.right_wheel_radius * slip_factor, true_params_.wheel_separation);
+  state_.time += dt;
+  const double ticks_per_rad = nominal.traction_ticks_per_rev / (2 * geometry::kPi);
+  left_wheel_ticks_ += left_angle * ticks_per_rad;
+  right_wheel_ticks_ += right_angle * ticks_per_rad;
+  const uint64_t mask = (uint64_t{1} << nominal.traction_counter_bits) - 1;
+  state_.left_ticks =
+      static_cast<uint64_t>(static_cast<int64_t>(std::floor(left_wheel_ticks_))) & mask;
+  state_.right_ticks =
+      static_cast<uint64_t>(static_cast<int64_t>(std::floor(right_wheel_ticks_))) & mask;
+  dead_reckoning_.AddWheels(state_.left_ticks, state_.right_ticks);
+  state_.odometry = dead_reckoning_.Pose();
+  const geometry::Pose2D delta = geometry::Between(last_odometry_, state_.odometry);
+  state_.odom_linear = delta.x / dt;
+  state_.odom_angular = delta.theta / dt;
+  CastBeams(last_truth_, state_.truth, last_step_time_, state_.time);
 }
 
 void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0,

@@ -62,8 +62,14 @@ structloc_msgs::msg::WheelEncoders ToWheelEncoders(const simulation_core::SimSta
   structloc_msgs::msg::WheelEncoders msg;
   msg.header().stamp(dds_common::ToRosTime(offset + s.time));
   msg.header().frame_id(frames.base_link);
-  msg.traction_ticks(static_cast<uint32_t>(s.traction_ticks));
   msg.traction_counter_bits(static_cast<uint8_t>(nominal.traction_counter_bits));
+  if (nominal.kind == kinematics::DriveKind::kDifferential) {
+    msg.differential(true);
+    msg.left_ticks(static_cast<uint32_t>(s.left_ticks));
+    msg.right_ticks(static_cast<uint32_t>(s.right_ticks));
+    return msg;
+  }
+  msg.traction_ticks(static_cast<uint32_t>(s.traction_ticks));
   msg.steering_ticks(static_cast<int32_t>(s.steering_ticks));
   msg.traction_angle_increment_rad(
       nominal.WheelAngle(nominal.TickDelta(previous_ticks, s.traction_ticks)));

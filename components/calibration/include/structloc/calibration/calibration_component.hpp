@@ -8,11 +8,15 @@
 // stream are detected and reported, never silently bridged); this component
 // converts and moves messages around it. A failed estimate of a
 // complete recording, or a result that cannot be written, makes the process
-// exit non-zero.
+// exit non-zero. Online (--window-s): the DDS-free
+// calibration_core::OnlineCalibration re-estimates over a sliding window every
+// period and each estimate is published with its covariance and the
+// parameters flagged as changed (also a WARN on rt/diagnostics).
 #pragma once
 
 #include <atomic>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +25,7 @@
 #include "structloc/calibration_core/calibration_data.hpp"
 #include "structloc/calibration_core/calibration_recorder.hpp"
 #include "structloc/calibration_core/odometry_calibration.hpp"
+#include "structloc/calibration_core/online_calibration.hpp"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
@@ -32,6 +37,9 @@ struct CalibrationComponentOptions {
   std::string robot_path;  // the nominal robot file: never overwritten
   calibration_core::CalibrationOptions calibration;
   double record_s = 60.0;  // recording length in stamp time; 0 = until stopped
+  // Online re-estimation over a sliding window (window_s > 0; record_s is then unused).
+  bool online = false;
+  calibration_core::OnlineCalibrationOptions online_options;
   std::string fix_topic = dds_common::topics::kPose.name;
   std::string out_dir;  // encoders.csv, fixes.csv, calibrated.xml ("" = none)
   bool exit_when_done = false;
@@ -55,6 +63,10 @@ class CalibrationComponent : public dds_common::Component {
   bool Done() const override { return options_.exit_when_done && estimated_; }
 
  private:
+  // Takes an encoder sample of the robot file's drive kind and counter width;
+  // counts and refuses any other.
+  void AddEncoders(const structloc_msgs::msg::WheelEncoders& m);
+  void EstimateOnline();
   // `stopped_early`: the recording was cut short by a stop before --record-s.
   void Estimate(bool stopped_early);
   // Writes the recording and, for a successful estimate, calibrated.xml into
@@ -67,8 +79,11 @@ class CalibrationComponent : public dds_common::Component {
   CalibrationComponentOptions options_;
   dds_common::TopicWriter<structloc_msgs::msg::CalibrationResultPubSubType> result_;
   dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
-  std::mutex mutex_;  // guards the three below
+  std::mutex mutex_;  // guards the members up to failure_
   calibration_core::CalibrationRecorder recorder_;
+  std::optional<calibration_core::OnlineCalibration> online_;  // online mode only
+  size_t encoders_wrong_kind_ = 0;    // of another drive kind or counter width than the robot file
+  std::vector<std::string> changed_;  // the newest online estimate's flagged changes
   std::string outcome_;
   std::string failure_;  // why the run produced no usable result ("" = it did)
   std::atomic<bool> estimated_{false};

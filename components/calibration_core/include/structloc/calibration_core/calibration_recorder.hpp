@@ -49,6 +49,11 @@ class CalibrationRecorder {
 
   // Ends the recording (later samples are ignored) and returns it.
   Recording Finish();
+  // What was recorded so far (the recording goes on).
+  const Recording& Current() const { return recording_; }
+  // Drops the samples stamped before `t` (a sliding window); the counts of
+  // refused samples and gaps stay.
+  void ForgetBefore(double t);
   bool Finished() const { return finished_; }
   RecorderStats Stats() const;
 

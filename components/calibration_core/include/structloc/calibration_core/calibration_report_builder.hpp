@@ -15,13 +15,12 @@
 
 namespace structloc::calibration_core {
 
-// Covariance of the parameters from the Jacobian of the whitened residuals at
-// the solution and the Huber weights: the inverse of the weighted normal
-// matrix (directions it does not constrain get a huge variance), scaled up by
-// the cost per degree of freedom when the residuals are larger than whitening
-// expects.
-Eigen::MatrixXd RobustCovariance(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& weights,
-                                 double cost);
+// Covariance of the parameters from their marginal information (the Huber-
+// weighted normal matrix with the poses eliminated): its inverse (directions
+// it does not constrain get a huge variance), scaled up by the cost per degree
+// of freedom when the residuals are larger than whitening expects.
+Eigen::MatrixXd CovarianceFromInformation(const Eigen::MatrixXd& information, double cost,
+                                          double degrees_of_freedom);
 
 // Correlation coefficients from a covariance matrix.
 Eigen::MatrixXd Correlation(const Eigen::MatrixXd& covariance);

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "structloc/calibration_core/batch_solver.hpp"
 #include "structloc/calibration_core/calibration_problem.hpp"
-#include "structloc/calibration_core/levenberg_marquardt.hpp"
 
 namespace structloc::calibration_core {
 
@@ -21,7 +21,7 @@ struct ParameterFit {
   ParameterValues values{};              // every parameter; nominal where not active
   ParameterValues standard_deviation{};  // 0 where not active
   Eigen::MatrixXd covariance;            // among the active parameters, in order
-  LevenbergMarquardtResult solution;     // residuals, weights and iterations of the solver
+  BatchSolution solution;                // poses, residuals, weights and iterations of the solver
 };
 
 // Estimates the parameters marked in the mask (at least one is).

@@ -1,15 +1,17 @@
-// Odometry calibration (thesis 6.5.4, done properly): re-run the
-// tricycle dead reckoning (EQ 46-48) from recorded encoder values for
-// candidate parameters and find those that best explain the relative motion
-// between consecutive position fixes (so one bad fix cannot poison the rest):
-// Levenberg-Marquardt on weighted residuals (fix covariances, or default
-// sigmas), Huber-robust against outlier fixes. Parameters: wheel radius, axle
-// distance, steering offset, optionally the steering gain (rad per tick) and
-// the fix sensor's mounting pose. Reports standard deviations, correlations,
-// residual RMS before and after, and refuses to give a number for a parameter
-// the trajectory cannot determine. DDS-free. Its parts: calibration_problem
-// (intervals and residuals), levenberg_marquardt (the solver),
-// observability_pruning and calibration_report_builder.
+// Odometry calibration (thesis 6.5.4, using every fix): re-run the tricycle
+// dead reckoning (EQ 46-48) from recorded encoder values for candidate
+// parameters inside one batch least-squares problem over the robot's pose at
+// every fix time and the parameters: each fix measures its pose, the encoder
+// motion between consecutive fixes links neighbouring poses with a process
+// noise growing with the distance driven. Sparse robust Levenberg-Marquardt
+// (Huber on every fix and interval, so one bad fix cannot poison the rest).
+// Parameters: wheel radius, axle distance, steering offset, optionally the
+// steering gain (rad per tick) and the fix sensor's mounting pose. Reports
+// standard deviations, correlations, what the trajectory's information does
+// and does not determine, and refuses to give a number for a parameter the
+// trajectory cannot determine. DDS-free. Its parts: calibration_problem (the
+// batch problem), batch_solver, observability_pruning, information_statement
+// and calibration_report_builder.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,24 +32,45 @@ enum Parameter {
   kSensorX,
   kSensorY,
   kSensorTheta,
+  kLeftWheelRadius,  // differential drive
+  kRightWheelRadius,
+  kWheelSeparation,
   kParameterCount
 };
 const char* ParameterName(Parameter p);
 const char* ParameterUnit(Parameter p);
+// Whether `p` is a parameter of a robot of `kind` (the sensor mounting is of both).
+bool AppliesTo(Parameter p, kinematics::DriveKind kind);
+// The parameters estimated unless the user says otherwise: wheel radius, axle
+// distance and steering offset of a tricycle; both wheel radii and the wheel
+// separation of a differential drive (the UMBmark parameters).
+std::array<bool, kParameterCount> DefaultEstimate(kinematics::DriveKind kind);
 
 struct CalibrationOptions {
-  // Which parameters to estimate (the rest stay at their nominal values).
-  std::array<bool, kParameterCount> estimate{true, true, true, false, false, false, false};
+  // Which parameters to estimate (the rest stay at their nominal values); only
+  // parameters of the robot's drive kind (default: the tricycle's three; see
+  // DefaultEstimate).
+  std::array<bool, kParameterCount> estimate{true,  true,  true,  false, false,
+                                             false, false, false, false, false};
   double default_sigma_xy_m = 0.01;  // fix noise when fixes.csv has no variances
   double default_sigma_theta_rad = 0.01;
-  double min_fix_travel_m = 0.2;  // consecutive used fixes at least this far apart...
-  double min_fix_turn_rad = 0.1;  // ... or this much turned
-  double huber_k = 3.0;           // robust loss threshold, in standard deviations
+  // The coarse start (relative motion between fixes, poses held at the
+  // fixes) uses fixes at least this far apart or this much turned.
+  double min_fix_travel_m = 0.2;
+  double min_fix_turn_rad = 0.1;
+  // Process noise of the encoder motion between fixes, per metre the wheel
+  // rolls: wheel slip stretches or shrinks each arc (variance of the distance
+  // error, m^2 per m), heading noise turns it (rad^2 per m). The tick
+  // quantisation at both ends of an interval is added from the robot file.
+  double slip_variance_m2_per_m = 1e-6;
+  double heading_variance_rad2_per_m = 1e-6;
+  double huber_k = 3.0;  // robust loss threshold, in standard deviations
   int max_iterations = 50;
   double max_encoder_gap_s = 0.5;  // intervals across longer encoder gaps are skipped
   // A parameter whose standard deviation exceeds this (in its unit) is "not
   // observable" from the trajectory: reported as such and kept at nominal.
-  std::array<double, kParameterCount> max_std{0.002, 0.02, 0.0175, 0.00005, 0.1, 0.1, 0.05};
+  std::array<double, kParameterCount> max_std{0.002, 0.02, 0.0175, 0.00005, 0.1,
+                                              0.1,   0.05, 0.002,  0.002,   0.02};
   // The estimate fails when more than this fraction of the fix intervals are
   // outliers (the model does not explain the data)...
   double max_outlier_fraction = 0.5;
@@ -55,6 +78,9 @@ struct CalibrationOptions {
   // this times the nominal parameters' (1 = it must not be worse; equal is a
   // robot that was calibrated already).
   double max_dead_reckoning_ratio = 1.0;
+  // ... by more than this fraction (re-calibrating a calibrated robot moves
+  // its parameters within their uncertainty, and its open-loop drift with them).
+  double dead_reckoning_tolerance = 0.02;
   // ... or when, with the nominal parameters, one encoder step moves the wheel
   // faster than this (over at least 0.05 s): a counter that wraps at fewer
   // bits than traction_counter_bits, wrong ticks per revolution, a corrupt row.
@@ -67,10 +93,13 @@ struct CalibrationReport {
   kinematics::RobotParameters parameters;  // calibrated (nominal where not estimated)
   std::array<double, kParameterCount> standard_deviation{};  // 0 where not estimated
   std::array<bool, kParameterCount> estimated{};
+  Eigen::MatrixXd covariance;        // of the estimated parameters, in Parameter order
   Eigen::MatrixXd correlation;       // among the estimated parameters, in order
   double residual_rms_before = 0.0;  // weighted (unitless), nominal parameters
   double residual_rms_after = 0.0;
-  size_t intervals_used = 0;
+  size_t fixes_used = 0;              // inside the encoder recording
+  size_t fixes_downweighted = 0;      // outliers (robust weight < 0.5)
+  size_t intervals_used = 0;          // encoder motion between consecutive fixes
   size_t intervals_downweighted = 0;  // outliers (robust weight < 0.5)
   size_t intervals_skipped = 0;       // across encoder gaps or outside the encoder span
   size_t encoder_gaps = 0;
@@ -79,6 +108,9 @@ struct CalibrationReport {
   // the estimate failed before it was checked.
   double dead_reckoning_rms_nominal = 0.0;
   double dead_reckoning_rms_calibrated = 0.0;
+  // What the trajectory determines: the estimated parameters' information
+  // in words (best and least determined combinations).
+  std::vector<std::string> observability;
   std::vector<std::string> warnings;
   // True only for a usable estimate: plausible encoder steps, at least one
   // parameter estimated, finite residuals, at most max_outlier_fraction
@@ -101,6 +133,17 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
                             const std::vector<Fix>& fixes,
                             const kinematics::RobotParameters& nominal,
                             const CalibrationOptions& options);
+
+// The Cramer-Rao bound of the calibration model: the covariance of the
+// parameters marked in `estimate` (in Parameter order) that no unbiased
+// estimator can beat, from the information of every fix and fix interval at
+// the true poses (the base pose at each fix time inside the encoder
+// recording, as many as CalibrationProblem keeps) and true parameters.
+Eigen::MatrixXd CramerRaoCovariance(const std::vector<EncoderSample>& encoders,
+                                    const std::vector<Fix>& fixes,
+                                    const std::vector<geometry::Pose2D>& true_poses,
+                                    const kinematics::RobotParameters& truth,
+                                    const CalibrationOptions& options);
 
 // Open-loop dead reckoning of the fix sensor over the fixes inside the encoder
 // recording, started at the first of them: RMS position error against those

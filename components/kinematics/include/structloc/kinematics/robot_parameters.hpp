@@ -1,14 +1,21 @@
-// The tricycle robot's odometry parameters (SI units, radians), as read from a
-// robot parameter file shared by the simulator's odometry, the localisation and
-// the calibration:
-//   <robot wheel_radius="0.185" axle_distance="0.62" steering_offset="0"
+// The robot's odometry parameters (SI units, radians), as read from a robot
+// parameter file shared by the simulator's odometry, the localisation and the
+// calibration. Two kinds of drive:
+//   <robot [kind="tricycle"] wheel_radius="0.185" axle_distance="0.62" steering_offset="0"
 //          traction_ticks_per_rev="4096" traction_counter_bits="32"
 //          steering_rad_per_tick="0.000767" steering_zero_tick="0"
 //          [sensor_x="0" sensor_y="0" sensor_theta="0"]/>
-// The reference point is the middle of the rear axle. steering angle =
+//   <robot kind="differential" left_wheel_radius="0.1" right_wheel_radius="0.1"
+//          wheel_separation="0.5" ticks_per_rev="4096" counter_bits="32"
+//          [sensor_x="0" sensor_y="0" sensor_theta="0"]/>
+// A file without `kind` is a tricycle. Tricycle: the reference point is the
+// middle of the rear axle. steering angle =
 // (steering_ticks - steering_zero_tick) * steering_rad_per_tick + steering_offset;
 // traction wheel angle increment = (tick difference modulo 2^bits) * 2 pi /
 // traction_ticks_per_rev; distance = wheel_radius * wheel angle (EQ 46).
+// Differential drive: the reference point is the middle of the wheel axle;
+// each wheel's counter increases when it rolls forward, wraps at 2^counter_bits
+// and turns ticks_per_rev per revolution (the traction_* members hold them).
 // sensor_* is the pose on the robot of the sensor whose position fixes the
 // calibration uses (default: the reference point itself).
 // Values outside the plausibility bounds below are refused: they are typing or
@@ -38,7 +45,10 @@ inline constexpr double kMaxSteeringZeroTick = 1e15;  // |steering_zero_tick|, e
 inline constexpr int kMinCounterBits = 8;             // traction_counter_bits
 inline constexpr int kMaxCounterBits = 63;
 
+enum class DriveKind { kTricycle, kDifferential };
+
 struct RobotParameters {
+  DriveKind kind = DriveKind::kTricycle;
   double wheel_radius = 0.185;   // m, traction (front) wheel
   double axle_distance = 0.62;   // m, front wheel axis to rear axle
   double steering_offset = 0.0;  // rad
@@ -46,7 +56,10 @@ struct RobotParameters {
   int traction_counter_bits = 32;  // counter wraps at 2^bits
   double steering_rad_per_tick = 0.000767;
   double steering_zero_tick = 0;
-  geometry::Pose2D sensor;  // fix sensor on the robot
+  geometry::Pose2D sensor;          // fix sensor on the robot
+  double left_wheel_radius = 0.1;   // m, differential drive only
+  double right_wheel_radius = 0.1;  // m
+  double wheel_separation = 0.5;    // m, between the wheels' contact points
 
   // Throws std::invalid_argument naming the broken parameter.
   void Validate() const;
@@ -64,9 +77,9 @@ struct RobotParameters {
   }
 };
 
-// The one declaration of the <robot> element's keys. Out-of-range values read
+// The one declaration of the <robot> element's keys of each kind. Out-of-range values read
 // "robot: KEY = VALUE is implausible; it must be ...".
-config::OptionTable<RobotParameters> RobotParameterTable();
+config::OptionTable<RobotParameters> RobotParameterTable(DriveKind kind = DriveKind::kTricycle);
 // Lists every key: default, unit, valid values, meaning.
 void PrintRobotParameters(std::ostream& out);
 

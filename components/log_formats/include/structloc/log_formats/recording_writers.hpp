@@ -65,8 +65,11 @@ class TumWriter {
 // encoders.csv: t,traction_ticks,steering_ticks
 class EncodersCsvWriter {
  public:
-  explicit EncodersCsvWriter(const std::string& path, const std::vector<std::string>& inputs = {});
+  // `differential`: the header is t,left_ticks,right_ticks (SampleWheels).
+  explicit EncodersCsvWriter(const std::string& path, const std::vector<std::string>& inputs = {},
+                             bool differential = false);
   void Sample(double t, uint64_t traction_ticks, int64_t steering_ticks);
+  void SampleWheels(double t, uint64_t left_ticks, uint64_t right_ticks);
   // Flushes and renames onto the target; throws when anything failed.
   void Flush() { file_.Flush(); }  // to disk, target not yet replaced
   void Close();

@@ -24,6 +24,10 @@ struct TrueRobotErrors {
   double steering_offset_rad = 0.0;  // added to the nominal steering offset
   double wheel_slip_std = 0.0;       // relative, per 10 ms step
   int64_t traction_start_tick = 0;   // initial counter value (test wrap-around)
+  // Differential drive: true left / right radius and separation = nominal * scale.
+  double left_wheel_radius_scale = 1.0;
+  double right_wheel_radius_scale = 1.0;
+  double wheel_separation_scale = 1.0;
 };
 
 struct LaserSpec {

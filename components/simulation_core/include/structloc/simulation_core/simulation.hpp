@@ -36,6 +36,8 @@ struct SimState {
   double odom_angular = 0.0;    // rad/s
   uint64_t traction_ticks = 0;  // raw counter, wrapped at 2^bits
   int64_t steering_ticks = 0;
+  uint64_t left_ticks = 0;  // differential drive: raw wheel counters, wrapped at 2^bits
+  uint64_t right_ticks = 0;
   double steering_true_rad = 0.0;
 };
 
@@ -58,6 +60,9 @@ class Simulation {
 
  private:
   void Control(double* wheel_rate, double* steering);
+  // A differential drive's step: the tricycle control law's motion driven by
+  // two wheels (nominal parameters command them, the true ones move the robot).
+  void StepDifferential(double wheel_angle, double steering, double slip_factor);
   void MovePeople(double t);
   void CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0, double t1);
   float Measure(const world_model::Scene& scene, const geometry::Pose2D& laser_pose, int beam);
@@ -66,7 +71,8 @@ class Simulation {
   kinematics::RobotParameters true_params_;
   SimState state_;
   kinematics::DeadReckoning dead_reckoning_;
-  double wheel_ticks_ = 0.0;   // continuous traction counter
+  double wheel_ticks_ = 0.0;                                 // continuous traction counter
+  double left_wheel_ticks_ = 0.0, right_wheel_ticks_ = 0.0;  // differential drive
   world_model::Scene scene_;   // world + obstacles, then the people at the last step
   size_t static_circles_ = 0;  // circles in scene_ that never move
   std::mt19937 motion_rng_;
