@@ -304,8 +304,9 @@ TEST(BadInputCalibration, M6_ComponentRefusesAnOutDirThatIsNotAFolderAtStartUp) 
 }
 
 // Plays a recording on rt/wheel_encoders and rt/pose (encoders at 20 Hz, all
-// fixes, in stamp order) once the component's readers are matched.
-void Publish(dds_common::Node& node, const Inputs& inputs) {
+// fixes, in stamp order) once the component's readers are matched; with
+// `as_differential`, the encoder samples claim to be a differential drive's.
+void Publish(dds_common::Node& node, const Inputs& inputs, bool as_differential = false) {
   auto encoders = node.CreateWriter<structloc_msgs::msg::WheelEncodersPubSubType>(
       dds_common::topics::kWheelEncoders);
   auto fixes = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
@@ -329,6 +330,11 @@ void Publish(dds_common::Node& node, const Inputs& inputs) {
     m.header().stamp(dds_common::ToRosTime(e.t));
     m.traction_ticks(e.traction_ticks);
     m.steering_ticks(static_cast<int32_t>(e.steering_ticks));
+    if (as_differential) {
+      m.differential(true);
+      m.left_ticks(e.traction_ticks);
+      m.right_ticks(e.traction_ticks);
+    }
     encoders.Write(m);
     std::this_thread::sleep_for(std::chrono::microseconds(500));  // paces the publisher
   }
@@ -381,6 +387,23 @@ TEST(BadInputCalibration, M6_ComponentExitsNonZeroWhenItsResultCannotBeWritten) 
       << component.CapturedOutput();
   EXPECT_TRUE(Contains(component.CapturedOutput(), "the result could not be written"))
       << component.CapturedOutput();
+}
+
+TEST(BadInputCalibration, ComponentRefusesEncodersOfAnotherDriveKindAndKeepsRunning) {
+  const testing::TempDir dir;
+  const auto inputs = Read(dir, Simulate({}));
+  auto component = StartRecordingComponent(dir / "out");
+  ASSERT_TRUE(WaitForRunning(component)) << component.CapturedOutput();
+  dds_common::Node node(testing::TestNodeOptions("recording_player", kComponentDomain));
+  Publish(node, inputs, true);
+  EXPECT_TRUE(testing::WaitUntil([&] {
+    return Contains(component.CapturedOutput(),
+                    "refusing wheel encoders of a differential drive with 0-bit counters: the "
+                    "robot file");
+  })) << component.CapturedOutput();
+  EXPECT_FALSE(component.WaitExit(std::chrono::seconds(1)).has_value())
+      << "the component stopped: " << component.CapturedOutput();
+  EXPECT_FALSE(Contains(component.CapturedOutput(), "calibration: estimated"));
 }
 
 TEST(BadInputCalibration, L1_CounterBitsAreRangeCheckedBeforeNarrowing) {

@@ -130,8 +130,10 @@ CalibrationComponent::CalibrationComponent(dds_common::Node& node,
 
 void CalibrationComponent::AddEncoders(const structloc_msgs::msg::WheelEncoders& m) {
   const bool differential = options_.nominal.kind == kinematics::DriveKind::kDifferential;
+  // A counter width of 0 is a publisher that does not say: the robot file decides.
   const bool fits = m.differential() == differential &&
-                    m.traction_counter_bits() == options_.nominal.traction_counter_bits;
+                    (m.traction_counter_bits() == 0 ||
+                     m.traction_counter_bits() == options_.nominal.traction_counter_bits);
   const auto sample = FromWheelEncoders(m);
   std::lock_guard<std::mutex> lock(mutex_);
   if (!fits) {

@@ -43,8 +43,16 @@ double Cost(const Eigen::VectorXd& residuals, const Eigen::VectorXd& weights) {
 Eigen::SparseMatrix<double> Weighted(const Eigen::SparseMatrix<double>& jacobian,
                                      const Eigen::VectorXd& weights, bool hold_poses,
                                      Eigen::Index parameters) {
-  Eigen::SparseMatrix<double> j = weights.cwiseSqrt().asDiagonal() * jacobian;
-  if (hold_poses) return j.rightCols(parameters);
+  // Row scaling in place: Eigen's diagonal-times-sparse product into a
+  // column-major matrix moves the stored entries once per row (quadratic).
+  Eigen::SparseMatrix<double> j =
+      hold_poses ? Eigen::SparseMatrix<double>(jacobian.rightCols(parameters)) : jacobian;
+  const Eigen::VectorXd scale = weights.cwiseSqrt();
+  for (Eigen::Index c = 0; c < j.outerSize(); ++c) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(j, c); it; ++it) {
+      it.valueRef() *= scale(it.row());
+    }
+  }
   return j;
 }
 
@@ -60,6 +68,7 @@ BatchSolution SolveBatch(const CalibrationProblem& problem, const CalibrationSta
   s.cost = Cost(s.residuals, s.weights);
   double lambda = 1e-4;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::Index analysed_nonzeros = -1;
   const auto m = static_cast<Eigen::Index>(active.size());
   const Eigen::Index poses = static_cast<Eigen::Index>(3 * problem.FixCount());
   int it = 0;
@@ -69,14 +78,20 @@ BatchSolution SolveBatch(const CalibrationProblem& problem, const CalibrationSta
     const Eigen::VectorXd rw = s.weights.cwiseSqrt().cwiseProduct(s.residuals);
     const Eigen::SparseMatrix<double> h = j.transpose() * j;
     const Eigen::VectorXd g = j.transpose() * rw;
-    // The damping's diagonal (never empty, so the pattern is the same for every try).
-    Eigen::SparseMatrix<double> damping(h.rows(), h.cols());
-    damping.setIdentity();
-    damping.diagonal() = h.diagonal().cwiseMax(1e-12);
-    ldlt.analyzePattern(h + damping);
+    // Damped in place on the diagonal (every pose and parameter column has
+    // entries, so it is structurally full). The Jacobian's pattern does not
+    // depend on the values, so the fill-reducing ordering is computed once.
+    const Eigen::VectorXd h_diagonal = h.diagonal();
+    const Eigen::VectorXd damping = h_diagonal.cwiseMax(1e-12);
+    Eigen::SparseMatrix<double> damped = h;
+    if (damped.nonZeros() != analysed_nonzeros) {
+      ldlt.analyzePattern(damped);
+      analysed_nonzeros = damped.nonZeros();
+    }
     bool improved = false;
     for (int tries = 0; tries < 10 && !improved; ++tries) {
-      ldlt.factorize(h + lambda * damping);
+      damped.diagonal() = h_diagonal + lambda * damping;
+      ldlt.factorize(damped);
       Eigen::VectorXd delta = -ldlt.solve(g);
       if (options.hold_poses) {
         delta.conservativeResize(poses + m);
@@ -105,6 +120,7 @@ BatchSolution SolveBatch(const CalibrationProblem& problem, const CalibrationSta
     }
     if (!improved) break;
   }
+  s.converged = it < options.max_iterations;
   s.iterations = std::min(it + 1, options.max_iterations);
   s.information = InformationAt(problem, s.state, s.weights, active, options.hold_poses);
   const double unknowns = static_cast<double>(m + (options.hold_poses ? 0 : poses));

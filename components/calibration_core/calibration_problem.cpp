@@ -58,9 +58,7 @@ Eigen::Vector3d FixError(const Fix& fix, const geometry::Pose2D& base,
 void AddBlock(std::vector<Eigen::Triplet<double>>& triplets, Eigen::Index row, Eigen::Index col,
               const Eigen::Matrix3d& block) {
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      if (block(r, c) != 0.0) triplets.emplace_back(row + r, col + c, block(r, c));
-    }
+    for (int c = 0; c < 3; ++c) triplets.emplace_back(row + r, col + c, block(r, c));
   }
 }
 
@@ -207,9 +205,13 @@ geometry::Pose2D CalibrationProblem::Predict(const Link& link, const kinematics:
 }
 
 CalibrationState CalibrationProblem::Initial() const {
+  return AtFixes(ValuesOf(nominal_));
+}
+
+CalibrationState CalibrationProblem::AtFixes(const ParameterValues& values) const {
   CalibrationState state;
-  state.values = ValuesOf(nominal_);
-  const geometry::Pose2D to_base = geometry::Inverse(nominal_.sensor);
+  state.values = values;
+  const geometry::Pose2D to_base = geometry::Inverse(WithValues(nominal_, values).sensor);
   for (const Fix& fix : fixes_) state.poses.push_back(geometry::Compose(fix.pose, to_base));
   return state;
 }
@@ -271,10 +273,12 @@ Eigen::SparseMatrix<double> CalibrationProblem::Jacobian(const CalibrationState&
     plus.values[active[c]] += h;
     minus.values[active[c]] -= h;
     const Eigen::VectorXd column = (Whitened(plus) - Whitened(minus)) / (2 * h);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      if (column(r) != 0.0) {
-        triplets.emplace_back(r, pose_columns + static_cast<Eigen::Index>(c), column(r));
-      }
+    // The fixes depend on the sensor mounting only; every entry that can be
+    // non-zero is stored, even when it is 0 here, so the pattern never changes.
+    const bool mounting =
+        active[c] == kSensorX || active[c] == kSensorY || active[c] == kSensorTheta;
+    for (Eigen::Index r = mounting ? 0 : pose_columns; r < rows; ++r) {
+      triplets.emplace_back(r, pose_columns + static_cast<Eigen::Index>(c), column(r));
     }
   }
   Eigen::SparseMatrix<double> j(rows, pose_columns + static_cast<Eigen::Index>(active.size()));

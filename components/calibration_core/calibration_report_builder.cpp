@@ -52,13 +52,17 @@ void AddFit(CalibrationReport& report, const PrunedFit& pruned,
   const ParameterFit& fit = pruned.fit;
   report.iterations = fit.solution.iterations;
   if (!pruned.AnyEstimated()) return;
+  if (!fit.solution.converged) {
+    report.warnings.push_back("the solver stopped at its limit of " +
+                              std::to_string(fit.solution.iterations) +
+                              " iterations before converging: the estimate may still move");
+  }
   report.parameters = WithValues(nominal, fit.values);
   report.estimated = pruned.estimated;
   report.standard_deviation = fit.standard_deviation;
   report.covariance = fit.covariance;
   report.correlation = Correlation(fit.covariance);
   const Eigen::VectorXd& r = fit.solution.residuals;
-  report.residual_rms_after = Rms(r);
   // Blocks: one per fix, then one per fix interval.
   for (Eigen::Index k = 0; k + 2 < r.size(); k += 3) {
     if (fit.solution.weights(k) >= 0.5) continue;

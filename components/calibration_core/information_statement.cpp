@@ -86,7 +86,12 @@ std::vector<std::string> DescribeInformation(const Eigen::MatrixXd& information,
       const double sb = std::sqrt(std::max(0.0, covariance(b, b)));
       if (!(sa > 0 && sb > 0)) continue;
       const double rho = covariance(a, b) / (sa * sb);
-      if (std::abs(rho) < 0.95) continue;
+      // Steering gain and axle distance both scale the turn rate of small
+      // steering angles (EQ 46): what the data determine of them is always said.
+      const size_t pa = index[static_cast<size_t>(a)], pb = index[static_cast<size_t>(b)];
+      const bool gain_and_axle = (pa == kAxleDistance && pb == kSteeringGain) ||
+                                 (pa == kSteeringGain && pb == kAxleDistance);
+      if (std::abs(rho) < 0.95 && !gain_and_axle) continue;
       lines.push_back(DeterminedPair(index[static_cast<size_t>(a)], index[static_cast<size_t>(b)],
                                      sa, sb, rho, values));
     }

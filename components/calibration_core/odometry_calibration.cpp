@@ -261,13 +261,17 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
                               " gaps in the encoder stream; the fixes on either side are not "
                               "linked across them");
   }
-  // The nominal parameters' best fit: only the poses are free.
-  report.residual_rms_before = Rms(Solve(problem, problem.Initial(), {}, options).residuals);
+  // The residuals reported before and after: the relative motion between
+  // fixes (poses at the fixes), a figure that needs no solve.
+  const CalibrationProblem coarse(encoders, fixes, nominal, options, ProblemScope::kRelativeMotion);
+  const auto relative_rms = [&](const ParameterValues& values) {
+    return Rms(coarse.Whitened(coarse.AtFixes(values)));
+  };
+  report.residual_rms_before = relative_rms(ValuesOf(nominal));
   if (!std::isfinite(report.residual_rms_before)) {
     return Fail(std::move(report), encoders, fixes, nominal,
                 "the residuals with the nominal parameters are not finite");
   }
-  const CalibrationProblem coarse(encoders, fixes, nominal, options, ProblemScope::kRelativeMotion);
   const PrunedFit pruned =
       FitObservableParameters(options.estimate, options.max_std, [&](const ParameterMask& active) {
         return FitActiveParameters({coarse, problem}, options, active);
@@ -277,11 +281,15 @@ CalibrationReport Calibrate(const std::vector<EncoderSample>& encoders,
     return Fail(std::move(report), encoders, fixes, nominal,
                 "no parameter could be estimated from this trajectory");
   }
+  report.residual_rms_after = relative_rms(pruned.fit.values);
   // Stated for every requested parameter, the pruned ones included.
   const std::vector<size_t> requested = Indices(options.estimate);
+  // With the residuals' scale, as the reported deviations (CovarianceFromInformation).
+  const BatchSolution& solution = pruned.fit.solution;
+  const double scale = std::max(1.0, solution.cost / std::max(1.0, solution.degrees_of_freedom));
   report.observability = DescribeInformation(
-      InformationAt(problem, pruned.fit.solution.state, pruned.fit.solution.weights, requested),
-      requested, pruned.fit.values, options.max_std);
+      InformationAt(problem, solution.state, solution.weights, requested) / scale, requested,
+      pruned.fit.values, options.max_std);
   return Judge(std::move(report), encoders, fixes, nominal, options);
 }
 

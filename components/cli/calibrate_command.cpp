@@ -43,8 +43,8 @@ void PrintReport(const calibration_core::CalibrationReport& report,
   }
   if (estimated_any) {
     std::printf(
-        "  weighted residual RMS (poses fitted): %.4g with the nominal parameters, %.4g estimated "
-        "(%d iterations)\n",
+        "  relative motion between fixes, whitened residual RMS: %.4g with the nominal parameters, "
+        "%.4g estimated (%d iterations)\n",
         report.residual_rms_before, report.residual_rms_after, report.iterations);
   } else if (report.intervals_used > 0) {
     std::printf("  weighted residual RMS with the nominal parameters: %.4g\n",

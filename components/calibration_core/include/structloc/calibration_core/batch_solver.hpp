@@ -32,6 +32,7 @@ struct BatchSolution {
   Eigen::VectorXd weights;    // Huber weights, one per residual (equal within a block)
   double cost = 0.0;          // sum of weights * residuals^2
   int iterations = 0;
+  bool converged = false;  // the cost stopped falling before max_iterations
   // Marginal information (inverse covariance, before any scaling) of the
   // active parameters, in the order given, from the Huber-weighted Jacobian.
   Eigen::MatrixXd information;

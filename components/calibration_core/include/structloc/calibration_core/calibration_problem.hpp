@@ -69,6 +69,8 @@ class CalibrationProblem {
 
   // Poses straight from the fixes (through the sensor mounting), nominal parameters.
   CalibrationState Initial() const;
+  // Poses straight from the fixes through the mounting of `values`, and `values`.
+  CalibrationState AtFixes(const ParameterValues& values) const;
   // Whitened residuals: 3 per fix (x, y, theta), then 3 per motion constraint.
   Eigen::VectorXd Whitened(const CalibrationState& state) const;
   // Jacobian of Whitened with respect to the poses (3 columns per fix, in

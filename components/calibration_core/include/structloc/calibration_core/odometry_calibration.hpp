@@ -65,7 +65,7 @@ struct CalibrationOptions {
   double slip_variance_m2_per_m = 1e-6;
   double heading_variance_rad2_per_m = 1e-6;
   double huber_k = 3.0;  // robust loss threshold, in standard deviations
-  int max_iterations = 50;
+  int max_iterations = 200;
   double max_encoder_gap_s = 0.5;  // intervals across longer encoder gaps are skipped
   // A parameter whose standard deviation exceeds this (in its unit) is "not
   // observable" from the trajectory: reported as such and kept at nominal.
@@ -93,9 +93,12 @@ struct CalibrationReport {
   kinematics::RobotParameters parameters;  // calibrated (nominal where not estimated)
   std::array<double, kParameterCount> standard_deviation{};  // 0 where not estimated
   std::array<bool, kParameterCount> estimated{};
-  Eigen::MatrixXd covariance;        // of the estimated parameters, in Parameter order
-  Eigen::MatrixXd correlation;       // among the estimated parameters, in order
-  double residual_rms_before = 0.0;  // weighted (unitless), nominal parameters
+  Eigen::MatrixXd covariance;   // of the estimated parameters, in Parameter order
+  Eigen::MatrixXd correlation;  // among the estimated parameters, in order
+  // RMS of the whitened relative motion between fixes at least
+  // min_fix_travel_m or min_fix_turn_rad apart (each with both fixes' noise),
+  // re-run with the nominal and with the calibrated parameters.
+  double residual_rms_before = 0.0;
   double residual_rms_after = 0.0;
   size_t fixes_used = 0;              // inside the encoder recording
   size_t fixes_downweighted = 0;      // outliers (robust weight < 0.5)
