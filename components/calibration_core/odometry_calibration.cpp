@@ -358,9 +358,15 @@ std::string TrajectoryAdvice() {
          "    turning one way only mixes the offset up with the axle distance;\n"
          "  steering gain: curves at small and at large steering angles;\n"
          "  sensor mounting (x, y, theta): turns on the spot or tight curves, where\n"
-         "    the sensor sweeps around the rear-axle middle.\n"
+         "    the sensor sweeps around the reference point.\n"
+         "Differential drive:\n"
+         "  left and right wheel radius: straight runs fix their mean, turns both\n"
+         "    ways their difference (a robot that only curves one way mixes it up\n"
+         "    with the wheel separation);\n"
+         "  wheel separation: turns in both directions, on the spot or in curves.\n"
          "A figure of eight followed by a straight run there and back makes all of\n"
-         "them observable; a straight line alone says nothing about the axle distance.\n";
+         "them observable; a straight line alone says nothing about the axle distance\n"
+         "or the wheel separation.\n";
 }
 
 }  // namespace structloc::calibration_core
