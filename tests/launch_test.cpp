@@ -10,6 +10,7 @@
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/process/launch_file.hpp"
+#include "temp_dir.hpp"
 #include "test_domains.hpp"
 #include "wait_until.hpp"
 
@@ -102,6 +103,23 @@ TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {
   }
   EXPECT_NE(out.find("on domain " + std::to_string(testing::domains::kLaunch)), std::string::npos)
       << out;
+}
+
+TEST(LaunchFiles, CalibrationLaunchFileEstimatesOnlineAndWritesTheCalibratedRobot) {
+  const testing::TempDir dir;
+  const std::string out = dir / "calibration";
+  process::ChildProcess launch(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+      {"launch", std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/calibration.launch.xml",
+       "domain:=" + std::to_string(testing::domains::kLaunch), "time_scale:=8", "window_s:=30",
+       "every_s:=10", "out_dir:=" + out, "--duration", "10"});
+  const auto code = launch.WaitExit(testing::kGenerousTimeout);
+  const auto output = launch.CapturedOutput();
+  ASSERT_TRUE(code.has_value()) << output;
+  EXPECT_EQ(*code, 0) << output;
+  EXPECT_NE(output.find("calibration: estimated from"), std::string::npos) << output;
+  EXPECT_NE(output.find("window "), std::string::npos) << output;
+  EXPECT_TRUE(std::filesystem::exists(out + "/calibrated.xml")) << output;
 }
 
 }  // namespace
