@@ -33,16 +33,35 @@ bool FullCircle(const VisibilityOptions& o) {
   return o.view_max_rad - o.view_min_rad >= 2.0 * geometry::kPi - 1e-9;
 }
 
-bool InView(const geometry::Pose2D& sensor, const Eigen::Vector2d& p, const VisibilityOptions& o,
-            bool full_circle) {
-  const Eigen::Vector2d d = p - sensor.Translation();
-  const double range = d.norm();
-  if (range < o.min_range_m || range > o.max_range_m) return false;
-  if (full_circle) return true;
-  // Bearing counted counter-clockwise from the first beam, in [0, 2 pi).
-  double offset = geometry::WrapAngle(std::atan2(d.y(), d.x()) - sensor.theta - o.view_min_rad);
-  if (offset < 0.0) offset += 2.0 * geometry::kPi;
-  return offset <= o.view_max_rad - o.view_min_rad;
+// The scanner's field of view in the map frame, for bearing tests without
+// trigonometry: a direction is in view when it lies counter-clockwise from
+// `first` by at most the span, which ends at `last`.
+struct ViewCone {
+  Eigen::Vector2d origin, first, last;
+  bool full_circle = false;
+  bool reflex = false;  // span above pi: the blind wedge from last to first is below pi
+};
+
+ViewCone MakeViewCone(const geometry::Pose2D& sensor, const VisibilityOptions& o) {
+  ViewCone cone;
+  cone.origin = sensor.Translation();
+  cone.full_circle = FullCircle(o);
+  const double a = sensor.theta + o.view_min_rad, b = sensor.theta + o.view_max_rad;
+  cone.first = {std::cos(a), std::sin(a)};
+  cone.last = {std::cos(b), std::sin(b)};
+  cone.reflex = o.view_max_rad - o.view_min_rad > geometry::kPi;
+  return cone;
+}
+
+bool InView(const ViewCone& cone, const Eigen::Vector2d& p, const VisibilityOptions& o) {
+  const Eigen::Vector2d d = p - cone.origin;
+  const double range_sq = d.squaredNorm();
+  if (range_sq < o.min_range_m * o.min_range_m || range_sq > o.max_range_m * o.max_range_m) {
+    return false;
+  }
+  if (cone.full_circle) return true;
+  if (cone.reflex) return !(Cross(cone.last, d) > 0.0 && Cross(d, cone.first) > 0.0);
+  return Cross(cone.first, d) >= 0.0 && Cross(d, cone.last) >= 0.0;
 }
 
 double SquaredDistance(const Eigen::Vector2d& p, const Segment& s) {
@@ -189,7 +208,7 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
   result.cylinders.clear();
   result.near_segments.clear();
   const Eigen::Vector2d origin = sensor.Translation();
-  const bool full_circle = FullCircle(o);
+  const ViewCone cone = MakeViewCone(sensor, o);
   const double cos_max_incidence = std::cos(o.max_incidence_rad);
   // A surface that hides a target within range crosses the range circle.
   const double reach = o.max_range_m + kSelectionSlackM;
@@ -234,7 +253,7 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
     };
     // In range and view, and not seen too obliquely.
     auto facing = [&](const Eigen::Vector2d& p) {
-      return InView(sensor, p, o, full_circle) &&
+      return InView(cone, p, o) &&
              std::abs((p - origin).normalized().dot(normal)) >= cos_max_incidence;
     };
     // The first and last such sample span the triangle any hiding surface crosses.
@@ -269,7 +288,7 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
   }
   for (size_t i = 0; i < world.Corners().size(); ++i) {
     const Eigen::Vector2d p = world.Corners()[i].position;
-    if (InView(sensor, p, o, full_circle) &&
+    if (InView(cone, p, o) &&
         !Hidden(scene, result.near_segments, origin, p, o.occlusion_margin_m)) {
       result.corners.push_back(static_cast<int>(i));
     }
@@ -279,7 +298,7 @@ void ComputeVisibility(const WorldModel& world, const Scene& scene, const geomet
     const Eigen::Vector2d to_centre = c.centre - origin;
     if (to_centre.norm() <= c.radius) continue;
     const Eigen::Vector2d near = c.centre - c.radius * to_centre.normalized();
-    if (InView(sensor, near, o, full_circle) &&
+    if (InView(cone, near, o) &&
         !Hidden(scene, result.near_segments, origin, near, o.occlusion_margin_m)) {
       result.cylinders.push_back(static_cast<int>(i));
     }
