@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "structloc/dds_common/topic_namespace.hpp"
 #include "structloc/process/shutdown_signal.hpp"
 
 namespace structloc::dds_common {
@@ -14,6 +15,9 @@ std::vector<config::OptionSpec> StandardOptions() {
        "Fast DDS QoS profiles file (default: qos/structloc_qos.xml in structloc's data folder)"},
       {"participant-profile", true,
        "participant profile in the QoS file (default structloc_localhost)"},
+      {"namespace", true,
+       "ROS 2 namespace of every topic: rt/X becomes rt/NS/X (e.g. robot1, for several robots on "
+       "one domain; default none)"},
       {"help", false, "print the options and exit"},
   };
 }
@@ -73,7 +77,9 @@ int RunComponent(int argc, char** argv, const std::string& name,
       return 0;
     }
     NodeOptions options;
-    options.name = name;
+    options.ros_namespace = NormaliseNamespace(cli.GetOr("namespace", ""));
+    // Two robots' components differ by namespace, not by kind.
+    options.name = options.ros_namespace.empty() ? name : options.ros_namespace + "/" + name;
     options.domain_id = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
     options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");

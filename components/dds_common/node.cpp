@@ -15,6 +15,7 @@ Node::Node(const NodeOptions& options)
     : options_(options),
       qos_(QosProfiles::Load(options.qos_file)),
       monitor_(std::make_unique<PeerMonitor>(options.name, options.domain_id)) {
+  options_.ros_namespace = NormaliseNamespace(options.ros_namespace);
   if (options.domain_id < 0 || options.domain_id > kMaxDomainId) {
     throw config::ConfigError("domain id " + std::to_string(options.domain_id) + " is outside 0.." +
                               std::to_string(kMaxDomainId) + " (use 0.." +

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   scenario.laser.rate_hz = rate;
   scenario.duration_s = seconds;
   dds_common::NodeOptions options{"latency_feeder", domain, source + "/qos/structloc_qos.xml",
-                                  "structloc_localhost"};
+                                  "structloc_localhost", ""};
   dds_common::Node node(options);
   auto scans = node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan);
   auto odom = node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom);

@@ -24,6 +24,7 @@
 #include "structloc/dds_common/peer_monitor.hpp"
 #include "structloc/dds_common/qos_profiles.hpp"
 #include "structloc/dds_common/subscription.hpp"
+#include "structloc/dds_common/topic_namespace.hpp"
 #include "structloc/dds_common/topics.hpp"
 
 namespace structloc::dds_common {
@@ -33,6 +34,9 @@ struct NodeOptions {
   int domain_id = 0;     // DDS domain, 0..232 (0..101 on Linux, see domain_ports.hpp)
   std::string qos_file;  // Fast DDS profiles XML
   std::string participant_profile = "structloc_localhost";
+  // ROS 2 namespace of every topic this node reads or writes ("" = none;
+  // normalised, see topic_namespace.hpp): rt/scan becomes rt/<ns>/scan.
+  std::string ros_namespace;
 };
 
 // A typed DataWriter handle; Write returns false when DDS refused the sample.
@@ -66,7 +70,8 @@ class Node {
   Node& operator=(const Node&) = delete;
 
   template <class PubSubType>
-  TopicWriter<PubSubType> CreateWriter(const TopicSpec& topic) {
+  TopicWriter<PubSubType> CreateWriter(const TopicSpec& unqualified) {
+    const TopicSpec topic = InNamespace(unqualified, options_.ros_namespace);
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
     auto listener = std::make_unique<WriterListener>(*monitor_, topic.name);
     auto* writer = publisher_->create_datawriter(
@@ -83,7 +88,9 @@ class Node {
   // destroyed first. Exceptions the callback throws are caught and logged.
   template <class PubSubType>
   [[nodiscard]] Subscription Subscribe(
-      const TopicSpec& topic, std::function<void(const typename PubSubType::type&)> callback) {
+      const TopicSpec& unqualified,
+      std::function<void(const typename PubSubType::type&)> callback) {
+    const TopicSpec topic = InNamespace(unqualified, options_.ros_namespace);
     auto* dds_topic = TopicFor<PubSubType>(topic.name);
     auto listener = std::make_shared<CallbackListener<PubSubType>>(
         options_.name, topic.name, *monitor_, callbacks_held_, std::move(callback));
