@@ -52,6 +52,40 @@ TEST(LaunchFiles, OverridesReplaceDefaultsAndUnknownOverridesAreErrors) {
                config::ConfigError);
 }
 
+TEST(LaunchFiles, GroupsScopeLetsAndNamespacesAndConditionsChooseNodes) {
+  const testing::TempDir temp;
+  const std::string path = temp.Write("groups.launch.xml", R"xml(<launch>
+  <arg name="second" default="true"/>
+  <let name="rate" value="5"/>
+  <group>
+    <push-ros-namespace namespace="fleet"/>
+    <let name="rate" value="7"/>
+    <group>
+      <push-ros-namespace namespace="robot1"/>
+      <node pkg="structloc" exec="structloc_simulator" name="sim">
+        <param name="time-scale" value="$(var rate)"/>
+      </node>
+    </group>
+    <node pkg="structloc" exec="structloc_localisation" name="loc" namespace="robot2"
+          if="$(var second)"/>
+    <node pkg="structloc" exec="structloc_localisation" name="skipped" unless="$(var second)"/>
+    <group if="false"><node pkg="structloc" exec="structloc_localisation" name="off"/></group>
+  </group>
+  <node pkg="structloc" exec="structloc_calibration" name="cal">
+    <param name="x" value="$(var rate)"/>
+  </node>
+</launch>)xml");
+  const auto d = process::ReadLaunchFile(path, Context());
+  ASSERT_EQ(d.nodes.size(), 3u);
+  EXPECT_EQ(d.nodes[0].name, "fleet/robot1/sim");
+  EXPECT_EQ(d.nodes[0].arguments,
+            (std::vector<std::string>{"--namespace", "fleet/robot1", "--time-scale", "7"}));
+  EXPECT_EQ(d.nodes[1].name, "fleet/robot2/loc");
+  EXPECT_EQ(d.nodes[1].arguments, (std::vector<std::string>{"--namespace", "fleet/robot2"}));
+  EXPECT_EQ(d.nodes[2].name, "cal");  // the group's let and namespace stayed in the group
+  EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"--x", "5"}));
+}
+
 struct BrokenLaunch {
   const char* tag;
   const char* text;
@@ -85,7 +119,20 @@ INSTANTIATE_TEST_SUITE_P(
                      "has no default"},
         BrokenLaunch{"Malformed", "<launch><node pkg='structloc' exec='x'></launch>",
                      "malformed XML"},
-        BrokenLaunch{"NoNodes", "<launch/>", "launches no <node>"}),
+        BrokenLaunch{"NoNodes", "<launch/>", "launches no <node>"},
+        BrokenLaunch{"ConditionNotABoolean",
+                     "<launch><node pkg='structloc' exec='structloc_simulator' if='maybe'/>"
+                     "</launch>",
+                     "not true, false, 1 or 0"},
+        BrokenLaunch{"NamespaceOutsideAGroup",
+                     "<launch><push-ros-namespace namespace='r1'/>"
+                     "<node pkg='structloc' exec='structloc_simulator'/></launch>",
+                     "unknown element"},
+        BrokenLaunch{"NamespaceTwice",
+                     "<launch><group><push-ros-namespace namespace='r1'/>"
+                     "<node pkg='structloc' exec='structloc_simulator'>"
+                     "<param name='namespace' value='r2'/></node></group></launch>",
+                     "a namespace param inside a pushed namespace"}),
     [](const auto& info) { return std::string(info.param.tag); });
 
 TEST(LaunchFiles, RealLaunchFileRunsTheComponentsAndStopsThemCleanly) {

@@ -102,71 +102,178 @@ void RequireExecutable(const XmlFile& file, const tinyxml2::XMLElement& node,
   }
 }
 
-}  // namespace
+// What a <group> scopes: the variables (<arg>s and <let>s) and the ROS 2
+// namespace pushed so far.
+struct Scope {
+  std::map<std::string, std::string> vars;
+  std::string ros_namespace;
+};
 
-LaunchDescription ReadLaunchFile(const std::string& path, const LaunchContext& context) {
-  const auto file = XmlFile::Load(path);
-  const auto& root = file.Root("launch");
-  config::RequireChildNames(file, root, {"arg", "node"});
-  LaunchDescription description;
-  size_t total_bytes = 0;
-  std::set<std::string> used_overrides;
-  std::set<std::string> node_names;
-  for (const auto* e = root.FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
-    AttributeReader attrs(file, *e);
-    if (std::string(e->Name()) == "arg") {
-      const std::string name = attrs.String("name");
-      auto fallback = attrs.OptionalString("default");
-      attrs.OptionalString("description");
-      attrs.Finish();
-      if (description.arguments.count(name) != 0) {
-        file.Fail(*e, "a second <arg name=\"" + name + "\">; each argument is declared once");
+// The state of one file's reading.
+class LaunchReader {
+ public:
+  LaunchReader(const XmlFile& file, const LaunchContext& context)
+      : file_(file), context_(context) {}
+
+  LaunchDescription Read() {
+    const auto& root = file_.Root("launch");
+    Scope scope;
+    Walk(root, scope, true);
+    for (const auto& [name, value] : context_.overrides) {
+      if (used_overrides_.count(name) == 0) {
+        throw config::ConfigError(file_.Path() + ": no <arg name=\"" + name + "\"> to take " +
+                                  name + ":=" + value);
       }
-      auto override_it = context.overrides.find(name);
-      if (override_it != context.overrides.end()) {
-        description.arguments[name] = override_it->second;
-        used_overrides.insert(name);
-      } else if (fallback) {
-        description.arguments[name] =
-            Substitute(file, *e, *fallback, description.arguments, context, &total_bytes);
-      } else {
-        file.Fail(*e, "argument '" + name + "' has no default; pass " + name + ":=VALUE");
-      }
-      continue;
     }
+    if (description_.nodes.empty()) {
+      throw config::ConfigError(file_.Path() + ": launches no <node>");
+    }
+    return std::move(description_);
+  }
+
+ private:
+  // The children of <launch> (top) or of a <group>, in order.
+  void Walk(const tinyxml2::XMLElement& parent, Scope& scope, bool top) {
+    if (top) {
+      config::RequireChildNames(file_, parent, {"arg", "let", "node", "group"});
+    } else {
+      config::RequireChildNames(file_, parent, {"let", "node", "group", "push-ros-namespace"});
+    }
+    for (const auto* e = parent.FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+      const std::string tag = e->Name();
+      if (tag == "arg") {
+        Argument(*e, scope);
+      } else if (tag == "let") {
+        AttributeReader attrs(file_, *e);
+        const std::string name = attrs.String("name");
+        const std::string value = attrs.String("value");
+        attrs.Finish();
+        scope.vars[name] = Substitute(*e, value, scope);
+      } else if (tag == "push-ros-namespace") {
+        AttributeReader attrs(file_, *e);
+        const std::string pushed = attrs.String("namespace");
+        attrs.Finish();
+        scope.ros_namespace = Join(scope.ros_namespace, Substitute(*e, pushed, scope));
+      } else if (tag == "group") {
+        AttributeReader attrs(file_, *e);
+        const bool active = Condition(*e, attrs, scope);
+        attrs.Finish();
+        Scope inner = scope;  // what the group sets stays in it
+        if (active) Walk(*e, inner, false);
+      } else {
+        Node(*e, scope);
+      }
+    }
+  }
+
+  void Argument(const tinyxml2::XMLElement& e, Scope& scope) {
+    AttributeReader attrs(file_, e);
+    const std::string name = attrs.String("name");
+    auto fallback = attrs.OptionalString("default");
+    attrs.OptionalString("description");
+    attrs.Finish();
+    if (description_.arguments.count(name) != 0) {
+      file_.Fail(e, "a second <arg name=\"" + name + "\">; each argument is declared once");
+    }
+    auto override_it = context_.overrides.find(name);
+    std::string value;
+    if (override_it != context_.overrides.end()) {
+      value = override_it->second;
+      used_overrides_.insert(name);
+    } else if (fallback) {
+      value = Substitute(e, *fallback, scope);
+    } else {
+      file_.Fail(e, "argument '" + name + "' has no default; pass " + name + ":=VALUE");
+    }
+    description_.arguments[name] = value;
+    scope.vars[name] = value;
+  }
+
+  void Node(const tinyxml2::XMLElement& e, const Scope& scope) {
+    AttributeReader attrs(file_, e);
     NodeLaunch node;
     if (attrs.String("pkg") != "structloc") attrs.Fail("pkg must be \"structloc\"");
     const std::string exec = attrs.String("exec");
     if (exec.find('/') != std::string::npos || exec.empty() || exec == "." || exec == "..") {
       attrs.Fail("exec must be a plain executable name, not '" + exec + "'");
     }
-    node.executable = context.executables_dir + "/" + exec;
+    node.executable = context_.executables_dir + "/" + exec;
     node.name = attrs.OptionalString("name").value_or(exec);
+    const std::string ros_namespace = Join(
+        scope.ros_namespace, Substitute(e, attrs.OptionalString("namespace").value_or(""), scope));
     attrs.OptionalString("output");
+    const bool active = Condition(e, attrs, scope);
     attrs.Finish();
-    if (!node_names.insert(node.name).second)
-      file.Fail(*e, "duplicate node name '" + node.name + "'");
-    config::RequireChildNames(file, *e, {"param"});
-    for (const auto* p = e->FirstChildElement(); p != nullptr; p = p->NextSiblingElement()) {
-      AttributeReader param(file, *p);
+    if (!active) return;
+    if (!ros_namespace.empty()) node.name = ros_namespace + "/" + node.name;
+    if (!node_names_.insert(node.name).second) {
+      file_.Fail(e, "duplicate node name '" + node.name + "'");
+    }
+    config::RequireChildNames(file_, e, {"param"});
+    if (!ros_namespace.empty()) {
+      node.arguments.push_back("--namespace");
+      node.arguments.push_back(ros_namespace);
+    }
+    for (const auto* p = e.FirstChildElement(); p != nullptr; p = p->NextSiblingElement()) {
+      AttributeReader param(file_, *p);
       const std::string name = param.String("name");
       const std::string value = param.String("value");
       param.Finish();
+      if (name == "namespace" && !ros_namespace.empty()) {
+        file_.Fail(*p, "a namespace param inside a pushed namespace; use one or the other");
+      }
       node.arguments.push_back("--" + name);
-      node.arguments.push_back(
-          Substitute(file, *p, value, description.arguments, context, &total_bytes));
+      node.arguments.push_back(Substitute(*p, value, scope));
     }
-    RequireExecutable(file, *e, exec, node.executable);
-    description.nodes.push_back(std::move(node));
+    RequireExecutable(file_, e, exec, node.executable);
+    description_.nodes.push_back(std::move(node));
   }
-  for (const auto& [name, value] : context.overrides) {
-    if (used_overrides.count(name) == 0) {
-      throw config::ConfigError(path + ": no <arg name=\"" + name + "\"> to take " + name +
-                                ":=" + value);
+
+  // The element's if= / unless= (ROS 2: true, false, 1 or 0 after substitution).
+  bool Condition(const tinyxml2::XMLElement& e, AttributeReader& attrs, const Scope& scope) {
+    bool active = true;
+    for (const char* key : {"if", "unless"}) {
+      const auto text = attrs.OptionalString(key);
+      if (!text) continue;
+      const std::string value = Substitute(e, *text, scope);
+      bool truth = false;
+      if (value == "true" || value == "True" || value == "1") {
+        truth = true;
+      } else if (!(value == "false" || value == "False" || value == "0")) {
+        attrs.Fail(std::string(key) + "=\"" + *text + "\" is '" + value +
+                   "', not true, false, 1 or 0");
+      }
+      active = active && (std::string(key) == "if" ? truth : !truth);
     }
+    return active;
   }
-  if (description.nodes.empty()) throw config::ConfigError(path + ": launches no <node>");
-  return description;
+
+  std::string Substitute(const tinyxml2::XMLElement& where, const std::string& text,
+                         const Scope& scope) {
+    return process::Substitute(file_, where, text, scope.vars, context_, &total_bytes_);
+  }
+
+  // Namespaces nest as ROS 2's do: "robot1" inside "fleet" is "fleet/robot1";
+  // a leading '/' makes a pushed namespace absolute.
+  static std::string Join(const std::string& outer, const std::string& inner) {
+    if (inner.empty()) return outer;
+    if (inner.front() == '/' || outer.empty()) return inner.substr(inner.front() == '/' ? 1 : 0);
+    return outer + "/" + inner;
+  }
+
+  const XmlFile& file_;
+  const LaunchContext& context_;
+  LaunchDescription description_;
+  size_t total_bytes_ = 0;
+  std::set<std::string> used_overrides_;
+  std::set<std::string> node_names_;
+};
+
+}  // namespace
+
+LaunchDescription ReadLaunchFile(const std::string& path, const LaunchContext& context) {
+  const auto file = XmlFile::Load(path);
+  return LaunchReader(file, context).Read();
 }
 
 }  // namespace structloc::process

@@ -2,15 +2,23 @@
 // deploy structloc the way they deploy ROS 2 nodes:
 //   <launch>
 //     <arg name="domain" default="0" description="..."/>
-//     <node pkg="structloc" exec="structloc_simulator" name="simulator">
-//       <param name="domain" value="$(var domain)"/>
-//     </node>
+//     <let name="scale" value="2"/>
+//     <group if="$(var two)">
+//       <push-ros-namespace namespace="robot1"/>
+//       <node pkg="structloc" exec="structloc_simulator" name="simulator" [namespace="..."]
+//             [if="..."] [unless="..."]>
+//         <param name="domain" value="$(var domain)"/>
+//       </node>
+//     </group>
 //   </launch>
-// Substitutions: $(var NAME), $(find-pkg-share structloc), $(env NAME).
-// Each <param name="N" value="V"/> becomes the command-line option "--N V".
-// Unknown elements and attributes, duplicate <arg> names, executables that do
-// not exist, and substituted values above the size limits are errors
-// (file:line). DDS-free.
+// Substitutions: $(var NAME) (an <arg> or <let> above), $(find-pkg-share
+// structloc), $(env NAME). Each <param name="N" value="V"/> becomes the
+// command-line option "--N V"; a pushed or node namespace becomes
+// "--namespace NS" (nested as ROS 2 nests them) and prefixes the node's name.
+// A <group> scopes its <let>s and namespace; if= / unless= take true, false,
+// 1 or 0. Unknown elements and attributes, duplicate <arg> names or node
+// names, executables that do not exist, and substituted values above the
+// size limits are errors (file:line). DDS-free.
 #pragma once
 
 #include <cstddef>
