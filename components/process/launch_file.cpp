@@ -202,6 +202,18 @@ class LaunchReader {
     const std::string ros_namespace = Join(
         scope.ros_namespace, Substitute(e, attrs.OptionalString("namespace").value_or(""), scope));
     attrs.OptionalString("output");
+    if (const auto respawn = attrs.OptionalString("respawn")) {
+      node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
+    }
+    if (const auto delay = attrs.OptionalString("respawn_delay")) {
+      const std::string text = Substitute(e, *delay, scope);
+      char* end = nullptr;
+      node.respawn_delay_s = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(node.respawn_delay_s >= 0.0) ||
+          node.respawn_delay_s > 3600.0) {
+        attrs.Fail("respawn_delay '" + text + "' is not a number of seconds in 0..3600");
+      }
+    }
     const bool active = Condition(e, attrs, scope);
     attrs.Finish();
     if (!active) return;
@@ -232,20 +244,22 @@ class LaunchReader {
   // The element's if= / unless= (ROS 2: true, false, 1 or 0 after substitution).
   bool Condition(const tinyxml2::XMLElement& e, AttributeReader& attrs, const Scope& scope) {
     bool active = true;
-    for (const char* key : {"if", "unless"}) {
-      const auto text = attrs.OptionalString(key);
-      if (!text) continue;
-      const std::string value = Substitute(e, *text, scope);
-      bool truth = false;
-      if (value == "true" || value == "True" || value == "1") {
-        truth = true;
-      } else if (!(value == "false" || value == "False" || value == "0")) {
-        attrs.Fail(std::string(key) + "=\"" + *text + "\" is '" + value +
-                   "', not true, false, 1 or 0");
-      }
-      active = active && (std::string(key) == "if" ? truth : !truth);
+    if (const auto text = attrs.OptionalString("if")) {
+      active = Boolean(e, attrs, "if", *text, scope);
+    }
+    if (const auto text = attrs.OptionalString("unless")) {
+      active = active && !Boolean(e, attrs, "unless", *text, scope);
     }
     return active;
+  }
+
+  // A boolean attribute's value after substitution: true, True, 1, false, False or 0.
+  bool Boolean(const tinyxml2::XMLElement& e, AttributeReader& attrs, const char* key,
+               const std::string& text, const Scope& scope) {
+    const std::string value = Substitute(e, text, scope);
+    if (value == "true" || value == "True" || value == "1") return true;
+    if (value == "false" || value == "False" || value == "0") return false;
+    attrs.Fail(std::string(key) + "=\"" + text + "\" is '" + value + "', not true, false, 1 or 0");
   }
 
   std::string Substitute(const tinyxml2::XMLElement& where, const std::string& text,

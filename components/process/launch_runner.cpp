@@ -1,47 +1,94 @@
 // Launch runner (see header).
 #include "structloc/process/launch_runner.hpp"
 
+#include <cstring>
 #include <iostream>
 #include <memory>
 
 #include "structloc/process/child_process.hpp"
 
 namespace structloc::process {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// "exit code 3", or "signal 9 (Killed)" for a child a signal ended.
+std::string DescribeExit(int code) {
+  if (code > 128 && code < 128 + 65) {
+    return "signal " + std::to_string(code - 128) + " (" + strsignal(code - 128) + ")";
+  }
+  return "exit code " + std::to_string(code);
+}
+
+// One node of the launch: its process while it runs, when to start it again.
+struct Running {
+  std::unique_ptr<ChildProcess> child;
+  std::optional<Clock::time_point> restart_at;
+  int respawns = 0;
+};
+
+void Start(const NodeLaunch& node, Running& running) {
+  std::cout << "[launch] starting " << node.name << ": " << node.executable;
+  for (const auto& a : node.arguments) std::cout << " " << a;
+  std::cout << std::endl;
+  running.child = std::make_unique<ChildProcess>(node.executable, node.arguments,
+                                                 ChildProcess::Output::kInherit);
+  running.restart_at.reset();
+  std::cout << "[launch] " << node.name << " has pid " << running.child->Pid() << std::endl;
+}
+
+}  // namespace
 
 int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
               ShutdownSignal& shutdown) {
-  std::vector<std::unique_ptr<ChildProcess>> children;
-  for (const auto& node : description.nodes) {
-    std::cout << "[launch] starting " << node.name << ": " << node.executable;
-    for (const auto& a : node.arguments) std::cout << " " << a;
-    std::cout << std::endl;
-    children.push_back(std::make_unique<ChildProcess>(node.executable, node.arguments,
-                                                      ChildProcess::Output::kInherit));
-    std::cout << "[launch] " << node.name << " has pid " << children.back()->Pid() << std::endl;
-  }
-  const auto start = std::chrono::steady_clock::now();
+  std::vector<Running> nodes(description.nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) Start(description.nodes[i], nodes[i]);
+  const auto start = Clock::now();
   std::string reason = "stop signal";
-  while (!shutdown.WaitFor(std::chrono::milliseconds(50))) {
-    bool one_ended = false;
-    for (size_t i = 0; i < children.size(); ++i) {
-      if (auto code = children[i]->Poll()) {
-        reason = description.nodes[i].name + " exited with code " + std::to_string(*code);
-        one_ended = true;
+  int result = 0;
+  bool ended = false;
+  while (!ended && !shutdown.WaitFor(std::chrono::milliseconds(50))) {
+    const auto now = Clock::now();
+    for (size_t i = 0; i < nodes.size() && !ended; ++i) {
+      const NodeLaunch& node = description.nodes[i];
+      Running& running = nodes[i];
+      if (running.restart_at) {
+        if (now >= *running.restart_at) {
+          ++running.respawns;
+          Start(node, running);
+        }
+        continue;
       }
+      const auto code = running.child->Poll();
+      if (!code) continue;
+      if (node.respawn) {
+        std::cout << "[launch] " << node.name << " ended with " << DescribeExit(*code)
+                  << "; respawning in " << node.respawn_delay_s << " s" << std::endl;
+        running.child.reset();
+        running.restart_at =
+            now + std::chrono::microseconds(static_cast<long>(node.respawn_delay_s * 1e6));
+        continue;
+      }
+      // A node that finished its job ends the launch; one that died fails it.
+      reason = node.name + " ended with " + DescribeExit(*code);
+      if (*code != 0) {
+        std::cerr << "[launch] ERROR: " << node.name << " died with " << DescribeExit(*code)
+                  << " and has no respawn=\"true\": stopping the launch" << std::endl;
+        result = 1;
+      }
+      ended = true;
     }
-    if (one_ended) break;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (options.duration_s && elapsed >= *options.duration_s) {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (!ended && options.duration_s && elapsed >= *options.duration_s) {
       reason = "duration of " + std::to_string(*options.duration_s) + " s reached";
-      break;
+      ended = true;
     }
   }
   std::cout << "[launch] stopping all nodes (" << reason << ")" << std::endl;
-  int result = 0;
   const auto grace = std::chrono::milliseconds(static_cast<long>(options.stop_grace_s * 1000));
-  for (size_t i = 0; i < children.size(); ++i) {
-    const int code = children[i]->Stop(grace);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (!nodes[i].child) continue;  // waiting to respawn
+    const int code = nodes[i].child->Stop(grace);
     std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code
               << std::endl;
     if (code != 0) result = 1;

@@ -6,7 +6,7 @@
 //     <group if="$(var two)">
 //       <push-ros-namespace namespace="robot1"/>
 //       <node pkg="structloc" exec="structloc_simulator" name="simulator" [namespace="..."]
-//             [if="..."] [unless="..."]>
+//             [if="..."] [unless="..."] [respawn="true" respawn_delay="1.0"]>
 //         <param name="domain" value="$(var domain)"/>
 //       </node>
 //     </group>
@@ -32,6 +32,8 @@ struct NodeLaunch {
   std::string name;        // unique within the file
   std::string executable;  // "exec", resolved against the executables folder
   std::vector<std::string> arguments;
+  bool respawn = false;          // started again whenever it ends (respawn="true")
+  double respawn_delay_s = 0.0;  // after this long (respawn_delay="S")
 };
 
 struct LaunchDescription {

@@ -1,6 +1,8 @@
 // Runs a launch description: starts every node as a child process, forwards
-// SIGINT/SIGTERM, stops all of them when one fails or the duration ends, and
-// reports each node's exit code. DDS-free.
+// SIGINT/SIGTERM, starts a node with respawn="true" again (after its
+// respawn_delay) whenever it ends, stops all of them when another node ends
+// (non-zero, naming the node and its exit code or signal, when it died) or
+// the duration ends, and reports each node's exit code. DDS-free.
 #pragma once
 
 #include <optional>
@@ -15,7 +17,8 @@ struct LaunchRunOptions {
   double stop_grace_s = 5.0;         // SIGTERM -> SIGKILL grace per node
 };
 
-// Returns 0 when every node stopped cleanly, otherwise 1. `shutdown` must have
+// Returns 0 when every node stopped cleanly, otherwise 1 (also when a node
+// without respawn died). `shutdown` must have
 // been constructed at the start of main().
 int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
               ShutdownSignal& shutdown);

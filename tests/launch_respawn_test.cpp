@@ -1,0 +1,101 @@
+// What a launch does when a node dies, run for real: a node with
+// respawn="true" killed with SIGKILL is started again after its delay and the
+// pose stream resumes within 5 s; a node without it stops the launch with a
+// non-zero exit and a message naming the node and the signal.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+
+#include <atomic>
+#include <regex>
+
+#include "dds_test_support.hpp"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "structloc/process/child_process.hpp"
+#include "temp_dir.hpp"
+#include "test_domains.hpp"
+
+namespace structloc {
+namespace {
+
+using namespace std::chrono_literals;
+constexpr int kDomain = testing::domains::kLaunchRespawn;
+
+// Simulator and localisation; the localisation respawns when `respawn`.
+std::string LaunchFile(bool respawn) {
+  const std::string qos = testing::ShippedQos();
+  const std::string common = "<param name='domain' value='" + std::to_string(kDomain) +
+                             "'/><param name='qos' value='" + qos + "'/>";
+  return std::string("<launch>") +
+         "<node pkg='structloc' exec='structloc_simulator' name='simulator'>" + common +
+         "<param name='scenario' value='$(find-pkg-share structloc)/maps/scenarios/"
+         "office_people.xml'/></node>"
+         "<node pkg='structloc' exec='structloc_localisation' name='localisation'" +
+         (respawn ? " respawn='true' respawn_delay='0.5'" : "") + ">" + common +
+         "<param name='initial-pose' value='2.0 6.5 0'/></node></launch>";
+}
+
+// The pid the launch reports for `node` the `nth` time it starts it (0 = none yet).
+pid_t StartedPid(const std::string& output, const std::string& node, size_t nth) {
+  const std::regex started("\\[launch\\] " + node + " has pid ([0-9]+)");
+  size_t n = 0;
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), started);
+       it != std::sregex_iterator(); ++it) {
+    if (++n == nth) return static_cast<pid_t>(std::stol((*it)[1]));
+  }
+  return 0;
+}
+
+TEST(LaunchRespawn, AKilledNodeWithRespawnComesBackAndPosesResume) {
+  const testing::TempDir dir;
+  const std::string file = dir.Write("respawn.launch.xml", LaunchFile(true));
+  std::atomic<int> poses{0};
+  dds_common::Node observer(testing::TestNodeOptions("respawn_observer", kDomain));
+  const auto subscription =
+      observer.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds_common::topics::kPose,
+          [&](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++poses; });
+  process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                               {"launch", file, "--duration", "20"});
+  ASSERT_TRUE(testing::WaitUntil([&] { return poses.load() > 5; })) << launch.CapturedOutput();
+  const pid_t first = StartedPid(launch.CapturedOutput(), "localisation", 1);
+  ASSERT_GT(first, 0) << launch.CapturedOutput();
+  ASSERT_EQ(::kill(first, SIGKILL), 0);
+  const auto killed = std::chrono::steady_clock::now();
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return StartedPid(launch.CapturedOutput(), "localisation", 2) > 0; }, 5s))
+      << launch.CapturedOutput();
+  std::this_thread::sleep_for(200ms);  // poses already on their way from the dead process
+  const int before = poses.load();
+  ASSERT_TRUE(testing::WaitUntil([&] { return poses.load() > before + 3; }, 5s))
+      << launch.CapturedOutput();
+  const double resumed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+  std::printf("localisation killed with SIGKILL; respawned, poses again after %.1f s\n", resumed_s);
+  EXPECT_LT(resumed_s, 5.0);
+  EXPECT_NE(launch.CapturedOutput().find("localisation ended with signal 9"), std::string::npos)
+      << launch.CapturedOutput();
+  launch.Stop(10s);
+}
+
+TEST(LaunchRespawn, AKilledNodeWithoutRespawnStopsTheLaunchNamingIt) {
+  const testing::TempDir dir;
+  const std::string file = dir.Write("no_respawn.launch.xml", LaunchFile(false));
+  process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                               {"launch", file, "--duration", "30"});
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return StartedPid(launch.CapturedOutput(), "localisation", 1) > 0 &&
+           launch.CapturedOutput().find("localisation: running") != std::string::npos;
+  })) << launch.CapturedOutput();
+  ASSERT_EQ(::kill(StartedPid(launch.CapturedOutput(), "localisation", 1), SIGKILL), 0);
+  const auto code = launch.WaitExit(15s);
+  ASSERT_TRUE(code.has_value()) << launch.CapturedOutput();
+  EXPECT_EQ(*code, 1) << launch.CapturedOutput();
+  EXPECT_NE(launch.CapturedOutput().find(
+                "localisation died with signal 9 (Killed) and has no respawn=\"true\""),
+            std::string::npos)
+      << launch.CapturedOutput();
+}
+
+}  // namespace
+}  // namespace structloc
