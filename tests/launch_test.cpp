@@ -57,9 +57,11 @@ TEST(LaunchFiles, GroupsScopeLetsAndNamespacesAndConditionsChooseNodes) {
   const std::string path = temp.Write("groups.launch.xml", R"xml(<launch>
   <arg name="second" default="true"/>
   <let name="rate" value="5"/>
+  <set_env name="A" value="1"/>
   <group>
     <push-ros-namespace namespace="fleet"/>
     <let name="rate" value="7"/>
+    <set_env name="A" value="$(var rate)"/>
     <group>
       <push-ros-namespace namespace="robot1"/>
       <node pkg="structloc" exec="structloc_simulator" name="sim">
@@ -67,7 +69,7 @@ TEST(LaunchFiles, GroupsScopeLetsAndNamespacesAndConditionsChooseNodes) {
       </node>
     </group>
     <node pkg="structloc" exec="structloc_localisation" name="loc" namespace="robot2"
-          if="$(var second)"/>
+          if="$(var second)"><env name="B" value="2"/></node>
     <node pkg="structloc" exec="structloc_localisation" name="skipped" unless="$(var second)"/>
     <group if="false"><node pkg="structloc" exec="structloc_localisation" name="off"/></group>
   </group>
@@ -84,6 +86,10 @@ TEST(LaunchFiles, GroupsScopeLetsAndNamespacesAndConditionsChooseNodes) {
   EXPECT_EQ(d.nodes[1].arguments, (std::vector<std::string>{"--namespace", "fleet/robot2"}));
   EXPECT_EQ(d.nodes[2].name, "cal");  // the group's let and namespace stayed in the group
   EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"--x", "5"}));
+  using Environment = std::vector<std::pair<std::string, std::string>>;
+  EXPECT_EQ(d.nodes[0].environment, (Environment{{"A", "7"}}));
+  EXPECT_EQ(d.nodes[1].environment, (Environment{{"A", "7"}, {"B", "2"}}));
+  EXPECT_EQ(d.nodes[2].environment, (Environment{{"A", "1"}}));
 }
 
 struct BrokenLaunch {
@@ -128,6 +134,10 @@ INSTANTIATE_TEST_SUITE_P(
                      "<launch><push-ros-namespace namespace='r1'/>"
                      "<node pkg='structloc' exec='structloc_simulator'/></launch>",
                      "unknown element"},
+        BrokenLaunch{"BadVariableName",
+                     "<launch><set_env name='1X' value='a'/>"
+                     "<node pkg='structloc' exec='structloc_simulator'/></launch>",
+                     "'1X' is not an environment variable name"},
         BrokenLaunch{"NamespaceTwice",
                      "<launch><group><push-ros-namespace namespace='r1'/>"
                      "<node pkg='structloc' exec='structloc_simulator'>"

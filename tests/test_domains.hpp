@@ -28,7 +28,7 @@ inline constexpr int kBadInputCalibration = 73;
 inline constexpr int kDomainPorts = 74;
 inline constexpr int kLocalisationGlobalStart = 75;
 inline constexpr int kTwoRobots = 76;
-inline constexpr int kLaunchRespawn = 77;
+inline constexpr int kLaunchRun = 77;
 inline constexpr int kComponentTeardown = 81;
 // tests/install/install_test.sh (a script: tests/CMakeLists.txt passes it 82).
 inline constexpr int kInstallTest = 82;
@@ -51,7 +51,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kDomainPorts,
                                     kLocalisationGlobalStart,
                                     kTwoRobots,
-                                    kLaunchRespawn,
+                                    kLaunchRun,
                                     kComponentTeardown,
                                     kInstallTest,
                                     kLatencyBenchmark};

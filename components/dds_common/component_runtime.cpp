@@ -1,6 +1,8 @@
 // Shared component main loop (see header).
 #include "structloc/dds_common/component_runtime.hpp"
 
+#include <charconv>
+#include <cstdlib>
 #include <iostream>
 
 #include "structloc/dds_common/topic_namespace.hpp"
@@ -10,7 +12,8 @@ namespace structloc::dds_common {
 std::vector<config::OptionSpec> StandardOptions() {
   return {
       {"domain", true,
-       "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default 0)"},
+       "DDS domain id, 0..232; keep to 0..101 on Linux (ephemeral ports above; default "
+       "$ROS_DOMAIN_ID, else 0)"},
       {"qos", true,
        "Fast DDS QoS profiles file (default: qos/structloc_qos.xml in structloc's data folder)"},
       {"participant-profile", true,
@@ -51,6 +54,19 @@ FrameIds FrameIdsFrom(const config::CommandLine& cli) {
   return frames;
 }
 
+int DefaultDomain() {
+  const char* text = std::getenv("ROS_DOMAIN_ID");
+  if (text == nullptr || *text == '\0') return 0;
+  const std::string value = text;
+  int domain = -1;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), domain);
+  if (error != std::errc() || end != value.data() + value.size() || domain < 0 || domain > 232) {
+    throw config::ConfigError("ROS_DOMAIN_ID '" + value +
+                              "' is not a DDS domain id 0..232 (keep to 0..101 on Linux)");
+  }
+  return domain;
+}
+
 double WallClockSeconds() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -80,7 +96,7 @@ int RunComponent(int argc, char** argv, const std::string& name,
     options.ros_namespace = NormaliseNamespace(cli.GetOr("namespace", ""));
     // Two robots' components differ by namespace, not by kind.
     options.name = options.ros_namespace.empty() ? name : options.ros_namespace + "/" + name;
-    options.domain_id = static_cast<int>(cli.IntegerIn("domain", 0, 0, 232));
+    options.domain_id = static_cast<int>(cli.IntegerIn("domain", DefaultDomain(), 0, 232));
     options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
     options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
     Node node(options);

@@ -25,8 +25,8 @@ namespace {
 
 // In the forked child, before exec: only async-signal-safe calls. Reports a
 // failure as its errno through `error_pipe` (closed by a successful exec).
-[[noreturn]] void ExecChild(const char* path, char* const* argv, int output_fd, pid_t parent,
-                            int error_pipe) {
+[[noreturn]] void ExecChild(const char* path, char* const* argv, char* const* envp, int output_fd,
+                            pid_t parent, int error_pipe) {
   int error = 0;
   if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
   // The parent may have died before prctl took effect.
@@ -44,7 +44,7 @@ namespace {
     }
   }
   if (error == 0) {
-    execve(path, argv, environ);
+    execve(path, argv, envp);
     error = errno;
   }
   const ssize_t ignored = write(error_pipe, &error, sizeof(error));
@@ -55,7 +55,8 @@ namespace {
 }  // namespace
 
 ChildProcess::ChildProcess(const std::string& executable, const std::vector<std::string>& args,
-                           Output output) {
+                           Output output,
+                           const std::vector<std::pair<std::string, std::string>>& environment) {
   int fd = -1;
   if (output == Output::kCapture) {
     const char* tmpdir = std::getenv("TMPDIR");
@@ -70,6 +71,20 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The parent's environment with `environment` laid over it, built before
+  // fork (the child may only make async-signal-safe calls).
+  std::vector<std::string> variables;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string entry = *e;
+    const std::string name = entry.substr(0, entry.find('='));
+    bool replaced = false;
+    for (const auto& [key, value] : environment) replaced = replaced || key == name;
+    if (!replaced) variables.push_back(entry);
+  }
+  for (const auto& [key, value] : environment) variables.push_back(key + "=" + value);
+  std::vector<char*> envp;
+  for (auto& v : variables) envp.push_back(v.data());
+  envp.push_back(nullptr);
   int error_pipe[2];
   if (pipe2(error_pipe, O_CLOEXEC) != 0) {
     const int error = errno;
@@ -80,7 +95,7 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
   pid_ = fork();
   if (pid_ == 0) {
     close(error_pipe[0]);
-    ExecChild(executable.c_str(), argv.data(), fd, parent, error_pipe[1]);
+    ExecChild(executable.c_str(), argv.data(), envp.data(), fd, parent, error_pipe[1]);
   }
   const int fork_error = pid_ < 0 ? errno : 0;
   close(error_pipe[1]);

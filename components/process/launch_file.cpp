@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -107,7 +108,20 @@ void RequireExecutable(const XmlFile& file, const tinyxml2::XMLElement& node,
 struct Scope {
   std::map<std::string, std::string> vars;
   std::string ros_namespace;
+  std::vector<std::pair<std::string, std::string>> environment;  // <set_env>s, in order
 };
+
+// Sets `name` to `value` in `environment`, replacing an earlier value.
+void SetVariable(std::vector<std::pair<std::string, std::string>>& environment,
+                 const std::string& name, const std::string& value) {
+  for (auto& [key, old] : environment) {
+    if (key == name) {
+      old = value;
+      return;
+    }
+  }
+  environment.emplace_back(name, value);
+}
 
 // The state of one file's reading.
 class LaunchReader {
@@ -135,9 +149,10 @@ class LaunchReader {
   // The children of <launch> (top) or of a <group>, in order.
   void Walk(const tinyxml2::XMLElement& parent, Scope& scope, bool top) {
     if (top) {
-      config::RequireChildNames(file_, parent, {"arg", "let", "node", "group"});
+      config::RequireChildNames(file_, parent, {"arg", "let", "set_env", "node", "group"});
     } else {
-      config::RequireChildNames(file_, parent, {"let", "node", "group", "push-ros-namespace"});
+      config::RequireChildNames(file_, parent,
+                                {"let", "set_env", "node", "group", "push-ros-namespace"});
     }
     for (const auto* e = parent.FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Name();
@@ -149,6 +164,9 @@ class LaunchReader {
         const std::string value = attrs.String("value");
         attrs.Finish();
         scope.vars[name] = Substitute(*e, value, scope);
+      } else if (tag == "set_env") {
+        const auto [name, value] = Variable(*e, scope);
+        SetVariable(scope.environment, name, value);
       } else if (tag == "push-ros-namespace") {
         AttributeReader attrs(file_, *e);
         const std::string pushed = attrs.String("namespace");
@@ -221,12 +239,18 @@ class LaunchReader {
     if (!node_names_.insert(node.name).second) {
       file_.Fail(e, "duplicate node name '" + node.name + "'");
     }
-    config::RequireChildNames(file_, e, {"param"});
+    config::RequireChildNames(file_, e, {"param", "env"});
+    node.environment = scope.environment;
     if (!ros_namespace.empty()) {
       node.arguments.push_back("--namespace");
       node.arguments.push_back(ros_namespace);
     }
     for (const auto* p = e.FirstChildElement(); p != nullptr; p = p->NextSiblingElement()) {
+      if (std::string(p->Name()) == "env") {
+        const auto [name, value] = Variable(*p, scope);
+        SetVariable(node.environment, name, value);
+        continue;
+      }
       AttributeReader param(file_, *p);
       const std::string name = param.String("name");
       const std::string value = param.String("value");
@@ -239,6 +263,21 @@ class LaunchReader {
     }
     RequireExecutable(file_, e, exec, node.executable);
     description_.nodes.push_back(std::move(node));
+  }
+
+  // A <set_env> or <env>: a variable name (letters, digits, '_', not starting
+  // with a digit) and its substituted value.
+  std::pair<std::string, std::string> Variable(const tinyxml2::XMLElement& e, const Scope& scope) {
+    AttributeReader attrs(file_, e);
+    const std::string name = attrs.String("name");
+    const std::string value = attrs.String("value");
+    attrs.Finish();
+    bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+    for (const char c : name) {
+      valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+    }
+    if (!valid) file_.Fail(e, "'" + name + "' is not an environment variable name");
+    return {name, Substitute(e, value, scope)};
   }
 
   // The element's if= / unless= (ROS 2: true, false, 1 or 0 after substitution).

@@ -28,11 +28,13 @@ struct Running {
 };
 
 void Start(const NodeLaunch& node, Running& running) {
-  std::cout << "[launch] starting " << node.name << ": " << node.executable;
+  std::cout << "[launch] starting " << node.name << ": ";
+  for (const auto& [name, value] : node.environment) std::cout << name << "=" << value << " ";
+  std::cout << node.executable;
   for (const auto& a : node.arguments) std::cout << " " << a;
   std::cout << std::endl;
   running.child = std::make_unique<ChildProcess>(node.executable, node.arguments,
-                                                 ChildProcess::Output::kInherit);
+                                                 ChildProcess::Output::kInherit, node.environment);
   running.restart_at.reset();
   std::cout << "[launch] " << node.name << " has pid " << running.child->Pid() << std::endl;
 }

@@ -54,6 +54,9 @@ int RunComponent(int argc, char** argv, const std::string& name,
                  const ParameterListing& listing = nullptr);
 
 // Wall-clock seconds since the epoch, for stamps of live data.
+// The domain when --domain is not given: ROS_DOMAIN_ID as ROS 2 reads it, else 0;
+// throws config::ConfigError for a value that is not 0..232.
+int DefaultDomain();
 double WallClockSeconds();
 
 }  // namespace structloc::dds_common

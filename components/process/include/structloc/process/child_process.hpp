@@ -10,6 +10,7 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace structloc::process {
@@ -20,8 +21,10 @@ class ChildProcess {
   // Throws std::runtime_error ("cannot start PATH: No such file or directory")
   // when the executable cannot be started. Start children from a thread that
   // lives as long as they should (the main thread): they stop when it ends.
+  // `environment` is added to (or replaces variables of) the parent's.
   ChildProcess(const std::string& executable, const std::vector<std::string>& args,
-               Output output = Output::kCapture);
+               Output output = Output::kCapture,
+               const std::vector<std::pair<std::string, std::string>>& environment = {});
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;

@@ -15,8 +15,10 @@
 // structloc), $(env NAME). Each <param name="N" value="V"/> becomes the
 // command-line option "--N V"; a pushed or node namespace becomes
 // "--namespace NS" (nested as ROS 2 nests them) and prefixes the node's name.
-// A <group> scopes its <let>s and namespace; if= / unless= take true, false,
-// 1 or 0. Unknown elements and attributes, duplicate <arg> names or node
+// A <group> scopes its <let>s, namespace and <set_env name="N" value="V"/>
+// (an environment variable for the nodes after it; <env> inside a <node> is
+// that node's own; ROS_DOMAIN_ID picks the components' default domain); if= /
+// unless= take true, false, 1 or 0. Unknown elements and attributes, duplicate <arg> names or node
 // names, executables that do not exist, and substituted values above the
 // size limits are errors (file:line). DDS-free.
 #pragma once
@@ -24,6 +26,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace structloc::process {
@@ -32,6 +35,8 @@ struct NodeLaunch {
   std::string name;        // unique within the file
   std::string executable;  // "exec", resolved against the executables folder
   std::vector<std::string> arguments;
+  // Variables laid over the launcher's environment (<set_env>, <env>).
+  std::vector<std::pair<std::string, std::string>> environment;
   bool respawn = false;          // started again whenever it ends (respawn="true")
   double respawn_delay_s = 0.0;  // after this long (respawn_delay="S")
 };

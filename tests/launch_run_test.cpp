@@ -1,7 +1,8 @@
-// What a launch does when a node dies, run for real: a node with
-// respawn="true" killed with SIGKILL is started again after its delay and the
-// pose stream resumes within 5 s; a node without it stops the launch with a
-// non-zero exit and a message naming the node and the signal.
+// Launch files run for real: a node with respawn="true" killed with SIGKILL
+// is started again after its delay and the pose stream resumes within 5 s; a
+// node without it stops the launch with a non-zero exit and a message naming
+// the node and the signal; a group's <set_env name="ROS_DOMAIN_ID"> puts its
+// nodes on that domain.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -19,7 +20,7 @@ namespace structloc {
 namespace {
 
 using namespace std::chrono_literals;
-constexpr int kDomain = testing::domains::kLaunchRespawn;
+constexpr int kDomain = testing::domains::kLaunchRun;
 
 // Simulator and localisation; the localisation respawns when `respawn`.
 std::string LaunchFile(bool respawn) {
@@ -95,6 +96,31 @@ TEST(LaunchRespawn, AKilledNodeWithoutRespawnStopsTheLaunchNamingIt) {
                 "localisation died with signal 9 (Killed) and has no respawn=\"true\""),
             std::string::npos)
       << launch.CapturedOutput();
+}
+
+TEST(LaunchEnvironment, ASetEnvGroupPutsItsNodesOnTheDomainItNames) {
+  const testing::TempDir dir;
+  const std::string qos = "<param name='qos' value='" + testing::ShippedQos() + "'/>";
+  const std::string file = dir.Write(
+      "domain.launch.xml",
+      "<launch><group><set_env name='ROS_DOMAIN_ID' value='" + std::to_string(kDomain) + "'/>" +
+          "<node pkg='structloc' exec='structloc_simulator' name='simulator'>" + qos +
+          "<param name='scenario' value='$(find-pkg-share structloc)/maps/scenarios/"
+          "office_people.xml'/></node>"
+          "<node pkg='structloc' exec='structloc_localisation' name='localisation'>" +
+          qos + "<param name='initial-pose' value='2.0 6.5 0'/></node></group></launch>");
+  std::atomic<int> poses{0};
+  dds_common::Node observer(testing::TestNodeOptions("domain_observer", kDomain));
+  const auto subscription =
+      observer.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds_common::topics::kPose,
+          [&](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++poses; });
+  process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                               {"launch", file, "--duration", "20"});
+  EXPECT_TRUE(testing::WaitUntil([&] { return poses.load() > 5; })) << launch.CapturedOutput();
+  EXPECT_NE(launch.CapturedOutput().find("on domain " + std::to_string(kDomain)), std::string::npos)
+      << launch.CapturedOutput();
+  launch.Stop(10s);
 }
 
 }  // namespace
