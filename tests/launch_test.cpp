@@ -92,6 +92,33 @@ TEST(LaunchFiles, GroupsScopeLetsAndNamespacesAndConditionsChooseNodes) {
   EXPECT_EQ(d.nodes[2].environment, (Environment{{"A", "1"}}));
 }
 
+TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
+  auto context = Context();
+  context.overrides["domain"] = "7";
+  const auto d = process::ReadLaunchFile(
+      std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/two_robots.launch.xml", context);
+  ASSERT_EQ(d.nodes.size(), 4u);
+  EXPECT_EQ(d.nodes[0].name, "robot1/simulator");
+  EXPECT_EQ(d.nodes[3].name, "robot2/localisation");
+  const auto& args = d.nodes[3].arguments;
+  EXPECT_EQ(args[0], "--namespace");
+  EXPECT_EQ(args[1], "robot2");
+  EXPECT_EQ(args[2], "--domain");
+  EXPECT_EQ(args[3], "7");
+  EXPECT_EQ(args.back(), "19.0 6.5 0");
+  const testing::TempDir temp;
+  const std::string self = temp.Write("self.launch.xml", "");
+  temp.Write("self.launch.xml", "<launch><include file='" + self + "'/></launch>");
+  testing::ExpectRejected(
+      "<launch><include file='" + self + "'/></launch>", "includes itself",
+      [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
+  const std::string robot = std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/robot.launch.xml";
+  testing::ExpectRejected(
+      "<launch><include file='" + robot + "'><arg name='colour' value='red'/></include></launch>",
+      "no <arg name=\"colour\">",
+      [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
+}
+
 struct BrokenLaunch {
   const char* tag;
   const char* text;

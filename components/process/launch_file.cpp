@@ -126,12 +126,22 @@ void SetVariable(std::vector<std::pair<std::string, std::string>>& environment,
 // The state of one file's reading.
 class LaunchReader {
  public:
-  LaunchReader(const XmlFile& file, const LaunchContext& context)
-      : file_(file), context_(context) {}
+  // `includers`: the files that include this one, outermost first.
+  // `total_bytes` counts the substituted bytes of the including file too, so
+  // includes cannot multiply the bound.
+  LaunchReader(const XmlFile& file, const LaunchContext& context,
+               std::vector<std::string> includers = {}, size_t* total_bytes = nullptr)
+      : file_(file),
+        context_(context),
+        includers_(std::move(includers)),
+        total_bytes_(total_bytes != nullptr ? total_bytes : &own_total_bytes_) {}
 
-  LaunchDescription Read() {
+  // The nodes start in `outer`'s namespace and environment (an <include>'s).
+  LaunchDescription Read(const Scope& outer = {}) {
     const auto& root = file_.Root("launch");
     Scope scope;
+    scope.ros_namespace = outer.ros_namespace;
+    scope.environment = outer.environment;
     Walk(root, scope, true);
     for (const auto& [name, value] : context_.overrides) {
       if (used_overrides_.count(name) == 0) {
@@ -149,10 +159,11 @@ class LaunchReader {
   // The children of <launch> (top) or of a <group>, in order.
   void Walk(const tinyxml2::XMLElement& parent, Scope& scope, bool top) {
     if (top) {
-      config::RequireChildNames(file_, parent, {"arg", "let", "set_env", "node", "group"});
-    } else {
       config::RequireChildNames(file_, parent,
-                                {"let", "set_env", "node", "group", "push-ros-namespace"});
+                                {"arg", "let", "set_env", "node", "group", "include"});
+    } else {
+      config::RequireChildNames(
+          file_, parent, {"let", "set_env", "node", "group", "include", "push-ros-namespace"});
     }
     for (const auto* e = parent.FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Name();
@@ -172,6 +183,8 @@ class LaunchReader {
         const std::string pushed = attrs.String("namespace");
         attrs.Finish();
         scope.ros_namespace = Join(scope.ros_namespace, Substitute(*e, pushed, scope));
+      } else if (tag == "include") {
+        Include(*e, scope);
       } else if (tag == "group") {
         AttributeReader attrs(file_, *e);
         const bool active = Condition(*e, attrs, scope);
@@ -181,6 +194,49 @@ class LaunchReader {
       } else {
         Node(*e, scope);
       }
+    }
+  }
+
+  // <include file="F"> with <arg name value/> children: F's nodes join this
+  // launch in the current namespace and environment; its <arg>s take the
+  // given values (an argument F does not declare is an error).
+  void Include(const tinyxml2::XMLElement& e, const Scope& scope) {
+    constexpr size_t kMaxDepth = 8;
+    AttributeReader attrs(file_, e);
+    const std::string path = Substitute(e, attrs.String("file"), scope);
+    const bool active = Condition(e, attrs, scope);
+    attrs.Finish();
+    config::RequireChildNames(file_, e, {"arg"});
+    if (!active) return;
+    std::vector<std::string> chain = includers_;
+    chain.push_back(file_.Path());
+    for (const auto& f : chain) {
+      if (f == path || chain.size() > kMaxDepth) {
+        file_.Fail(e, "includes " + path + (f == path ? ", which includes itself" : "") +
+                          " (includes nest at most " + std::to_string(kMaxDepth) + " deep)");
+      }
+    }
+    LaunchContext inner = context_;
+    inner.overrides.clear();
+    for (const auto* a = e.FirstChildElement(); a != nullptr; a = a->NextSiblingElement()) {
+      AttributeReader arg(file_, *a);
+      const std::string name = arg.String("name");
+      const std::string value = arg.String("value");
+      arg.Finish();
+      inner.overrides[name] = Substitute(*a, value, scope);
+    }
+    LaunchDescription description;
+    try {
+      const auto included = XmlFile::Load(path);
+      description = LaunchReader(included, inner, chain, total_bytes_).Read(scope);
+    } catch (const config::ConfigError& error) {
+      file_.Fail(e, std::string("in the included file: ") + error.what());  // both places named
+    }
+    for (auto& node : description.nodes) {
+      if (!node_names_.insert(node.name).second) {
+        file_.Fail(e, "duplicate node name '" + node.name + "' (from " + path + ")");
+      }
+      description_.nodes.push_back(std::move(node));
     }
   }
 
@@ -303,7 +359,7 @@ class LaunchReader {
 
   std::string Substitute(const tinyxml2::XMLElement& where, const std::string& text,
                          const Scope& scope) {
-    return process::Substitute(file_, where, text, scope.vars, context_, &total_bytes_);
+    return process::Substitute(file_, where, text, scope.vars, context_, total_bytes_);
   }
 
   // Namespaces nest as ROS 2's do: "robot1" inside "fleet" is "fleet/robot1";
@@ -316,8 +372,10 @@ class LaunchReader {
 
   const XmlFile& file_;
   const LaunchContext& context_;
+  std::vector<std::string> includers_;
   LaunchDescription description_;
-  size_t total_bytes_ = 0;
+  size_t own_total_bytes_ = 0;
+  size_t* total_bytes_;
   std::set<std::string> used_overrides_;
   std::set<std::string> node_names_;
 };
