@@ -66,6 +66,16 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
     if (fd < 0) throw std::runtime_error("cannot create a temp file in " + log_template);
     log_path_ = log_template;
   }
+  if (output == Output::kPipe) {
+    int ends[2];
+    if (pipe2(ends, O_CLOEXEC) != 0) {
+      throw std::runtime_error(std::string("cannot create an output pipe: ") +
+                               std::strerror(errno));
+    }
+    pipe_fd_ = ends[0];
+    fd = ends[1];
+    fcntl(pipe_fd_, F_SETFL, fcntl(pipe_fd_, F_GETFL) | O_NONBLOCK);
+  }
   std::vector<std::string> all{executable};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -89,6 +99,7 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
   if (pipe2(error_pipe, O_CLOEXEC) != 0) {
     const int error = errno;
     if (fd >= 0) close(fd);
+    if (pipe_fd_ >= 0) close(pipe_fd_);
     throw std::runtime_error("cannot start " + executable + ": " + std::strerror(error));
   }
   const pid_t parent = getpid();
@@ -111,6 +122,7 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
   close(error_pipe[0]);
   if (exec_error != 0) {
     if (pid_ > 0) waitpid(pid_, nullptr, 0);
+    if (pipe_fd_ >= 0) close(pipe_fd_);
     if (!log_path_.empty()) std::remove(log_path_.c_str());
     throw std::runtime_error("cannot start " + executable + ": " + std::strerror(exec_error));
   }
@@ -122,6 +134,7 @@ ChildProcess::~ChildProcess() {
     waitpid(pid_, nullptr, 0);
   }
   if (!log_path_.empty()) std::remove(log_path_.c_str());
+  if (pipe_fd_ >= 0) close(pipe_fd_);
 }
 
 void ChildProcess::Signal(int signal_number) const {
@@ -150,6 +163,21 @@ int ChildProcess::Stop(std::chrono::milliseconds grace) {
   if (auto code = WaitExit(grace)) return *code;
   Signal(SIGKILL);
   return WaitExit(std::chrono::seconds(5)).value_or(128 + SIGKILL);
+}
+
+std::string ChildProcess::ReadAvailable() {
+  std::string out;
+  if (pipe_fd_ < 0) return out;
+  char buffer[4096];
+  while (true) {
+    const ssize_t n = read(pipe_fd_, buffer, sizeof buffer);
+    if (n > 0) {
+      out.append(buffer, static_cast<size_t>(n));
+    } else if (!(n < 0 && errno == EINTR)) {
+      break;  // nothing more now (EAGAIN), or the child closed its end
+    }
+  }
+  return out;
 }
 
 std::string ChildProcess::CapturedOutput() const {

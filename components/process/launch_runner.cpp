@@ -20,12 +20,33 @@ std::string DescribeExit(int code) {
   return "exit code " + std::to_string(code);
 }
 
-// One node of the launch: its process while it runs, when to start it again.
+// One node of the launch: its process while it runs, when to start it again,
+// and the part of an output line it has not finished yet.
 struct Running {
   std::unique_ptr<ChildProcess> child;
   std::optional<Clock::time_point> restart_at;
   int respawns = 0;
+  std::string partial_line;
 };
+
+// Prints what the node wrote since the last call, each line prefixed with
+// "[name] " as ros2 launch does; with `flush`, the unfinished line too.
+void Relay(const NodeLaunch& node, Running& running, bool flush) {
+  if (!running.child) return;
+  running.partial_line += running.child->ReadAvailable();
+  size_t start = 0;
+  for (size_t end; (end = running.partial_line.find('\n', start)) != std::string::npos;
+       start = end + 1) {
+    std::cout << "[" << node.name << "] " << running.partial_line.substr(start, end - start)
+              << "\n";
+  }
+  running.partial_line.erase(0, start);
+  if (flush && !running.partial_line.empty()) {
+    std::cout << "[" << node.name << "] " << running.partial_line << "\n";
+    running.partial_line.clear();
+  }
+  std::cout << std::flush;
+}
 
 void Start(const NodeLaunch& node, Running& running) {
   std::cout << "[launch] starting " << node.name << ": ";
@@ -34,7 +55,7 @@ void Start(const NodeLaunch& node, Running& running) {
   for (const auto& a : node.arguments) std::cout << " " << a;
   std::cout << std::endl;
   running.child = std::make_unique<ChildProcess>(node.executable, node.arguments,
-                                                 ChildProcess::Output::kInherit, node.environment);
+                                                 ChildProcess::Output::kPipe, node.environment);
   running.restart_at.reset();
   std::cout << "[launch] " << node.name << " has pid " << running.child->Pid() << std::endl;
 }
@@ -62,6 +83,7 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
         continue;
       }
       const auto code = running.child->Poll();
+      Relay(node, running, code.has_value());
       if (!code) continue;
       if (node.respawn) {
         std::cout << "[launch] " << node.name << " ended with " << DescribeExit(*code)
@@ -91,6 +113,7 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
   for (size_t i = 0; i < nodes.size(); ++i) {
     if (!nodes[i].child) continue;  // waiting to respawn
     const int code = nodes[i].child->Stop(grace);
+    Relay(description.nodes[i], nodes[i], true);
     std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code
               << std::endl;
     if (code != 0) result = 1;

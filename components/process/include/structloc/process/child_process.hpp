@@ -17,7 +17,9 @@ namespace structloc::process {
 
 class ChildProcess {
  public:
-  enum class Output { kInherit, kCapture };
+  // kInherit: the parent's stdout/stderr; kCapture: a temp file
+  // (CapturedOutput); kPipe: a pipe the parent reads with ReadAvailable.
+  enum class Output { kInherit, kCapture, kPipe };
   // Throws std::runtime_error ("cannot start PATH: No such file or directory")
   // when the executable cannot be started. Start children from a thread that
   // lives as long as they should (the main thread): they stop when it ends.
@@ -37,11 +39,14 @@ class ChildProcess {
   int Stop(std::chrono::milliseconds grace);
   // Captured stdout+stderr so far (empty when output is inherited).
   std::string CapturedOutput() const;
+  // kPipe: the stdout+stderr bytes written since the last call, without waiting.
+  std::string ReadAvailable();
   pid_t Pid() const { return pid_; }
 
  private:
   pid_t pid_ = -1;
   std::string log_path_;
+  int pipe_fd_ = -1;  // kPipe: the read end
   std::optional<int> exit_code_;
 };
 

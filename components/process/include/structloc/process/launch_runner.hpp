@@ -1,4 +1,5 @@
-// Runs a launch description: starts every node as a child process, forwards
+// Runs a launch description: starts every node as a child process (its output
+// relayed line by line, prefixed "[name] " as ros2 launch does), forwards
 // SIGINT/SIGTERM, starts a node with respawn="true" again (after its
 // respawn_delay) whenever it ends, stops all of them when another node ends
 // (non-zero, naming the node and its exit code or signal, when it died) or
