@@ -118,7 +118,10 @@ TEST(LaunchEnvironment, ASetEnvGroupPutsItsNodesOnTheDomainItNames) {
   process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                {"launch", file, "--duration", "20"});
   EXPECT_TRUE(testing::WaitUntil([&] { return poses.load() > 5; })) << launch.CapturedOutput();
-  EXPECT_NE(launch.CapturedOutput().find("on domain " + std::to_string(kDomain)), std::string::npos)
+  // Each node's output comes line by line behind its name, as ros2 launch prints it.
+  EXPECT_NE(launch.CapturedOutput().find("[localisation] localisation on domain " +
+                                         std::to_string(kDomain)),
+            std::string::npos)
       << launch.CapturedOutput();
   launch.Stop(10s);
 }
