@@ -47,18 +47,25 @@ pid_t StartedPid(const std::string& output, const std::string& node, size_t nth)
   return 0;
 }
 
+// Counts the poses published on the test's domain.
+struct PoseCounter {
+  explicit PoseCounter(const std::string& name)
+      : node(testing::TestNodeOptions(name, kDomain)),
+        subscription(node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+            dds_common::topics::kPose,
+            [this](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++count; })) {}
+  std::atomic<int> count{0};
+  dds_common::Node node;
+  dds_common::Subscription subscription;  // last: gone before the count
+};
+
 TEST(LaunchRespawn, AKilledNodeWithRespawnComesBackAndPosesResume) {
   const testing::TempDir dir;
   const std::string file = dir.Write("respawn.launch.xml", LaunchFile(true));
-  std::atomic<int> poses{0};
-  dds_common::Node observer(testing::TestNodeOptions("respawn_observer", kDomain));
-  const auto subscription =
-      observer.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds_common::topics::kPose,
-          [&](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++poses; });
+  PoseCounter poses("respawn_observer");
   process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                {"launch", file, "--duration", "20"});
-  ASSERT_TRUE(testing::WaitUntil([&] { return poses.load() > 5; })) << launch.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil([&] { return poses.count > 5; })) << launch.CapturedOutput();
   const pid_t first = StartedPid(launch.CapturedOutput(), "localisation", 1);
   ASSERT_GT(first, 0) << launch.CapturedOutput();
   ASSERT_EQ(::kill(first, SIGKILL), 0);
@@ -67,8 +74,8 @@ TEST(LaunchRespawn, AKilledNodeWithRespawnComesBackAndPosesResume) {
       [&] { return StartedPid(launch.CapturedOutput(), "localisation", 2) > 0; }, 5s))
       << launch.CapturedOutput();
   std::this_thread::sleep_for(200ms);  // poses already on their way from the dead process
-  const int before = poses.load();
-  ASSERT_TRUE(testing::WaitUntil([&] { return poses.load() > before + 3; }, 5s))
+  const int before = poses.count.load();
+  ASSERT_TRUE(testing::WaitUntil([&] { return poses.count.load() > before + 3; }, 5s))
       << launch.CapturedOutput();
   const double resumed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
@@ -109,15 +116,10 @@ TEST(LaunchEnvironment, ASetEnvGroupPutsItsNodesOnTheDomainItNames) {
           "office_people.xml'/></node>"
           "<node pkg='structloc' exec='structloc_localisation' name='localisation'>" +
           qos + "<param name='initial-pose' value='2.0 6.5 0'/></node></group></launch>");
-  std::atomic<int> poses{0};
-  dds_common::Node observer(testing::TestNodeOptions("domain_observer", kDomain));
-  const auto subscription =
-      observer.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds_common::topics::kPose,
-          [&](const geometry_msgs::msg::PoseWithCovarianceStamped&) { ++poses; });
+  PoseCounter poses("domain_observer");
   process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                {"launch", file, "--duration", "20"});
-  EXPECT_TRUE(testing::WaitUntil([&] { return poses.load() > 5; })) << launch.CapturedOutput();
+  EXPECT_TRUE(testing::WaitUntil([&] { return poses.count > 5; })) << launch.CapturedOutput();
   // Each node's output comes line by line behind its name, as ros2 launch prints it.
   EXPECT_NE(launch.CapturedOutput().find("[localisation] localisation on domain " +
                                          std::to_string(kDomain)),
