@@ -119,6 +119,40 @@ TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
       [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
 }
 
+TEST(LaunchFiles, ParamFilesGiveEachNodeItsEntriesAndTheirOwnErrorsNameTheLine) {
+  const testing::TempDir temp;
+  const std::string params = temp.Write("params.yaml", R"yaml(/**:
+  ros__parameters:
+    domain: 3
+    time-scale: 2
+robot1/loc:
+  ros__parameters:
+    domain: 4
+    initial-pose: "2.0 6.5 0"
+other:
+  ros__parameters:
+    domain: 9
+)yaml");
+  const std::string path =
+      temp.Write("from.launch.xml",
+                 "<launch><group>"
+                 "<push-ros-namespace namespace='robot1'/>"
+                 "<node pkg='structloc' exec='structloc_localisation' name='loc'>"
+                 "<param from='" +
+                     params + "'/></node></group></launch>");
+  const auto d = process::ReadLaunchFile(path, Context());
+  ASSERT_EQ(d.nodes.size(), 1u);
+  EXPECT_EQ(d.nodes[0].arguments,
+            (std::vector<std::string>{"--namespace", "robot1", "--domain", "4", "--time-scale", "2",
+                                      "--initial-pose", "2.0 6.5 0"}));
+  const std::string broken = temp.Write("broken.yaml", "loc:\n  ros__parameters:\n    a: [1, 2]\n");
+  testing::ExpectRejected(
+      "<launch><node pkg='structloc' exec='structloc_localisation' name='loc'><param from='" +
+          broken + "'/></node></launch>",
+      broken + ":3: parameter 'a' must be a plain value",
+      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+}
+
 struct BrokenLaunch {
   const char* tag;
   const char* text;

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "structloc/config/strict_xml.hpp"
+#include "structloc/process/launch_param_file.hpp"
 
 namespace structloc::process {
 namespace {
@@ -305,6 +306,20 @@ class LaunchReader {
       if (std::string(p->Name()) == "env") {
         const auto [name, value] = Variable(*p, scope);
         SetVariable(node.environment, name, value);
+        continue;
+      }
+      if (p->Attribute("from") != nullptr) {
+        AttributeReader param(file_, *p);
+        const std::string from = Substitute(*p, param.String("from"), scope);
+        param.Finish();
+        try {
+          for (const auto& [name, value] : ReadNodeParameters(from, node.name)) {
+            node.arguments.push_back("--" + name);
+            node.arguments.push_back(value);
+          }
+        } catch (const config::ConfigError& error) {
+          file_.Fail(*p, std::string("in the parameter file: ") + error.what());
+        }
         continue;
       }
       AttributeReader param(file_, *p);
