@@ -216,21 +216,23 @@ void CalibrationComponent::Estimate(bool stopped_early) {
 }
 
 void CalibrationComponent::EstimateOnline() {
-  calibration_core::OnlineEstimate estimate;
-  calibration_core::Recording window;
+  calibration_core::OnlineCalibration::Window window;
   {
+    // Only the copy under the lock: samples keep arriving while it estimates.
     std::lock_guard<std::mutex> lock(mutex_);
-    estimate = online_->Estimate();
-    window = online_->Window();
+    window = online_->NextWindow();
   }
+  const calibration_core::OnlineEstimate estimate = online_->Estimate(window);
+  const auto& encoders = window.recording.encoders;
+  const auto& fixes = window.recording.fixes;
   std::ostringstream text;
-  text << Summary(estimate.report, window.encoders.size(), window.fixes.size()) << "\n  window "
+  text << Summary(estimate.report, encoders.size(), fixes.size()) << "\n  window "
        << estimate.window_start_s << " .. " << estimate.window_end_s << " s";
   for (const auto& change : estimate.changes) {
     text << "\n  CHANGED: " << calibration_core::Describe(change);
   }
   std::cout << text.str() << std::endl;
-  const std::string write_error = WriteResults(window.encoders, window.fixes, estimate.report);
+  const std::string write_error = WriteResults(encoders, fixes, estimate.report);
   if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
   result_.Write(ToCalibrationResult(estimate));
   estimated_ = true;

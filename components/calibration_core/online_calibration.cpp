@@ -73,21 +73,30 @@ std::vector<ParameterChange> Changes(const CalibrationReport& before,
 
 }  // namespace
 
-OnlineEstimate OnlineCalibration::Estimate() {
-  OnlineEstimate out;
+OnlineCalibration::Window OnlineCalibration::NextWindow() {
+  Window window;
   const auto& recording = recorder_.Current();
-  if (recording.encoders.size() < 2) {
+  if (recording.encoders.empty()) return window;
+  window.end_s = recording.encoders.back().t;
+  window.start_s = std::max(recording.encoders.front().t, window.end_s - online_.window_s);
+  recorder_.ForgetBefore(window.start_s);
+  last_end_s_ = window.end_s;
+  window.recording = recorder_.Current();
+  return window;
+}
+
+OnlineEstimate OnlineCalibration::Estimate(const Window& window) {
+  OnlineEstimate out;
+  out.window_start_s = window.start_s;
+  out.window_end_s = window.end_s;
+  if (window.recording.encoders.size() < 2) {
     out.report.success = false;
+    out.report.parameters = nominal_;
     out.report.failure = "fewer than two encoder samples in the window";
     return out;
   }
-  out.window_end_s = recording.encoders.back().t;
-  out.window_start_s = std::max(recording.encoders.front().t, out.window_end_s - online_.window_s);
-  recorder_.ForgetBefore(out.window_start_s);
-  last_end_s_ = out.window_end_s;
   try {
-    out.report =
-        Calibrate(recorder_.Current().encoders, recorder_.Current().fixes, nominal_, options_);
+    out.report = Calibrate(window.recording.encoders, window.recording.fixes, nominal_, options_);
   } catch (const std::exception& e) {
     out.report.success = false;
     out.report.parameters = nominal_;

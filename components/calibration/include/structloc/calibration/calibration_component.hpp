@@ -81,7 +81,9 @@ class CalibrationComponent : public dds_common::Component {
   dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
   std::mutex mutex_;  // guards the members up to failure_
   calibration_core::CalibrationRecorder recorder_;
-  std::optional<calibration_core::OnlineCalibration> online_;  // online mode only
+  // Online mode only; its samples and NextWindow under mutex_, its Estimate
+  // (the worker's alone) outside it.
+  std::optional<calibration_core::OnlineCalibration> online_;
   size_t encoders_wrong_kind_ = 0;    // of another drive kind or counter width than the robot file
   std::vector<std::string> changed_;  // the newest online estimate's flagged changes
   std::string outcome_;

@@ -59,14 +59,23 @@ class OnlineCalibration {
 
   // A full window is recorded and a period has passed since the last estimate.
   bool Due() const;
-  // Estimates from the newest window_s of encoders and fixes, compares with
-  // the newest earlier estimate whose window ended before this one starts,
-  // and forgets what no later window needs. Never throws for bad data: a
-  // failed estimate is reported with success == false.
-  OnlineEstimate Estimate();
 
-  // What the next estimate would use (the newest estimate's window right after it).
-  const Recording& Window() const { return recorder_.Current(); }
+  // The newest window_s of encoders and fixes, which the next estimate uses;
+  // older samples are forgotten. Cheap: a live component takes it under the
+  // lock its sample callbacks share and estimates outside it.
+  struct Window {
+    Recording recording;
+    double start_s = 0.0, end_s = 0.0;
+  };
+  Window NextWindow();
+  // Estimates from `window` and compares with the newest earlier estimate
+  // whose window ended before this one starts. Touches nothing the Add
+  // functions or NextWindow touch. Never throws for bad data: a failed
+  // estimate is reported with success == false.
+  OnlineEstimate Estimate(const Window& window);
+  // Both in one (single-threaded use).
+  OnlineEstimate Estimate() { return Estimate(NextWindow()); }
+
   // Encoder samples and fixes in the window, and the samples refused so far.
   RecorderStats Stats() const { return recorder_.Stats(); }
 
