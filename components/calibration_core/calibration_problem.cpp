@@ -102,7 +102,8 @@ CalibrationProblem::CalibrationProblem(const std::vector<EncoderSample>& encoder
   std::vector<size_t> index;
   const bool relative = scope == ProblemScope::kRelativeMotion;
   for (const Fix& fix : fixes) {
-    if (!locate(fix.t)) continue;
+    const auto k = locate(fix.t);
+    if (!k) continue;
     if (relative && !fixes_.empty()) {
       const geometry::Pose2D step = geometry::Between(fixes_.back().pose, fix.pose);
       if (step.Translation().norm() < options.min_fix_travel_m &&
@@ -111,7 +112,7 @@ CalibrationProblem::CalibrationProblem(const std::vector<EncoderSample>& encoder
     }
     fixes_.push_back(fix);
     fix_whitening_.push_back(FixVariance(fix).cwiseInverse().cwiseSqrt().asDiagonal());
-    index.push_back(*locate(fix.t));
+    index.push_back(*k);
   }
   for (size_t i = 0; i + 1 < fixes_.size(); ++i) {
     const size_t ki = index[i], kj = index[i + 1];

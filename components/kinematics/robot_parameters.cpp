@@ -24,6 +24,41 @@ void AddSensorMounting(config::OptionTable<RobotParameters>& t) {
       .Optional();
 }
 
+// The incremental counter(s): ticks per revolution and the width they wrap at.
+void AddCounters(config::OptionTable<RobotParameters>& t, const char* ticks_key,
+                 const char* ticks_meaning, const char* bits_key, const char* bits_meaning) {
+  using config::Range;
+  using R = RobotParameters;
+  t.Number(ticks_key, &R::traction_ticks_per_rev, Range::Closed(kMinTicksPerRev, kMaxTicksPerRev),
+           "", ticks_meaning);
+  t.Number(bits_key, &R::traction_counter_bits, Range::Closed(kMinCounterBits, kMaxCounterBits), "",
+           bits_meaning);
+}
+
+config::OptionTable<RobotParameters> TricycleTable() {
+  using config::Range;
+  using R = RobotParameters;
+  const Range length = Range::Closed(kMinRobotLength_m, kMaxRobotLength_m);
+  config::OptionTable<R> t("robot",
+                           "tricycle odometry, thesis 5.2 / EQ 46 (reference point: rear axle "
+                           "middle)");
+  t.Choice("kind", &R::kind, kKindNames, "drive kind (a file without it is a tricycle)").Optional();
+  t.Number("wheel_radius", &R::wheel_radius, length, "m", "traction (front) wheel radius");
+  t.Number("axle_distance", &R::axle_distance, length, "m", "front wheel axis to rear axle");
+  t.Number("steering_offset", &R::steering_offset, Range::Open(-geometry::kPi, geometry::kPi),
+           "rad", "steering angle at steering_zero_tick");
+  AddCounters(t, "traction_ticks_per_rev", "encoder ticks per wheel revolution",
+              "traction_counter_bits", "the traction counter wraps at 2^bits");
+  t.Number("steering_rad_per_tick", &R::steering_rad_per_tick,
+           Range::Magnitude(kMinSteeringRadPerTick, kMaxSteeringRadPerTick), "rad",
+           "steering angle per encoder tick (either sign)");
+  t.Number("steering_zero_tick", &R::steering_zero_tick,
+           Range::Closed(-kMaxSteeringZeroTick, kMaxSteeringZeroTick), "",
+           "steering encoder reading at steering_offset");
+  AddSensorMounting(t);
+  return t;
+}
+
 config::OptionTable<RobotParameters> DifferentialTable() {
   using config::Range;
   using R = RobotParameters;
@@ -35,12 +70,8 @@ config::OptionTable<RobotParameters> DifferentialTable() {
   t.Number("right_wheel_radius", &R::right_wheel_radius, length, "m", "right wheel radius");
   t.Number("wheel_separation", &R::wheel_separation, length, "m",
            "distance between the wheels' contact points");
-  t.Number("ticks_per_rev", &R::traction_ticks_per_rev,
-           Range::Closed(kMinTicksPerRev, kMaxTicksPerRev), "",
-           "encoder ticks per wheel revolution (both wheels)");
-  t.Number("counter_bits", &R::traction_counter_bits,
-           Range::Closed(kMinCounterBits, kMaxCounterBits), "",
-           "both wheel counters wrap at 2^bits");
+  AddCounters(t, "ticks_per_rev", "encoder ticks per wheel revolution (both wheels)",
+              "counter_bits", "both wheel counters wrap at 2^bits");
   AddSensorMounting(t);
   return t;
 }
@@ -48,41 +79,12 @@ config::OptionTable<RobotParameters> DifferentialTable() {
 }  // namespace
 
 config::OptionTable<RobotParameters> RobotParameterTable(DriveKind kind) {
-  using config::Range;
-  using R = RobotParameters;
-  auto wording = [](const std::string& key, const std::string& value, const std::string& valid,
-                    const std::string& unit) {
+  auto t = kind == DriveKind::kDifferential ? DifferentialTable() : TricycleTable();
+  t.Wording([](const std::string& key, const std::string& value, const std::string& valid,
+               const std::string& unit) {
     return key + " = " + value + " is implausible; it must be " + valid +
            (unit.empty() ? "" : " " + unit);
-  };
-  if (kind == DriveKind::kDifferential) {
-    auto t = DifferentialTable();
-    t.Wording(wording);
-    return t;
-  }
-  const Range length = Range::Closed(kMinRobotLength_m, kMaxRobotLength_m);
-  config::OptionTable<R> t("robot",
-                           "tricycle odometry, thesis 5.2 / EQ 46 (reference point: rear axle "
-                           "middle)");
-  t.Wording(wording);
-  t.Choice("kind", &R::kind, kKindNames, "drive kind (a file without it is a tricycle)").Optional();
-  t.Number("wheel_radius", &R::wheel_radius, length, "m", "traction (front) wheel radius");
-  t.Number("axle_distance", &R::axle_distance, length, "m", "front wheel axis to rear axle");
-  t.Number("steering_offset", &R::steering_offset, Range::Open(-geometry::kPi, geometry::kPi),
-           "rad", "steering angle at steering_zero_tick");
-  t.Number("traction_ticks_per_rev", &R::traction_ticks_per_rev,
-           Range::Closed(kMinTicksPerRev, kMaxTicksPerRev), "",
-           "encoder ticks per wheel revolution");
-  t.Number("traction_counter_bits", &R::traction_counter_bits,
-           Range::Closed(kMinCounterBits, kMaxCounterBits), "",
-           "the traction counter wraps at 2^bits");
-  t.Number("steering_rad_per_tick", &R::steering_rad_per_tick,
-           Range::Magnitude(kMinSteeringRadPerTick, kMaxSteeringRadPerTick), "rad",
-           "steering angle per encoder tick (either sign)");
-  t.Number("steering_zero_tick", &R::steering_zero_tick,
-           Range::Closed(-kMaxSteeringZeroTick, kMaxSteeringZeroTick), "",
-           "steering encoder reading at steering_offset");
-  AddSensorMounting(t);
+  });
   return t;
 }
 

@@ -46,10 +46,6 @@ void DeadReckoning::Add(uint64_t traction_ticks, double steering_ticks) {
   last_ticks_ = traction_ticks;
 }
 
-}  // namespace structloc::kinematics
-
-namespace structloc::kinematics {
-
 void DeadReckoning::AddWheels(uint64_t left_ticks, uint64_t right_ticks) {
   if (last_ticks_) {
     const double left = parameters_.WheelAngle(parameters_.TickDelta(*last_ticks_, left_ticks)) *
