@@ -8,13 +8,6 @@
 namespace structloc::calibration_core {
 namespace {
 
-// Lengths and gains are stated relative to their value (their ratios are
-// what a trajectory determines); offsets and mounting in their unit.
-bool IsScale(size_t p) {
-  return p == kWheelRadius || p == kAxleDistance || p == kSteeringGain || p == kLeftWheelRadius ||
-         p == kRightWheelRadius || p == kWheelSeparation;
-}
-
 std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
   char text[160];
   std::snprintf(text, sizeof text, format, a, b, c);
@@ -37,7 +30,7 @@ std::string DeterminedPair(size_t a, size_t b, double sa, double sb, double rho,
                            const ParameterValues& values) {
   const std::string na = ParameterName(static_cast<Parameter>(a));
   const std::string nb = ParameterName(static_cast<Parameter>(b));
-  if (IsScale(a) && IsScale(b)) {
+  if (IsScale(static_cast<Parameter>(a)) && IsScale(static_cast<Parameter>(b))) {
     // Relative deviations: log a - beta log b is determined.
     const double ra = sa / std::abs(values[a]), rb = sb / std::abs(values[b]);
     const double beta = rho * ra / rb;

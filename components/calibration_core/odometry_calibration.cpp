@@ -31,6 +31,11 @@ const char* ParameterUnit(Parameter p) {
   return units[p];
 }
 
+bool IsScale(Parameter p) {
+  return p == kWheelRadius || p == kAxleDistance || p == kSteeringGain || p == kLeftWheelRadius ||
+         p == kRightWheelRadius || p == kWheelSeparation;
+}
+
 bool AppliesTo(Parameter p, kinematics::DriveKind kind) {
   if (p == kSensorX || p == kSensorY || p == kSensorTheta) return true;
   const bool differential =

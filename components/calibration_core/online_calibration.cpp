@@ -24,7 +24,7 @@ void OnlineCalibrationOptions::Validate() const {
 
 std::string Describe(const ParameterChange& c) {
   char text[200];
-  const bool relative = std::abs(c.from) > 0 && ParameterUnit(c.parameter)[0] != 'r';
+  const bool relative = IsScale(c.parameter) && std::abs(c.from) > 0;
   if (relative) {
     std::snprintf(text, sizeof text, "%s %.6g -> %.6g %s (%+.2f %%, %.1f sigma)",
                   ParameterName(c.parameter), c.from, c.to, ParameterUnit(c.parameter),

@@ -39,6 +39,9 @@ enum Parameter {
 };
 const char* ParameterName(Parameter p);
 const char* ParameterUnit(Parameter p);
+// Lengths and gains, stated relative to their value (their ratios are what a
+// trajectory determines); offsets and the mounting are stated in their unit.
+bool IsScale(Parameter p);
 // Whether `p` is a parameter of a robot of `kind` (the sensor mounting is of both).
 bool AppliesTo(Parameter p, kinematics::DriveKind kind);
 // The parameters estimated unless the user says otherwise: wheel radius, axle
