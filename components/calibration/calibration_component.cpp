@@ -225,20 +225,18 @@ void CalibrationComponent::EstimateOnline() {
   const calibration_core::OnlineEstimate estimate = online_->Estimate(window);
   const auto& encoders = window.recording.encoders;
   const auto& fixes = window.recording.fixes;
+  const auto message = ToCalibrationResult(estimate);
   std::ostringstream text;
   text << Summary(estimate.report, encoders.size(), fixes.size()) << "\n  window "
        << estimate.window_start_s << " .. " << estimate.window_end_s << " s";
-  for (const auto& change : estimate.changes) {
-    text << "\n  CHANGED: " << calibration_core::Describe(change);
-  }
+  for (const auto& change : message.changed()) text << "\n  CHANGED: " << change;
   std::cout << text.str() << std::endl;
   const std::string write_error = WriteResults(encoders, fixes, estimate.report);
   if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
-  result_.Write(ToCalibrationResult(estimate));
+  result_.Write(message);
   estimated_ = true;
   std::lock_guard<std::mutex> lock(mutex_);
-  changed_.clear();
-  for (const auto& change : estimate.changes) changed_.push_back(Describe(change));
+  changed_ = message.changed();
   outcome_ =
       estimate.report.success
           ? "calibrated over the window ending at " + std::to_string(estimate.window_end_s) + " s"
