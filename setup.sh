@@ -17,7 +17,7 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev libopencv-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  iproute2 procps
+  iproute2 procps iptables
 )
 
 as_root() {

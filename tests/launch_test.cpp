@@ -119,6 +119,41 @@ TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
       [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
 }
 
+TEST(LaunchFiles, ExecutablesRunProgramsFromPathWithTheirArgumentsAndEnvironment) {
+  const testing::TempDir temp;
+  const std::string path = temp.Write("executable.launch.xml", R"xml(<launch>
+  <arg name="port" default="11811"/>
+  <arg name="server" default="true"/>
+  <set_env name="A" value="1"/>
+  <executable cmd="sh -c  exit  $(var port)" name="server" respawn="true" if="$(var server)">
+    <env name="B" value="2"/>
+  </executable>
+  <executable cmd="/bin/true" unless="$(var server)"/>
+</launch>)xml");
+  const auto d = process::ReadLaunchFile(path, Context());
+  ASSERT_EQ(d.nodes.size(), 1u);
+  EXPECT_EQ(d.nodes[0].name, "server");
+  EXPECT_TRUE(d.nodes[0].executable == "/bin/sh" || d.nodes[0].executable == "/usr/bin/sh")
+      << d.nodes[0].executable;
+  EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"-c", "exit", "11811"}));
+  EXPECT_EQ(d.nodes[0].environment,
+            (std::vector<std::pair<std::string, std::string>>{{"A", "1"}, {"B", "2"}}));
+  EXPECT_TRUE(d.nodes[0].respawn);
+  auto context = Context();
+  context.overrides["server"] = "false";
+  const auto other = process::ReadLaunchFile(path, context);
+  ASSERT_EQ(other.nodes.size(), 1u);
+  EXPECT_EQ(other.nodes[0].name, "true");
+  EXPECT_EQ(other.nodes[0].executable, "/bin/true");
+  testing::ExpectRejected(
+      "<launch><executable cmd='no_such_program_here --x'/></launch>",
+      "cmd 'no_such_program_here' is not an executable on PATH",
+      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+  testing::ExpectRejected(
+      "<launch><executable cmd='/bin/true'><param name='a' value='1'/></executable></launch>",
+      "unknown element", [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+}
+
 TEST(LaunchFiles, ParamFilesGiveEachNodeItsEntriesAndTheirOwnErrorsNameTheLine) {
   const testing::TempDir temp;
   const std::string params = temp.Write("params.yaml", R"yaml(/**:
@@ -186,7 +221,7 @@ INSTANTIATE_TEST_SUITE_P(
                      "has no default"},
         BrokenLaunch{"Malformed", "<launch><node pkg='structloc' exec='x'></launch>",
                      "malformed XML"},
-        BrokenLaunch{"NoNodes", "<launch/>", "launches no <node>"},
+        BrokenLaunch{"NoNodes", "<launch/>", "launches no <node> or <executable>"},
         BrokenLaunch{"ConditionNotABoolean",
                      "<launch><node pkg='structloc' exec='structloc_simulator' if='maybe'/>"
                      "</launch>",

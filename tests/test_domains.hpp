@@ -32,6 +32,8 @@ inline constexpr int kLaunchRun = 77;
 inline constexpr int kComponentTeardown = 81;
 // tests/install/install_test.sh (a script: tests/CMakeLists.txt passes it 82).
 inline constexpr int kInstallTest = 82;
+// tests/multihost/netns_multihost_test.sh (a script: tests/CMakeLists.txt passes it 78).
+inline constexpr int kNetnsMultihost = 78;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -54,6 +56,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kLaunchRun,
                                     kComponentTeardown,
                                     kInstallTest,
+                                    kNetnsMultihost,
                                     kLatencyBenchmark};
 
 constexpr bool AllDistinctAndSafe() {

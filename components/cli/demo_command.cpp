@@ -8,6 +8,7 @@
 #include <iostream>
 #include <thread>
 
+#include "live_verdict.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/install_layout.hpp"
 #include "structloc/evaluation/live_evaluator.hpp"
@@ -17,16 +18,6 @@
 #include "subcommands.hpp"
 
 namespace structloc::cli {
-namespace {
-
-// The demo's own accuracy bar (the integration test's): a run that misses it,
-// e.g. because another robot shares the DDS domain, must not look like success.
-constexpr double kMaxRmseM = 0.010;
-constexpr double kMaxErrorM = 0.030;
-constexpr double kMaxHeadingRmseDeg = 0.3;
-constexpr size_t kMinPoses = 500;
-
-}  // namespace
 
 int DemoCommand(const Invocation& inv) {
   const std::vector<config::OptionSpec> specs = {
@@ -83,9 +74,7 @@ int DemoCommand(const Invocation& inv) {
       return 1;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    const auto est = evaluator.EstimateError();
-    const auto odo = evaluator.OdometryError();
-    if (est.matched == 0) {
+    if (evaluator.EstimateError().matched == 0) {
       std::cerr << "structloc demo: no pose was received:\n"
                 << launch.CapturedOutput() << std::endl;
       return 1;
@@ -94,35 +83,12 @@ int DemoCommand(const Invocation& inv) {
                            "structloc demo: office, " +
                                std::to_string(static_cast<int>(scenario.duration_s)) +
                                " s, true path / odometry / localised");
-    std::printf("\nsummary (%zu poses against ground truth)\n", est.matched);
-    std::printf(
-        "  localised:     position RMSE %7.1f mm, max %7.1f mm, heading RMSE %.3f deg, lost %llu "
-        "times\n",
-        1e3 * est.position_rmse_m, 1e3 * est.position_max_m,
-        est.heading_rmse_rad * 180 / geometry::kPi,
-        static_cast<unsigned long long>(evaluator.LostCount()));
-    std::printf(
-        "  odometry only: position RMSE %7.1f mm, max %7.1f mm, heading RMSE %.3f deg, %.2f m off "
-        "at the end\n",
-        1e3 * odo.position_rmse_m, 1e3 * odo.position_max_m,
-        odo.heading_rmse_rad * 180 / geometry::kPi, odo.final_position_m);
+    const bool passed = PrintSummaryAndJudge(
+        evaluator, node, LiveBar{},
+        "is another robot or demo on DDS domain " + std::to_string(domain) + "?");
     std::printf("  picture (true path, odometry, localised estimate): %s\n",
                 std::filesystem::weakly_canonical(png).c_str());
-    int failed = 0;
-    for (const auto& problem : node.PeerProblems()) {
-      std::printf("  PROBLEM: %s\n", problem.c_str());
-      ++failed;
-    }
-    if (est.position_rmse_m > kMaxRmseM || est.position_max_m > kMaxErrorM ||
-        est.heading_rmse_rad * 180 / geometry::kPi > kMaxHeadingRmseDeg ||
-        evaluator.LostCount() > 0 || est.matched < kMinPoses) {
-      std::printf(
-          "  FAILED the demo's bar (RMSE <= %.0f mm, max <= %.0f mm, heading RMSE <= %.1f deg, "
-          "never lost, >= %zu poses): is another robot or demo on DDS domain %d?\n",
-          1e3 * kMaxRmseM, 1e3 * kMaxErrorM, kMaxHeadingRmseDeg, kMinPoses, domain);
-      ++failed;
-    }
-    return failed == 0 ? 0 : 1;
+    return passed ? 0 : 1;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc demo: " << e.what() << "\n" << config::CommandLine::Usage(specs);
     return 2;

@@ -23,6 +23,9 @@ const Subcommand kSubcommands[] = {
      "[--max-total-bytes N]  start components from a launch file"},
     {"demo", structloc::cli::DemoCommand,
      "[--domain N] [--time-scale X] [--out PICTURE.png]  run the main demo"},
+    {"watch", structloc::cli::WatchCommand,
+     "[--domain N] [--participant-profile P] [--timeout-s S] ...  judge a running simulated "
+     "robot's localisation against ground truth (exit 0: the demo's bar met)"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,

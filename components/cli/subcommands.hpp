@@ -14,6 +14,7 @@ struct Invocation {
 
 int LaunchCommand(const Invocation& invocation);
 int DemoCommand(const Invocation& invocation);
+int WatchCommand(const Invocation& invocation);
 int SimulateCommand(const Invocation& invocation);
 int RenderCommand(const Invocation& invocation);
 int ReplayCommand(const Invocation& invocation);

@@ -54,6 +54,17 @@ FrameIds FrameIdsFrom(const config::CommandLine& cli) {
   return frames;
 }
 
+NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& name) {
+  NodeOptions options;
+  options.ros_namespace = NormaliseNamespace(cli.GetOr("namespace", ""));
+  // Two robots' components differ by namespace, not by kind.
+  options.name = options.ros_namespace.empty() ? name : options.ros_namespace + "/" + name;
+  options.domain_id = static_cast<int>(cli.IntegerIn("domain", DefaultDomain(), 0, 232));
+  options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
+  options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
+  return options;
+}
+
 int DefaultDomain() {
   const char* text = std::getenv("ROS_DOMAIN_ID");
   if (text == nullptr || *text == '\0') return 0;
@@ -92,14 +103,7 @@ int RunComponent(int argc, char** argv, const std::string& name,
       listing(std::cout);
       return 0;
     }
-    NodeOptions options;
-    options.ros_namespace = NormaliseNamespace(cli.GetOr("namespace", ""));
-    // Two robots' components differ by namespace, not by kind.
-    options.name = options.ros_namespace.empty() ? name : options.ros_namespace + "/" + name;
-    options.domain_id = static_cast<int>(cli.IntegerIn("domain", DefaultDomain(), 0, 232));
-    options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
-    options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
-    Node node(options);
+    Node node(NodeOptionsFrom(cli, name));
     node.HoldCallbacks();  // none may reach a component still being built
     // The component owns its subscriptions: destroying it (before the node,
     // also when an exception leaves) ends every callback into it.

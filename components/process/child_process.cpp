@@ -31,6 +31,18 @@ namespace {
   if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
   // The parent may have died before prctl took effect.
   if (error == 0 && getppid() != parent) _exit(127);
+  // The program starts with the stop signals a shell would give it: the
+  // launcher's blocked SIGINT/SIGTERM (ShutdownSignal) and a background job's
+  // ignored SIGINT are inherited through exec and would leave it deaf to a stop.
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  sigset_t no_signals;
+  sigemptyset(&no_signals);
+  if (error == 0 && (sigaction(SIGINT, &default_action, nullptr) != 0 ||
+                     sigaction(SIGTERM, &default_action, nullptr) != 0 ||
+                     sigprocmask(SIG_SETMASK, &no_signals, nullptr) != 0)) {
+    error = errno;
+  }
   if (error == 0 && output_fd >= 0) {
     if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
   }

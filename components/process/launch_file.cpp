@@ -10,6 +10,7 @@
 #include <cstring>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/process/launch_param_file.hpp"
@@ -151,7 +152,7 @@ class LaunchReader {
       }
     }
     if (description_.nodes.empty()) {
-      throw config::ConfigError(file_.Path() + ": launches no <node>");
+      throw config::ConfigError(file_.Path() + ": launches no <node> or <executable>");
     }
     return std::move(description_);
   }
@@ -160,11 +161,12 @@ class LaunchReader {
   // The children of <launch> (top) or of a <group>, in order.
   void Walk(const tinyxml2::XMLElement& parent, Scope& scope, bool top) {
     if (top) {
-      config::RequireChildNames(file_, parent,
-                                {"arg", "let", "set_env", "node", "group", "include"});
+      config::RequireChildNames(
+          file_, parent, {"arg", "let", "set_env", "node", "executable", "group", "include"});
     } else {
       config::RequireChildNames(
-          file_, parent, {"let", "set_env", "node", "group", "include", "push-ros-namespace"});
+          file_, parent,
+          {"let", "set_env", "node", "executable", "group", "include", "push-ros-namespace"});
     }
     for (const auto* e = parent.FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Name();
@@ -192,6 +194,8 @@ class LaunchReader {
         attrs.Finish();
         Scope inner = scope;  // what the group sets stays in it
         if (active) Walk(*e, inner, false);
+      } else if (tag == "executable") {
+        Executable(*e, scope);
       } else {
         Node(*e, scope);
       }
@@ -276,26 +280,9 @@ class LaunchReader {
     node.name = attrs.OptionalString("name").value_or(exec);
     const std::string ros_namespace = Join(
         scope.ros_namespace, Substitute(e, attrs.OptionalString("namespace").value_or(""), scope));
-    attrs.OptionalString("output");
-    if (const auto respawn = attrs.OptionalString("respawn")) {
-      node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
-    }
-    if (const auto delay = attrs.OptionalString("respawn_delay")) {
-      const std::string text = Substitute(e, *delay, scope);
-      char* end = nullptr;
-      node.respawn_delay_s = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !(node.respawn_delay_s >= 0.0) ||
-          node.respawn_delay_s > 3600.0) {
-        attrs.Fail("respawn_delay '" + text + "' is not a number of seconds in 0..3600");
-      }
-    }
-    const bool active = Condition(e, attrs, scope);
-    attrs.Finish();
-    if (!active) return;
+    if (!ProcessAttributes(e, attrs, scope, node)) return;
     if (!ros_namespace.empty()) node.name = ros_namespace + "/" + node.name;
-    if (!node_names_.insert(node.name).second) {
-      file_.Fail(e, "duplicate node name '" + node.name + "'");
-    }
+    AddNodeName(e, node.name);
     config::RequireChildNames(file_, e, {"param", "env"});
     node.environment = scope.environment;
     if (!ros_namespace.empty()) {
@@ -334,6 +321,73 @@ class LaunchReader {
     }
     RequireExecutable(file_, e, exec, node.executable);
     description_.nodes.push_back(std::move(node));
+  }
+
+  // <executable cmd="PROGRAM ARGS..." name="N"> (ROS 2's tag for programs
+  // that are not nodes, e.g. Fast DDS's "fast-discovery-server"): the command is split at
+  // spaces after substitution; PROGRAM is an absolute path or found on PATH.
+  // It runs in the environment around it plus its own <env>s, without a
+  // namespace (it is not a ROS 2 node).
+  void Executable(const tinyxml2::XMLElement& e, const Scope& scope) {
+    AttributeReader attrs(file_, e);
+    NodeLaunch node;
+    std::istringstream words(Substitute(e, attrs.String("cmd"), scope));
+    std::string program;
+    words >> program;
+    if (program.empty()) attrs.Fail("cmd is empty");
+    for (std::string word; words >> word;) node.arguments.push_back(word);
+    node.name = attrs.OptionalString("name").value_or(program.substr(program.rfind('/') + 1));
+    if (!ProcessAttributes(e, attrs, scope, node)) return;
+    AddNodeName(e, node.name);
+    config::RequireChildNames(file_, e, {"env"});
+    node.environment = scope.environment;
+    for (const auto* p = e.FirstChildElement(); p != nullptr; p = p->NextSiblingElement()) {
+      const auto [name, value] = Variable(*p, scope);
+      SetVariable(node.environment, name, value);
+    }
+    node.executable = program.find('/') != std::string::npos ? program : FindOnPath(program);
+    if (node.executable.empty()) {
+      file_.Fail(e, "cmd '" + program + "' is not an executable on PATH");
+    }
+    RequireExecutable(file_, e, program, node.executable);
+    description_.nodes.push_back(std::move(node));
+  }
+
+  // The attributes <node> and <executable> share: output, respawn,
+  // respawn_delay, if, unless. Returns whether the process is launched.
+  bool ProcessAttributes(const tinyxml2::XMLElement& e, AttributeReader& attrs, const Scope& scope,
+                         NodeLaunch& node) {
+    attrs.OptionalString("output");
+    if (const auto respawn = attrs.OptionalString("respawn")) {
+      node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
+    }
+    if (const auto delay = attrs.OptionalString("respawn_delay")) {
+      const std::string text = Substitute(e, *delay, scope);
+      char* end = nullptr;
+      node.respawn_delay_s = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(node.respawn_delay_s >= 0.0) ||
+          node.respawn_delay_s > 3600.0) {
+        attrs.Fail("respawn_delay '" + text + "' is not a number of seconds in 0..3600");
+      }
+    }
+    const bool active = Condition(e, attrs, scope);
+    attrs.Finish();
+    return active;
+  }
+
+  void AddNodeName(const tinyxml2::XMLElement& e, const std::string& name) {
+    if (!node_names_.insert(name).second) file_.Fail(e, "duplicate node name '" + name + "'");
+  }
+
+  // The first executable file called `program` in PATH's folders ("" if none).
+  static std::string FindOnPath(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    std::istringstream folders(path != nullptr ? path : "/usr/local/bin:/usr/bin:/bin");
+    for (std::string folder; std::getline(folders, folder, ':');) {
+      const std::string candidate = (folder.empty() ? "." : folder) + "/" + program;
+      if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+    return "";
   }
 
   // A <set_env> or <env>: a variable name (letters, digits, '_', not starting

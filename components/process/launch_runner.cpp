@@ -1,6 +1,8 @@
 // Launch runner (see header).
 #include "structloc/process/launch_runner.hpp"
 
+#include <algorithm>
+#include <csignal>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -109,10 +111,19 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
     }
   }
   std::cout << "[launch] stopping all nodes (" << reason << ")" << std::endl;
-  const auto grace = std::chrono::milliseconds(static_cast<long>(options.stop_grace_s * 1000));
+  // As ros2 launch does: SIGINT to every node at once, SIGTERM to one still
+  // running after the grace, SIGKILL if that does not end it either.
+  for (auto& running : nodes) {
+    if (running.child) running.child->Signal(SIGINT);  // none while waiting to respawn
+  }
+  const auto deadline =
+      Clock::now() + std::chrono::milliseconds(static_cast<long>(options.stop_grace_s * 1000));
   for (size_t i = 0; i < nodes.size(); ++i) {
-    if (!nodes[i].child) continue;  // waiting to respawn
-    const int code = nodes[i].child->Stop(grace);
+    if (!nodes[i].child) continue;
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    auto exited = nodes[i].child->WaitExit(std::max(left, std::chrono::milliseconds(0)));
+    const int code = exited ? *exited : nodes[i].child->Stop(std::chrono::seconds(2));
     Relay(description.nodes[i], nodes[i], true);
     std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code
               << std::endl;

@@ -10,6 +10,7 @@
 //         <param name="domain" value="$(var domain)"/>
 //       </node>
 //     </group>
+//     <executable cmd="fast-discovery-server -i 0 -p 11811" name="discovery_server" if="..."/>
 //   </launch>
 // Substitutions: $(var NAME) (an <arg> or <let> above), $(find-pkg-share
 // structloc), $(env NAME). Each <param name="N" value="V"/> becomes the
@@ -18,7 +19,9 @@
 // A <group> scopes its <let>s, namespace and <set_env name="N" value="V"/>
 // (an environment variable for the nodes after it; <env> inside a <node> is
 // that node's own; ROS_DOMAIN_ID picks the components' default domain); if= /
-// unless= take true, false, 1 or 0. Unknown elements and attributes, duplicate <arg> names or node
+// unless= take true, false, 1 or 0. An <executable cmd="PROGRAM ARGS"> runs a
+// program that is not a structloc node (PROGRAM an absolute path or on PATH),
+// with the same output/respawn/if/unless attributes and <env> children. Unknown elements and attributes, duplicate <arg> names or node
 // names, executables that do not exist, and substituted values above the
 // size limits are errors (file:line). DDS-free.
 #pragma once
@@ -33,7 +36,7 @@ namespace structloc::process {
 
 struct NodeLaunch {
   std::string name;        // unique within the file
-  std::string executable;  // "exec", resolved against the executables folder
+  std::string executable;  // "exec" in the executables folder, or <executable>'s program
   std::vector<std::string> arguments;
   // Variables laid over the launcher's environment (<set_env>, <env>).
   std::vector<std::pair<std::string, std::string>> environment;

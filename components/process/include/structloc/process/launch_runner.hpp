@@ -15,7 +15,7 @@ namespace structloc::process {
 
 struct LaunchRunOptions {
   std::optional<double> duration_s;  // stop everything after this long; none = until a signal
-  double stop_grace_s = 5.0;         // SIGTERM -> SIGKILL grace per node
+  double stop_grace_s = 5.0;         // SIGINT -> SIGTERM grace (all nodes together)
 };
 
 // Returns 0 when every node stopped cleanly, otherwise 1 (also when a node
