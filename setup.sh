@@ -3,7 +3,7 @@
 # needs (idempotent, non-interactive; as root or through sudo), configures and
 # builds into build/, then runs what was asked:
 #   ./setup.sh demo    the main job: simulated robot localised live, summary + picture
-#   ./setup.sh test    every test (ctest), non-zero exit when one fails
+#   ./setup.sh test    every test (ctest, then the container test), non-zero exit when one fails
 #   ./setup.sh build   dependencies and build only
 #   ./setup.sh deps    dependencies only
 set -euo pipefail
@@ -17,16 +17,25 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev libopencv-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  cyclonedds-dev cyclonedds-tools
   iproute2 procps iptables
 )
+
+# For the container test (run by "./setup.sh test" after ctest): Docker's
+# engine and compose, and debootstrap for the locally made base image.
+container_packages=(docker.io docker-compose debootstrap)
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
 }
 
 install_dependencies() {
-  local missing=()
-  for p in "${packages[@]}"; do
+  local missing=() wanted=("${packages[@]}")
+  # Only root can start a Docker engine: others skip the container test.
+  if [ "${1:-}" = with-containers ] && [ "$(id -u)" -eq 0 ]; then
+    wanted+=("${container_packages[@]}")
+  fi
+  for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ "${#missing[@]}" -eq 0 ]; then
@@ -52,8 +61,23 @@ run_tests() {
     echo "setup: $here/../shared/data is not here: leaving out the tests on real recordings (label shared_data)"
     exclude=(-LE shared_data)
   fi
-  cd "$build_dir"
-  ctest --output-on-failure -j "$jobs" --timeout 600 "${exclude[@]}"
+  local ctest=(ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" --timeout 600
+    "${exclude[@]}")
+  if [ "$(id -u)" -eq 0 ] && unshare --net true 2>/dev/null; then
+    # As root the tests run in a network namespace of their own with only a
+    # loopback: not one packet of theirs can reach this machine's interfaces.
+    echo "setup: running the tests in a private network namespace (loopback only)"
+    unshare --net sh -c 'ip link set lo up && exec "$@"' sh "${ctest[@]}"
+  else
+    "${ctest[@]}"
+  fi
+}
+
+run_container_test() {
+  local status=0
+  "$here/tests/container/container_test.sh" "$build_dir" || status=$?
+  if [ "$status" -eq 77 ]; then return 0; fi  # skipped, and it said why
+  return "$status"
 }
 
 run_demo() {
@@ -63,7 +87,14 @@ run_demo() {
 case "${1:-}" in
   deps) install_dependencies ;;
   build) install_dependencies; build ;;
-  test) install_dependencies; build; run_tests ;;
+  test)
+    install_dependencies with-containers
+    build
+    status=0
+    run_tests || status=$?
+    run_container_test || status=$?
+    exit "$status"
+    ;;
   demo) install_dependencies; build; run_demo ;;
   *)
     echo "usage: ./setup.sh demo|test|build|deps" >&2

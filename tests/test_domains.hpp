@@ -34,6 +34,8 @@ inline constexpr int kComponentTeardown = 81;
 inline constexpr int kInstallTest = 82;
 // tests/multihost/netns_multihost_test.sh (a script: tests/CMakeLists.txt passes it 78).
 inline constexpr int kNetnsMultihost = 78;
+// tests/interop/cyclone_interop_test.sh (a script: tests/CMakeLists.txt passes it 79).
+inline constexpr int kCycloneInterop = 79;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -57,6 +59,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kComponentTeardown,
                                     kInstallTest,
                                     kNetnsMultihost,
+                                    kCycloneInterop,
                                     kLatencyBenchmark};
 
 constexpr bool AllDistinctAndSafe() {

@@ -58,7 +58,11 @@ geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
   auto& c = msg.pose().covariance();
   const int idx[3] = {0, 1, 5};
   for (int r = 0; r < 3; ++r) {
-    for (int k = 0; k < 3; ++k) c[static_cast<size_t>(idx[r] * 6 + idx[k])] = t.covariance(r, k);
+    for (int k = 0; k < 3; ++k) {
+      // Exactly symmetric on the wire, as clients (and Cholesky) expect: the
+      // filter's product of Jacobians leaves last-bit differences.
+      c[static_cast<size_t>(idx[r] * 6 + idx[k])] = 0.5 * (t.covariance(r, k) + t.covariance(k, r));
+    }
   }
   c[14] = c[21] = c[28] = 1e6;  // z, roll, pitch: not estimated
   return msg;

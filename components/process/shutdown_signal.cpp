@@ -19,6 +19,13 @@ sigset_t StopSignals() {
 }  // namespace
 
 ShutdownSignal::ShutdownSignal() {
+  // A program started in the background by a shell has SIGINT ignored, and an
+  // ignored signal is discarded even while blocked: take both back to default
+  // (never acted on while blocked) so that sigtimedwait sees them.
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  sigaction(SIGINT, &default_action, nullptr);
+  sigaction(SIGTERM, &default_action, nullptr);
   const sigset_t set = StopSignals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
 }
