@@ -53,7 +53,7 @@ std::optional<std::string> RoundTripOnce(int domain) {
 }
 
 // The default profile announces participants to 127.0.0.1's unicast ports of
-// participants 0..31, so one held port (the domain's multicast discovery port,
+// participants 0..99, so one held port (the domain's multicast discovery port,
 // or the first participant's unicast one) no longer cuts them off: the
 // participants take the next free ports and still meet.
 TEST(DdsDomainPorts, TheDefaultProfileSurvivesASocketHoldingADiscoveryPort) {

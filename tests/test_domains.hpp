@@ -36,6 +36,7 @@ inline constexpr int kInstallTest = 82;
 inline constexpr int kNetnsMultihost = 78;
 // tests/interop/cyclone_interop_test.sh (a script: tests/CMakeLists.txt passes it 79).
 inline constexpr int kCycloneInterop = 79;
+inline constexpr int kFleetBenchmark = 80;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -60,6 +61,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kInstallTest,
                                     kNetnsMultihost,
                                     kCycloneInterop,
+                                    kFleetBenchmark,
                                     kLatencyBenchmark};
 
 constexpr bool AllDistinctAndSafe() {
