@@ -21,9 +21,9 @@
 // that node's own; ROS_DOMAIN_ID picks the components' default domain); if= /
 // unless= take true, false, 1 or 0. An <executable cmd="PROGRAM ARGS"> runs a
 // program that is not a structloc node (PROGRAM an absolute path or on PATH),
-// with the same output/respawn/if/unless attributes and <env> children. Unknown elements and attributes, duplicate <arg> names or node
-// names, executables that do not exist, and substituted values above the
-// size limits are errors (file:line). DDS-free.
+// with the same output/respawn/if/unless attributes and <env> children. Unknown elements and
+// attributes, duplicate <arg> names or node names, executables that do not exist, and substituted
+// values above the size limits are errors (file:line). DDS-free.
 #pragma once
 
 #include <cstddef>
