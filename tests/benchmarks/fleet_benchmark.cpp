@@ -24,6 +24,7 @@
 #include <sstream>
 #include <thread>
 
+#include "benchmarks/process_cpu.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/config/command_line.hpp"
@@ -50,17 +51,7 @@ struct ProcessUse {
 
 ProcessUse Use(pid_t pid) {
   ProcessUse use;
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
-  if (text.rfind(')') == std::string::npos) return use;
-  std::istringstream fields(text.substr(text.rfind(')') + 2));
-  std::string f;
-  double utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && fields >> f; ++i) {
-    if (i == 14) utime = std::stod(f);
-    if (i == 15) stime = std::stod(f);
-  }
-  use.cpu_s = (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  use.cpu_s = testing::CpuSeconds(pid);
   std::ifstream status("/proc/" + std::to_string(pid) + "/status");
   for (std::string line; std::getline(status, line);) {
     if (line.rfind("VmHWM:", 0) == 0) use.peak_rss_mb = std::stod(line.substr(6)) / 1024.0;

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "benchmarks/process_cpu.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
@@ -26,19 +27,6 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double CpuSeconds(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::istringstream fields(text.substr(text.rfind(')') + 2));
-  std::string f;
-  double utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && fields >> f; ++i) {
-    if (i == 14) utime = std::stod(f);
-    if (i == 15) stime = std::stod(f);
-  }
-  return (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
-}
 
 }  // namespace
 
@@ -85,7 +73,7 @@ int main(int argc, char** argv) {
   simulation_core::Simulation sim(scenario);
   const double offset = 1.0e9;
   const auto start = Clock::now();
-  const double cpu_start = CpuSeconds(loc.Pid());
+  const double cpu_start = structloc::testing::CpuSeconds(loc.Pid());
   long steps = 0;
   while (!sim.Finished()) {
     const auto& s = sim.Step();
@@ -105,7 +93,7 @@ int main(int argc, char** argv) {
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-  const double cpu = CpuSeconds(loc.Pid()) - cpu_start;
+  const double cpu = structloc::testing::CpuSeconds(loc.Pid()) - cpu_start;
   loc.Stop(std::chrono::seconds(5));
   std::lock_guard<std::mutex> lock(mutex);
   std::sort(latency_ms.begin(), latency_ms.end());

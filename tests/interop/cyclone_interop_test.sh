@@ -42,21 +42,10 @@ fi
 
 ns="slcy$$"
 work="$(mktemp -d)"
-cleanup() {
-  local status=$?
-  set +e
-  ip netns pids "$ns" 2>/dev/null | xargs -r kill -9 2>/dev/null
-  wait 2>/dev/null
-  ip netns del "$ns" 2>/dev/null
-  if [ "$status" -ne 0 ]; then
-    for f in "$work"/*.log; do
-      [ -f "$f" ] && { echo "----- $(basename "$f")"; tail -n 30 "$f"; }
-    done
-  fi
-  rm -rf "$work"
-  exit "$status"
-}
-trap cleanup EXIT
+netns_names=("$ns")
+# shellcheck source=../netns_cleanup.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
+trap netns_cleanup EXIT
 trap 'exit 130' INT TERM
 
 ip netns add "$ns"

@@ -47,23 +47,11 @@ server_ip="$subnet.5"
 work="$(mktemp -d)"
 declare -A launch_pid
 
-cleanup() {
-  local status=$?
-  set +e
-  for h in "${hosts[@]}" br; do
-    ip netns pids "$prefix-$h" 2>/dev/null | xargs -r kill -9 2>/dev/null
-  done
-  wait 2>/dev/null
-  for h in "${hosts[@]}" br; do ip netns del "$prefix-$h" 2>/dev/null; done
-  if [ "$status" -ne 0 ]; then
-    for f in "$work"/*.log; do
-      [ -f "$f" ] && { echo "----- $(basename "$f")"; tail -n 40 "$f"; }
-    done
-  fi
-  rm -rf "$work"
-  exit "$status"
-}
-trap cleanup EXIT
+netns_names=()
+for h in "${hosts[@]}" br; do netns_names+=("$prefix-$h"); done
+# shellcheck source=../netns_cleanup.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
+trap netns_cleanup EXIT
 trap 'exit 130' INT TERM
 
 # The network: a bridge in its own namespace, one veth per host.
