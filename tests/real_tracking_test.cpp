@@ -6,7 +6,8 @@
 //   - maps built from one part of the recording and a 5 cm grid ray-cast from
 //     that part, localised on another part (Freiburg: built from scans 719-4790,
 //     localised on 0-718; Intel: built from 182-909, localised on 0-181, which
-//     those parts cover).
+//     those parts cover), and
+//   - the map imported from a 5 cm grid ray-cast from the whole recording.
 // Position RMSE and max against the corrected poses, and the longest lost period.
 #include <gtest/gtest.h>
 
@@ -32,14 +33,18 @@ struct Recording {
   const char* map_part;   // --scans of the part the split map is built from
   const char* test_part;  // --scans of the part localised on
   bool restamp;           // key scans without motion times (Intel)
+  // RMSE bar with perfect odometry on the maps imported from grids: the
+  // issue's 30 mm where it is met; on Freiburg the measured 34-43 mm (README).
+  double grid_perfect_rmse_m;
 };
 
 void PrintTo(const Recording& r, std::ostream* out) {
   *out << r.name;
 }
 
-const Recording kFreiburg{"freiburg_079", "freiburg-079-corrected.log.gz", "719:", "0:719", false};
-const Recording kIntel{"intel", "intel-corrected.log.gz", "182:", "0:182", true};
+const Recording kFreiburg{"freiburg_079", "freiburg-079-corrected.log.gz", "719:", "0:719", false,
+                          0.045};
+const Recording kIntel{"intel", "intel-corrected.log.gz", "182:", "0:182", true, 0.030};
 
 std::string SharedData(const std::string& name) {
   return std::string(STRUCTLOC_SOURCE_DIR) + "/../shared/data/" + name;
@@ -131,10 +136,10 @@ TEST_P(RealTracking, MeetsTheBarsOnTheShippedMap) {
              0.050);
 }
 
-// Maps from another part of the recording, built and ray-cast from it. The
-// bars with the systematic errors hold for both kinds of map and odometry;
-// with perfect odometry the Freiburg figures (README) are above 30 mm.
-TEST_P(RealTracking, MeetsThePerturbedBarsOnMapsOfAnotherPart) {
+// Maps from another part of the recording, built and ray-cast from it. Every
+// bar holds on the built map; on the grid's map the bars with the systematic
+// errors, and with perfect odometry grid_perfect_rmse_m.
+TEST_P(RealTracking, MeetsTheBarsOnMapsOfAnotherPart) {
   const auto& r = GetParam();
   ASSERT_TRUE(std::filesystem::exists(SharedData(r.log))) << kMissing << SharedData(r.log);
   const testing::TempDir temp;
@@ -151,9 +156,29 @@ TEST_P(RealTracking, MeetsThePerturbedBarsOnMapsOfAnotherPart) {
   for (bool perturbed : {false, true}) {
     const Evaluation e = Synthesise(temp, r, r.test_part, perturbed);
     const std::string odometry = perturbed ? "perturbed" : "perfect";
-    ExpectBars(std::string(r.name) + ", built map, " + odometry + " odometry", built, e, 0.050);
-    ExpectBars(std::string(r.name) + ", grid map, " + odometry + " odometry", imported, e, 0.050);
+    ExpectBars(std::string(r.name) + ", built map, " + odometry + " odometry", built, e,
+               perturbed ? 0.050 : 0.030);
+    ExpectBars(std::string(r.name) + ", grid map, " + odometry + " odometry", imported, e,
+               perturbed ? 0.050 : r.grid_perfect_rmse_m);
   }
+}
+
+// The map imported from a 5 cm grid of the whole recording.
+TEST_P(RealTracking, MeetsTheBarsOnTheMapOfTheWholeRecordingsGrid) {
+  const auto& r = GetParam();
+  ASSERT_TRUE(std::filesystem::exists(SharedData(r.log))) << kMissing << SharedData(r.log);
+  const testing::TempDir temp;
+  const std::string grid = temp / "grid.yaml", imported = temp / "imported.xml";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"map", "grid", "--log", SharedData(r.log), "--out", grid},
+        std::vector<std::string>{"map", "import", "--grid", grid, "--out", imported}}) {
+    const auto result = testing::RunCli(args, std::chrono::seconds(600));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  ExpectBars(std::string(r.name) + ", whole recording's grid map, perfect odometry", imported,
+             Synthesise(temp, r, "", false), r.grid_perfect_rmse_m);
+  ExpectBars(std::string(r.name) + ", whole recording's grid map, perturbed odometry", imported,
+             Synthesise(temp, r, "", true), 0.050);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, RealTracking, ::testing::Values(kFreiburg, kIntel),

@@ -82,12 +82,13 @@ void CornerExtractor::Extract(const ExtractionInput& in, Measurements& all,
     m.covariance = c.covariance;
     m.world = e.world;
     if (!GatePoint(m.sensor, m.covariance, m.world, in.sensor_prior, in.sensor_prior_covariance,
-                   options_.map_sigma_m, options_.gate_chi2)) {
+                   options_.map_sigma_m, options_.gate_chi2, e.map_error_scale)) {
       continue;
     }
     m.use_in_weighted = !RedundantWithWalls(e.world, all.lines);
     FeatureMatch match;
     match.model_id = e.model_id;
+    match.slot = e.slot;
     match.members = c.members;
     match.x_m = m.sensor.x();
     match.y_m = m.sensor.y();

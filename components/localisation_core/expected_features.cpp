@@ -64,6 +64,7 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     ExpectedWall e;
     e.line_index = line_index;
     e.model_id = model.model_id;
+    e.slot = line_index;
     e.world = model.line;
     e.world_c = cw;
     e.world_s = sw;
@@ -73,14 +74,23 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     e.s = std::sin(a);
     out.walls.push_back(e);
   }
+  const int corner_slots = static_cast<int>(lines.size());
   for (int i : visibility.corners) {
     const auto& c = world.Corners()[static_cast<size_t>(i)];
-    out.corners.push_back({i, c.id, c.position, pose.ApplyInverse(c.position), 0.0});
+    out.corners.push_back(
+        {i, c.id, c.position, pose.ApplyInverse(c.position), 0.0, corner_slots + i, 1.0});
   }
+  const int cylinder_slots = corner_slots + static_cast<int>(world.Corners().size());
   for (int i : visibility.cylinders) {
     const auto& c = world.Cylinders()[static_cast<size_t>(i)];
-    out.cylinders.push_back({i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius});
+    out.cylinders.push_back(
+        {i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius, cylinder_slots + i, 1.0});
   }
+}
+
+size_t MapFeatureSlots(const world_model::WorldModel& world,
+                       const std::vector<WallLineModel>& lines) {
+  return lines.size() + world.Corners().size() + world.Cylinders().size();
 }
 
 double ExpectedFeatures::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {

@@ -113,6 +113,7 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   keep_.reserve(beams);
   windows_.reserve(beams);
   expected_.Reserve(lines_.size(), world.Walls().size(), nc, ny);
+  map_errors_.Reset(MapFeatureSlots(world, lines_), options_.map_error_travel_m);
   measurements_.lines.reserve(lines_.size());
   measurements_.points.reserve(nc + ny);
   solve_.Reserve(lines_.size(), nc + ny);
@@ -140,6 +141,24 @@ void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const Sca
   visibility_pose_ = sensor_pose;
   visibility_view_ = view;
   visibility_valid_ = true;
+}
+
+void Localiser::ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose) {
+  if (!map_errors_.Enabled()) return;
+  if (map_errors_pose_)
+    map_errors_.Travel((sensor_pose.Translation() - map_errors_pose_->Translation()).norm());
+  map_errors_pose_ = sensor_pose;
+  for (auto& w : expected_.walls) w.map_error_scale = map_errors_.MapErrorScale(w.slot);
+  for (auto& c : expected_.corners) c.map_error_scale = map_errors_.MapErrorScale(c.slot);
+  for (auto& c : expected_.cylinders) c.map_error_scale = map_errors_.MapErrorScale(c.slot);
+}
+
+void Localiser::RememberFused() {
+  for (const auto& kind : result_.features) {
+    for (const auto& m : kind.matches) {
+      if (m.used) map_errors_.RememberFused(m.slot);
+    }
+  }
 }
 
 void Localiser::Reject(const UpdateInput& input, const char* why) {
@@ -197,6 +216,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
 
   RefreshVisibility(sensor_prior, scan);
   ComputeExpectedFeatures(world_, lines_, wall_line_of_, visibility_, sensor_prior, expected_);
+  ApplyMapErrorMemory(sensor_prior);
 
   // 1. Prefilter (+ de-skew before the neighbourhood tests).
   directions_.Update(scan);

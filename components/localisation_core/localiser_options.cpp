@@ -62,6 +62,10 @@ LocaliserOptionTable SolverSection() {
            Range::Positive(), "rad", "... and the heading this well");
   t.Number("quality_chi2_per_dof", &O::solver, &SolverOptions::quality_chi2_per_dof,
            Range::Positive(), "", "quality is scaled down when chi2 / dof exceeds this");
+  t.Number("map_error_travel_m", &O::map_error_travel_m, Range::NonNegative(), "m",
+           "a map feature's error is the same for the scans fused within about this much "
+           "travel: fused again, it adds only what the scan itself measured (0: independent "
+           "per scan)");
   return t;
 }
 

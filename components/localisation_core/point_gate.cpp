@@ -8,7 +8,8 @@ namespace structloc::localisation_core {
 
 bool GatePoint(const Eigen::Vector2d& measured, Eigen::Matrix2d& covariance,
                const Eigen::Vector2d& world, const geometry::Pose2D& prior,
-               const Eigen::Matrix3d& prior_covariance, double map_sigma_m, double gate_chi2) {
+               const Eigen::Matrix3d& prior_covariance, double map_sigma_m, double gate_chi2,
+               double map_error_scale) {
   const Eigen::Matrix2d map = map_sigma_m * map_sigma_m * Eigen::Matrix2d::Identity();
   if (gate_chi2 > 0.0) {
     const double c = std::cos(prior.theta), s = std::sin(prior.theta);
@@ -21,7 +22,7 @@ bool GatePoint(const Eigen::Vector2d& measured, Eigen::Matrix2d& covariance,
     const Eigen::Vector2d nu = measured - predicted;
     if (!(nu.dot(innovation_cov.ldlt().solve(nu)) <= gate_chi2)) return false;
   }
-  covariance += map;
+  covariance += map_error_scale * map;
   return true;
 }
 

@@ -57,6 +57,10 @@ uint64_t TrackerStats::Rejected() const {
 }
 
 namespace {
+// Two searches that arrive at corrections this close agree.
+constexpr double kSameCorrectionM = 0.2;
+constexpr double kSameCorrectionRad = 0.087;  // 5 deg
+
 OdometryFilterOptions FilterOptions(const TrackerOptions& o) {
   OdometryFilterOptions f;
   f.sigma_xy_per_m = o.odometry_sigma_xy_per_m;
@@ -294,6 +298,7 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   if (out.explained_share >= options_.min_explained_share ||
       check_points_.size() < static_cast<size_t>(o.min_points)) {
     low_share_since_ = -1.0;
+    pending_correction_.reset();
     return;
   }
   if (low_share_since_ < 0.0) low_share_since_ = scan.stamp;
@@ -316,9 +321,26 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   // its uncertainty decides (lost_sigma_m).
   if (found.decision != GlobalDecision::kFound ||
       found.best->score < out.explained_share + options_.min_explained_share) {
+    pending_correction_.reset();
     return;
   }
   const geometry::Pose2D pose = geometry::Compose(found.best->pose, geometry::Inverse(mount));
+  // And it must be found twice: the next search, after more driving, must
+  // arrive at the same map -> odom correction. A chance fit (a stretch of
+  // corridor the map has fewer walls of, a room like the one the robot is in)
+  // moves with the robot; where the robot really is does not.
+  const geometry::Pose2D correction =
+      geometry::Compose(pose, geometry::Inverse(odom_at_last_update_));
+  const bool confirmed =
+      pending_correction_ &&
+      (correction.Translation() - pending_correction_->Translation()).norm() <= kSameCorrectionM &&
+      std::abs(geometry::WrapAngle(correction.theta - pending_correction_->theta)) <=
+          kSameCorrectionRad;
+  if (!confirmed) {
+    pending_correction_ = correction;
+    return;
+  }
+  pending_correction_.reset();
   const geometry::Pose2D before = filter_.Pose();
   out.jump = {pose.x - before.x, pose.y - before.y, geometry::WrapAngle(pose.theta - before.theta)};
   filter_.Reset(pose, options_.InitialCovariance());
@@ -349,6 +371,7 @@ int PoseTracker::Correct(const LocalisationResult& r, const UpdateInput& in,
   const Eigen::Vector3d gradient = (prior_information + r.information) * delta;
   const int used = filter_.Update(r.information / r.chi2_scale, gradient / r.chi2_scale);
   if (used > 0) {
+    localiser_.RememberFused();
     corrected_ = true;
     odom_at_last_correction_ = odom;
   }

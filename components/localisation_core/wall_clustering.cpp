@@ -148,7 +148,8 @@ void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& 
       }
     }
     if (!keep) continue;
-    c.covariance += map_cov;
+    // The map's error, counted once over the scans that share it (map_error_memory.hpp).
+    c.covariance += expected.walls[static_cast<size_t>(c.expected_index)].map_error_scale * map_cov;
     clusters[kept++] = c;
   }
   clusters.resize(kept);

@@ -84,6 +84,7 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
     m.world_alpha = e.world.alpha;
     FeatureMatch match;
     match.model_id = e.model_id;
+    match.slot = e.slot;
     match.members = c.members;
     match.r_m = m.r;
     match.alpha_rad = m.alpha;

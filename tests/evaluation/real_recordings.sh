@@ -6,6 +6,8 @@
 #   odometry  perfect (the corrected poses) and perturbed (1.5 % scale error,
 #             0.3 deg/m heading drift, 5 mm and 0.1 deg noise per sqrt(m));
 #   maps      shipped  maps/real/NAME.xml, built from the whole recording;
+#             grid of all  imported from a 5 cm grid ray-cast from the whole
+#                      recording (`map grid`, then `map import --grid`);
 #             built    built from one part, localised on another (Freiburg:
 #                      built from scans 719-4790, localised on 0-718; Intel:
 #                      built from 182-909, localised on 0-181);
@@ -32,8 +34,8 @@ first_pose() {
 row() {
   local report
   report=$("$structloc" replay --map "$5" --log "$6" --truth "$7" --params "$params" \
-    --initial-pose "$(first_pose "$7")" --out "$out/$1_$2_$3_$4.tum" \
-    --plot "$out/$1_$2_$3_$4.png" 2>&1)
+    --initial-pose "$(first_pose "$7")" --out "$out/$1_$2_$3_${4// /_}.tum" \
+    --plot "$out/$1_$2_$3_${4// /_}.png" 2>&1)
   local error lost time
   error=$(sed -n 's/^estimate vs truth: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm, heading RMSE \([0-9.]*\) deg.*/\1 | \2 | \3/p' <<<"$report")
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
@@ -52,6 +54,8 @@ for name in freiburg_079 intel; do
   else
     map_part=719: test_part=0:719
   fi
+  "$structloc" map grid --log "$log" --out "$out/${name}_grid_all.yaml" >/dev/null
+  "$structloc" map import --grid "$out/${name}_grid_all.yaml" --out "$out/${name}_grid_all.xml" >/dev/null
   "$structloc" map build --log "$log" --scans "$map_part" --out "$out/${name}_built.xml" --quiet >/dev/null
   "$structloc" map grid --log "$log" --scans "$map_part" --out "$out/${name}_grid.yaml" >/dev/null
   "$structloc" map import --grid "$out/${name}_grid.yaml" --out "$out/${name}_grid.xml" >/dev/null
@@ -67,6 +71,8 @@ for name in freiburg_079 intel; do
         "${errors[@]}" "${restamp[@]}" "${scans[@]}" >/dev/null
     done
     row "$name" all "$odometry" shipped "$root/maps/real/$name.xml" \
+      "$out/$name.$odometry.all.log" "$out/$name.$odometry.all.tum"
+    row "$name" all "$odometry" "grid of all" "$out/${name}_grid_all.xml" \
       "$out/$name.$odometry.all.log" "$out/$name.$odometry.all.tum"
     for kind in built grid; do
       row "$name" "$test_part" "$odometry" "$kind" "$out/${name}_$kind.xml" \

@@ -29,6 +29,8 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
 struct ExpectedWall {
   int line_index = 0;
   int model_id = 0;
+  int slot = 0;                  // the line's slot in the MapErrorMemory
+  double map_error_scale = 1.0;  // factor on the map's share of a pairing's covariance
   double r = 0.0;
   double c = 1.0;  // cos/sin of alpha (sensor frame)
   double s = 0.0;
@@ -54,6 +56,8 @@ struct ExpectedPoint {
   Eigen::Vector2d world{0, 0};
   Eigen::Vector2d sensor{0, 0};  // in the sensor frame at the odometric pose
   double radius = 0.0;           // cylinders only
+  int slot = 0;                  // the point's slot in the MapErrorMemory
+  double map_error_scale = 1.0;  // factor on the map's share of a pairing's covariance
 };
 
 struct ExpectedFeatures {
@@ -67,11 +71,16 @@ struct ExpectedFeatures {
   double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const;
 };
 
-// `wall_line_of` maps a wall index to its WallLineModel index.
+// `wall_line_of` maps a wall index to its WallLineModel index. Slots: the
+// wall lines first, then the corners, then the cylinders (MapFeatureSlots()).
 void ComputeExpectedFeatures(const world_model::WorldModel& world,
                              const std::vector<WallLineModel>& lines,
                              const std::vector<int>& wall_line_of,
                              const world_model::Visibility& visibility,
                              const geometry::Pose2D& sensor_pose, ExpectedFeatures& out);
+
+// How many slots the features of `world` grouped into `lines` take.
+size_t MapFeatureSlots(const world_model::WorldModel& world,
+                       const std::vector<WallLineModel>& lines);
 
 }  // namespace structloc::localisation_core

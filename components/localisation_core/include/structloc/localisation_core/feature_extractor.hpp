@@ -33,6 +33,7 @@ struct FeatureMatch {
   double residual_m = 0.0;  // of the solved pose
   bool used = false;        // taken into the pose solve
   int row = 0;              // index of its measurement in Measurements::lines or ::points
+  int slot = -1;            // the map feature's slot in the MapErrorMemory (-1: none)
 };
 
 // The solver's input from all kinds of one scan.

@@ -6,12 +6,14 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "structloc/localisation_core/deskew.hpp"
 #include "structloc/localisation_core/expected_features.hpp"
 #include "structloc/localisation_core/feature_extractor.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/map_error_memory.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/visibility.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -89,6 +91,11 @@ class Localiser {
   // Update.
   const LocalisationResult& Update(const UpdateInput& input);
 
+  // The caller fused the last result into its pose (a filter around the
+  // localiser): the map errors of its features are in that pose now, and the
+  // next scans count them once (solver.map_error_travel_m).
+  void RememberFused();
+
   const LocaliserOptions& Options() const { return options_; }
   const world_model::WorldModel& World() const { return world_; }
 
@@ -96,6 +103,9 @@ class Localiser {
   // Recomputes which features are visible when the sensor has moved or turned
   // enough, or the scan's geometry differs from the last one's.
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
+  // Fades the map-error memory by the travel since the last scan and gives
+  // the expected features their factors.
+  void ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose);
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.
   void ExtractFeatures(const geometry::Pose2D& sensor_prior,
@@ -123,6 +133,8 @@ class Localiser {
   std::vector<unsigned char> keep_;
   std::vector<WindowLine> windows_;
   ExpectedFeatures expected_;
+  MapErrorMemory map_errors_;
+  std::optional<geometry::Pose2D> map_errors_pose_;            // sensor pose of the last scan
   std::vector<std::unique_ptr<FeatureExtractor>> extractors_;  // from the parameter file
   Measurements measurements_;
   SolveOutput solve_;

@@ -58,6 +58,9 @@ struct LocaliserOptions {
   SolverOptions solver;
   VisibilitySettings visibility;
   geometry::Pose2D sensor_mount;  // laser pose on the robot (base_link -> laser)
+  // A map feature's error counts as one error for the scans fused within
+  // about this much travel (map_error_memory.hpp); 0: independent per scan.
+  double map_error_travel_m = 0.0;
   double max_correction_m = 0.5;  // larger corrections of the odometry are refused
   double max_correction_rad = 0.35;
   int max_beams = 4096;  // buffers are sized for this many beams

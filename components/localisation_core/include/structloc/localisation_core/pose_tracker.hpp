@@ -59,7 +59,8 @@ struct TrackerOptions {
   // lowers it by more than min_share_drop is refused; below min_explained_share
   // for reacquire_after_s the tracker searches around its pose, as far as the
   // odometric uncertainty says (at most reacquire_max_radius_m), and jumps
-  // where the scan is explained clearly better.
+  // where the scan is explained clearly better, once the next search (after
+  // another reacquire_after_s) has found the same place.
   double min_explained_share = 0.0;
   double min_share_drop = 0.05;
   double reacquire_after_s = 1.0;
@@ -187,6 +188,9 @@ class PoseTracker {
   std::unique_ptr<GlobalLocaliser> search_;  // whole-scan check and re-acquisition
   std::vector<Eigen::Vector2d> check_points_;
   double low_share_since_ = -1.0;  // stamp the share fell below min_explained_share, or -1
+  // The map -> odom correction the last search found, waiting for the next
+  // search to find it again before the tracker jumps there.
+  std::optional<geometry::Pose2D> pending_correction_;
   double last_scan_stamp_ = -1e300;
   TrackerStats stats_;
 };
