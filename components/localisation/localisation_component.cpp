@@ -163,6 +163,8 @@ void LocalisationComponent::Worker() {
     tf_.Write(tf);
     features_.Write(features);
     status_.Write(status);
+    std::lock_guard<std::mutex> lock(session_mutex_);
+    session_.Anticipate();
   }
 }
 

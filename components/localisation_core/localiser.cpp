@@ -127,16 +127,28 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   }
 }
 
-void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan) {
+bool Localiser::VisibilityStale(const geometry::Pose2D& sensor_pose,
+                                const world_model::VisibilityOptions& view) const {
   const auto& v = options_.visibility;
-  const world_model::VisibilityOptions view = ScanVisibility(options_, scan);
   const bool full_circle = view.view_max_rad - view.view_min_rad >= 2 * geometry::kPi - 1e-9;
-  if (visibility_valid_ && SameView(view, visibility_view_) &&
-      (sensor_pose.Translation() - visibility_pose_.Translation()).norm() < v.refresh_distance_m &&
-      (full_circle || std::abs(geometry::WrapAngle(sensor_pose.theta - visibility_pose_.theta)) <
-                          v.refresh_angle_rad)) {
-    return;
-  }
+  return !visibility_valid_ || !SameView(view, visibility_view_) ||
+         (sensor_pose.Translation() - visibility_pose_.Translation()).norm() >=
+             v.refresh_distance_m ||
+         (!full_circle && std::abs(geometry::WrapAngle(
+                              sensor_pose.theta - visibility_pose_.theta)) >= v.refresh_angle_rad);
+}
+
+void Localiser::Anticipate(const geometry::Pose2D& robot_pose) {
+  if (!visibility_valid_ || !geometry::IsFinite(robot_pose)) return;
+  const geometry::Pose2D sensor_pose = geometry::Compose(robot_pose, options_.sensor_mount);
+  if (!VisibilityStale(sensor_pose, visibility_view_)) return;
+  world_model::ComputeVisibility(world_, scene_, sensor_pose, visibility_view_, visibility_);
+  visibility_pose_ = sensor_pose;
+}
+
+void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan) {
+  const world_model::VisibilityOptions view = ScanVisibility(options_, scan);
+  if (!VisibilityStale(sensor_pose, view)) return;
   world_model::ComputeVisibility(world_, scene_, sensor_pose, view, visibility_);
   visibility_pose_ = sensor_pose;
   visibility_view_ = view;

@@ -153,6 +153,10 @@ std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometr
   return std::nullopt;
 }
 
+void PoseTracker::Anticipate() {
+  if (const auto latest = Latest()) localiser_.Anticipate(latest->pose);
+}
+
 std::optional<TrackedPose> PoseTracker::Latest() const {
   if (!initialised_ || history_.Empty()) return std::nullopt;
   const geometry::Pose2D odom = *history_.At(history_.Newest());

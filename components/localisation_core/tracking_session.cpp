@@ -243,6 +243,10 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
   return report;
 }
 
+void TrackingSession::Anticipate() {
+  if (tracker_ && tracker_->HasInitialPose()) tracker_->Anticipate();
+}
+
 std::optional<TrackedPose> TrackingSession::Latest() const {
   if (!tracker_) return std::nullopt;
   return tracker_->Latest();

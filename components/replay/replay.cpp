@@ -222,7 +222,10 @@ class Replayer {
   // Handles the scans the session has ready (all of them at the end of the log).
   void Drain(bool end) {
     if (!session_) return;
-    while (auto report = session_->Next(0.0, end)) Handle(*report);
+    while (auto report = session_->Next(0.0, end)) {
+      Handle(*report);
+      session_->Anticipate();  // as the component does after publishing
+    }
   }
 
   void Handle(const ScanReport& report) {

@@ -2,8 +2,10 @@
 // localisation component over DDS on one host. It starts the real component,
 // publishes the office scenario's 1081-beam scans (default 40 Hz) and
 // odometry in real time from the simulation core, and prints scan-published
-// -> pose-received latency (median, p99, max) and the component's CPU use
-// (% of one core, from /proc). Figures only: it asserts nothing.
+// -> pose-received latency (median, p99, max), where it goes (the
+// localiser's own update, from rt/structloc/status, and the rest: transport,
+// thread wake-ups, conversions), and the component's CPU use (% of one core,
+// from /proc). Figures only: it asserts nothing.
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +24,7 @@
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulator/sim_conversions.hpp"
+#include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
 
 namespace {
@@ -50,6 +53,8 @@ int main(int argc, char** argv) {
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::vector<double> latency_ms;
+  std::map<double, double> latency_at;  // by scan stamp
+  std::map<double, double> update_ms;   // the localiser's update, by scan stamp
   const auto pose_subscription =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
           dds_common::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
@@ -59,7 +64,14 @@ int main(int argc, char** argv) {
             if (it != sent.end()) {
               latency_ms.push_back(
                   std::chrono::duration<double, std::milli>(now - it->second).count());
+              latency_at[it->first] = latency_ms.back();
             }
+          });
+  const auto status_subscription =
+      node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
+          dds_common::topics::kStatus, [&](const structloc_msgs::msg::LocalisationStatus& m) {
+            std::lock_guard<std::mutex> lock(mutex);
+            update_ms[dds_common::FromRosTime(m.header().stamp())] = 1e-3 * m.timings().total_us();
           });
   const auto& p = scenario.initial_pose;
   process::ChildProcess loc(
@@ -108,6 +120,23 @@ int main(int argc, char** argv) {
               sent.size(), latency_ms.size());
   std::printf("scan published -> pose received: median %.3f ms, p99 %.3f ms, max %.3f ms\n",
               at(0.5), at(0.99), latency_ms.back());
+  // Where the time goes: the localiser's update, and everything else.
+  std::vector<double> update, rest;
+  for (const auto& [stamp, ms] : latency_at) {
+    const auto u = update_ms.find(stamp);
+    if (u == update_ms.end()) continue;
+    update.push_back(u->second);
+    rest.push_back(ms - u->second);
+  }
+  auto quantiles = [](std::vector<double> v, const char* what) {
+    if (v.empty()) return;
+    std::sort(v.begin(), v.end());
+    auto q = [&](double f) { return v[std::min(v.size() - 1, static_cast<size_t>(f * v.size()))]; };
+    std::printf("  %s: median %.3f ms, p99 %.3f ms, max %.3f ms\n", what, q(0.5), q(0.99),
+                v.back());
+  };
+  quantiles(update, "of it the localiser's update");
+  quantiles(rest, "of it transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
   return 0;
 }

@@ -91,6 +91,12 @@ class Localiser {
   // Update.
   const LocalisationResult& Update(const UpdateInput& input);
 
+  // Between scans, off the path from scan to pose: refreshes which features
+  // are visible from `robot_pose` (the newest estimate) if the next Update
+  // would have to, so that it does not (the refresh is the update's slowest
+  // step). Changes no result: Update refreshes itself when it must.
+  void Anticipate(const geometry::Pose2D& robot_pose);
+
   // The caller fused the last result into its pose (a filter around the
   // localiser): the map errors of its features are in that pose now, and the
   // next scans count them once (solver.map_error_travel_m).
@@ -103,6 +109,9 @@ class Localiser {
   // Recomputes which features are visible when the sensor has moved or turned
   // enough, or the scan's geometry differs from the last one's.
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
+  // Whether visibility_ is stale for a scan seen with `view` from `sensor_pose`.
+  bool VisibilityStale(const geometry::Pose2D& sensor_pose,
+                       const world_model::VisibilityOptions& view) const;
   // Fades the map-error memory by the travel since the last scan and gives
   // the expected features their factors.
   void ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose);

@@ -153,6 +153,10 @@ class PoseTracker {
   // `waited_s`: how long the scan has already waited for odometry.
   ScanOutcome ProcessScan(const ScanInput& scan, double waited_s);
 
+  // Between scans: prepares the localiser for the next scan at the newest
+  // pose (Localiser::Anticipate), off the path from scan to pose.
+  void Anticipate();
+
   // The map -> odom correction and the pose carried forward to the newest odometry.
   geometry::Pose2D MapToOdom() const { return map_to_odom_; }
   std::optional<TrackedPose> Latest() const;

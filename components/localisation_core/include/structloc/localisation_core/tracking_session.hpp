@@ -95,6 +95,11 @@ class TrackingSession {
   // in-order scheduling the lost timers run on the scans' stamps, not `now`.
   std::optional<ScanReport> Next(double now, bool end_of_input = false);
 
+  // Between scans, after their poses are out: the work the next scan would
+  // otherwise wait for (which features are visible from the newest pose).
+  // Results are the same with or without it.
+  void Anticipate();
+
   // The odometry pose at `t` from what has arrived (interpolated; the newest
   // beyond it); nullopt before the first sample.
   std::optional<geometry::Pose2D> OdometryAt(double t) const;
