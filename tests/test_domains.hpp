@@ -37,6 +37,10 @@ inline constexpr int kNetnsMultihost = 78;
 // tests/interop/cyclone_interop_test.sh (a script: tests/CMakeLists.txt passes it 79).
 inline constexpr int kCycloneInterop = 79;
 inline constexpr int kFleetBenchmark = 80;
+// structloc_fleet_benchmark --layout domains: robot k on kFleetDomainsFirst + k - 1,
+// a range no test uses.
+inline constexpr int kFleetDomainsFirst = 21;
+inline constexpr int kFleetDomainsMost = 30;
 inline constexpr int kLatencyBenchmark = 90;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
@@ -74,5 +78,7 @@ constexpr bool AllDistinctAndSafe() {
   return true;
 }
 static_assert(AllDistinctAndSafe(), "test domains must be distinct and in 0..101");
+static_assert(kFleetDomainsFirst + kFleetDomainsMost - 1 < kIdlRoundtrip,
+              "the fleet's domains must stay below every test's");
 
 }  // namespace structloc::testing::domains

@@ -52,11 +52,25 @@ void SimulatorComponent::Step() {
     const size_t needed = static_cast<size_t>(options_.wait_for_subscribers);
     if (scan_.MatchedReaders() < needed || odom_.MatchedReaders() < needed) return;
     started_ = true;
-    wall_start_ = std::chrono::steady_clock::now();
-    clock_offset_s_ = std::floor(dds_common::WallClockSeconds());
-    if (needed > 0) std::cout << "simulator: subscribers ready, starting the clock" << std::endl;
+    // A reader matched here may not have matched this writer yet (discovery
+    // is not symmetric in time; with many participants it lags by seconds):
+    // the robot first stands at its start for kSettleS, publishing odometry,
+    // so that a subscriber that takes its first odometry as the moment of an
+    // initial pose takes it at the start, not half a metre on.
+    const double settle = needed > 0 ? kSettleS : 0.0;
+    wall_start_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(settle));
+    clock_offset_s_ = std::floor(dds_common::WallClockSeconds() + settle);
+    if (needed > 0)
+      std::cout << "simulator: subscribers ready, standing at the start for " << settle
+                << " s, then starting the clock" << std::endl;
   }
   const auto now = std::chrono::steady_clock::now();
+  if (now < wall_start_) {
+    PublishStandingStill(std::chrono::duration<double>(wall_start_ - now).count());
+    return;
+  }
   const double wall = std::chrono::duration<double>(now - wall_start_).count();
   const auto budget_end = now + std::chrono::milliseconds(5);
   {
@@ -93,6 +107,14 @@ void SimulatorComponent::PublishStep(const simulation_core::SimState& state) {
     scan_.Write(msg);
     ++scans_published_;
   }
+}
+
+void SimulatorComponent::PublishStandingStill(double before_start_s) {
+  const double stamp = clock_offset_s_ - before_start_s;
+  if (stamp - last_standing_stamp_s_ < 1.0 / sim_.GetScenario().odom_rate_hz) return;
+  last_standing_stamp_s_ = stamp;
+  odom_.Write(ToOdometry(sim_.State(), 0.0, stamp, options_.frames));
+  ground_truth_.Write(ToGroundTruth(sim_.State(), stamp, options_.frames));
 }
 
 void SimulatorComponent::PublishDiagnostics() {

@@ -1,7 +1,10 @@
-// structloc_fleet_benchmark [--robots 1,5,20] [--time-scale X] [--out PICTURE.png] [--check]:
+// structloc_fleet_benchmark [--robots 1,5,20] [--layout namespaces|domains] [--time-scale X]
+//                           [--out PICTURE.png] [--check]:
 // a fleet on one host. For each fleet size N it starts N simulated robots
-// (simulator + localisation, each robot in its own ROS 2 namespace robotK on
-// one DDS domain, the default profile), follows every robot from one observer
+// (simulator + localisation, the default profile; with --layout namespaces,
+// the default, each robot in its own ROS 2 namespace robotK on one DDS
+// domain; with --layout domains each robot on a DDS domain of its own, so
+// that no participant discovers another robot's), follows every robot from one observer
 // participant per robot (ground truth, poses, and each scan's arrival, so a
 // pose's latency is its arrival minus the arrival of the scan it was
 // computed from), and samples every process's CPU time and peak resident
@@ -120,7 +123,9 @@ struct FleetRow {
   bool met = false;
 };
 
-FleetRow RunFleet(int robots, double time_scale, int domain) {
+// `domain`: the fleet's domain; with `domain_per_robot`, robot k's is
+// testing::domains::kFleetDomainsFirst + k - 1 instead.
+FleetRow RunFleet(int robots, double time_scale, int domain, bool domain_per_robot) {
   const std::string share = STRUCTLOC_SOURCE_DIR;
   const std::string bin = STRUCTLOC_BIN_DIR;
   const std::string qos = share + "/qos/structloc_qos.xml";
@@ -130,13 +135,16 @@ FleetRow RunFleet(int robots, double time_scale, int domain) {
       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta);
   std::vector<std::unique_ptr<RobotObserver>> observers;
   std::vector<std::unique_ptr<process::ChildProcess>> localisations, simulators;
+  auto domain_of = [&](int k) {
+    return domain_per_robot ? testing::domains::kFleetDomainsFirst + k - 1 : domain;
+  };
   for (int k = 1; k <= robots; ++k) {
     const std::string ns = "robot" + std::to_string(k);
-    observers.push_back(std::make_unique<RobotObserver>(ns, domain, qos, p));
+    observers.push_back(std::make_unique<RobotObserver>(ns, domain_of(k), qos, p));
     localisations.push_back(std::make_unique<process::ChildProcess>(
         bin + "/structloc_localisation",
-        std::vector<std::string>{"--domain", std::to_string(domain), "--qos", qos, "--namespace",
-                                 ns, "--initial-pose", start}));
+        std::vector<std::string>{"--domain", std::to_string(domain_of(k)), "--qos", qos,
+                                 "--namespace", ns, "--initial-pose", start}));
   }
   // Robots are switched on one after another, as a fleet's are, once the
   // localisations have met their observers: 60 participants discovering each
@@ -147,8 +155,8 @@ FleetRow RunFleet(int robots, double time_scale, int domain) {
     // Two readers of rt/scan and rt/odom: the robot's localisation and its observer.
     simulators.push_back(std::make_unique<process::ChildProcess>(
         bin + "/structloc_simulator",
-        std::vector<std::string>{"--domain", std::to_string(domain), "--qos", qos, "--namespace",
-                                 "robot" + std::to_string(k), "--time-scale",
+        std::vector<std::string>{"--domain", std::to_string(domain_of(k)), "--qos", qos,
+                                 "--namespace", "robot" + std::to_string(k), "--time-scale",
                                  std::to_string(time_scale), "--wait-for-subscribers", "2",
                                  "--exit-when-done"}));
   }
@@ -273,6 +281,9 @@ int main(int argc, char** argv) {
   using namespace structloc;
   const std::vector<config::OptionSpec> specs = {
       {"robots", true, "fleet sizes, comma-separated (default 1,5,20)"},
+      {"layout", true,
+       "namespaces: every robot in its own namespace on one domain (default); domains: every "
+       "robot on a domain of its own"},
       {"time-scale", true, "simulated seconds per wall second (default 1)"},
       {"out", true, "picture of cost against N (default fleet_cost.png)"},
       {"check", false, "exit 1 unless the largest fleet met the accuracy and latency bars"},
@@ -283,13 +294,23 @@ int main(int argc, char** argv) {
     std::istringstream list(cli.GetOr("robots", "1,5,20"));
     for (std::string item; std::getline(list, item, ',');) sizes.push_back(std::stoi(item));
     const double time_scale = cli.NumberIn("time-scale", 1.0, 0.1, 10.0);
+    const std::string layout = cli.GetOr("layout", "namespaces");
+    if (layout != "namespaces" && layout != "domains")
+      throw std::invalid_argument("--layout must be namespaces or domains, not " + layout);
+    if (layout == "domains" &&
+        *std::max_element(sizes.begin(), sizes.end()) > testing::domains::kFleetDomainsMost)
+      throw std::invalid_argument("--layout domains: at most " +
+                                  std::to_string(testing::domains::kFleetDomainsMost) + " robots");
     std::vector<FleetRow> rows;
+    std::printf("layout: %s\n", layout == "domains" ? "a DDS domain per robot"
+                                                    : "a namespace per robot, one DDS domain");
     std::printf(
         "| N | CPU per robot (%% of a core) | memory per robot (MB) | scan-to-pose median / p99 "
         "(ms) | worst robot p99 (ms) | whole run p99 / max (ms) | worst robot RMSE / max (mm) | "
         "lost | bars |\n|---|---|---|---|---|---|---|---|---|\n");
     for (const int n : sizes) {
-      const auto r = RunFleet(n, time_scale, testing::domains::kFleetBenchmark);
+      const auto r =
+          RunFleet(n, time_scale, testing::domains::kFleetBenchmark, layout == "domains");
       std::printf(
           "| %d | %.1f | %.0f | %.2f / %.2f | %.2f | %.1f / %.0f | %.1f / %.1f | %llu | %s |\n", n,
           r.cpu_per_robot_pct, r.rss_per_robot_mb, r.p50_ms, r.p99_ms, r.worst_robot_p99_ms,

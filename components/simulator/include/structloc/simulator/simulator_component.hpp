@@ -21,8 +21,9 @@ namespace structloc::simulator {
 struct SimulatorComponentOptions {
   double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
   bool exit_when_done = false;  // exit (code 0) when the scenario ends
-  int wait_for_subscribers =
-      0;  // hold the clock until this many readers of rt/scan and rt/odom match
+  // Hold the clock until this many readers of rt/scan and rt/odom match, then
+  // stand at the start for 1 s publishing odometry before it starts.
+  int wait_for_subscribers = 0;
   dds_common::FrameIds frames;  // stamped into every header
 };
 
@@ -36,6 +37,11 @@ class SimulatorComponent : public dds_common::Component {
 
  private:
   void PublishStep(const simulation_core::SimState& state);
+  // Before the clock starts: odometry and ground truth of the start pose,
+  // stamped `before_start_s` ahead of the clock's start.
+  void PublishStandingStill(double before_start_s);
+  static constexpr double kSettleS = 1.0;  // standing at the start after the readers matched
+  double last_standing_stamp_s_ = -1e300;
   void PublishDiagnostics();
 
   SimulatorComponentOptions options_;
