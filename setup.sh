@@ -3,7 +3,8 @@
 # needs (idempotent, non-interactive; as root or through sudo), configures and
 # builds into build/, then runs what was asked:
 #   ./setup.sh demo    the main job: simulated robot localised live, summary + picture
-#   ./setup.sh test    every test (ctest, then the container test), non-zero exit when one fails
+#   ./setup.sh test    every test (ctest, the container test, then short runs of
+#                      the fuzz targets), non-zero exit when one fails
 #   ./setup.sh build   dependencies and build only
 #   ./setup.sh deps    dependencies only
 set -euo pipefail
@@ -25,15 +26,20 @@ packages=(
 # engine and compose, and debootstrap for the locally made base image.
 container_packages=(docker.io docker-compose debootstrap)
 
+# For the fuzz targets (built by "./setup.sh test" with clang, libFuzzer and
+# the sanitizers' runtimes).
+fuzz_packages=(clang libclang-rt-14-dev)
+
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
 }
 
 install_dependencies() {
   local missing=() wanted=("${packages[@]}")
-  # Only root can start a Docker engine: others skip the container test.
-  if [ "${1:-}" = with-containers ] && [ "$(id -u)" -eq 0 ]; then
-    wanted+=("${container_packages[@]}")
+  if [ "${1:-}" = for-tests ]; then
+    wanted+=("${fuzz_packages[@]}")
+    # Only root can start a Docker engine: others skip the container test.
+    [ "$(id -u)" -eq 0 ] && wanted+=("${container_packages[@]}")
   fi
   for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -80,6 +86,17 @@ run_container_test() {
   return "$status"
 }
 
+# The fuzz targets in a clang build of their own (build-fuzz beside build/),
+# each run briefly on its seed corpus (tests/fuzz; the long run is
+# tests/fuzz/fuzz_all.sh).
+run_fuzz_tests() {
+  local fuzz_dir="${STRUCTLOC_FUZZ_BUILD_DIR:-$here/build-fuzz}"
+  CC=clang CXX=clang++ cmake -S "$here" -B "$fuzz_dir" -DSTRUCTLOC_FUZZ=ON -DBUILD_TESTING=OFF \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build "$fuzz_dir" -j "$jobs" --target structloc_fuzzers
+  ctest --test-dir "$fuzz_dir" -L fuzz --output-on-failure -j "$jobs"
+}
+
 run_demo() {
   "$build_dir/bin/structloc" demo --out "$build_dir/demo/fig44_office.png"
 }
@@ -88,11 +105,12 @@ case "${1:-}" in
   deps) install_dependencies ;;
   build) install_dependencies; build ;;
   test)
-    install_dependencies with-containers
+    install_dependencies for-tests
     build
     status=0
     run_tests || status=$?
     run_container_test || status=$?
+    run_fuzz_tests || status=$?
     exit "$status"
     ;;
   demo) install_dependencies; build; run_demo ;;

@@ -9,13 +9,18 @@
 
 namespace structloc::config {
 
-XmlFile XmlFile::Load(const std::string& path) {
+XmlFile XmlFile::Load(const std::string& path, size_t max_bytes) {
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored)) {
     throw ConfigError(path + ": is a folder, not an XML file");
   }
   std::ifstream probe(path);
   if (!probe) throw ConfigError(path + ": cannot open file");
+  const auto bytes = std::filesystem::file_size(path, ignored);
+  if (!ignored && bytes > max_bytes) {
+    throw ConfigError(path + ": " + std::to_string(bytes) + " bytes, over the limit of " +
+                      std::to_string(max_bytes) + " bytes for an XML file");
+  }
   XmlFile file;
   file.path_ = path;
   file.doc_ = std::make_unique<tinyxml2::XMLDocument>();
@@ -23,6 +28,13 @@ XmlFile XmlFile::Load(const std::string& path) {
     std::ostringstream msg;
     msg << path << ":" << file.doc_->ErrorLineNum() << ": malformed XML: " << file.doc_->ErrorStr();
     throw ConfigError(msg.str());
+  }
+  for (const auto* node = file.doc_->FirstChild(); node != nullptr; node = node->NextSibling()) {
+    if (node->ToUnknown() != nullptr) {
+      throw ConfigError(path + ":" + std::to_string(node->GetLineNum()) +
+                        ": a document type declaration (<!DOCTYPE ...>) is refused: structloc "
+                        "files define no entities and read no external ones");
+    }
   }
   if (file.doc_->RootElement() == nullptr) throw ConfigError(path + ": no root element");
   if (const auto* second = file.doc_->RootElement()->NextSiblingElement()) {

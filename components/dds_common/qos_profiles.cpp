@@ -109,6 +109,16 @@ std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement&
 }  // namespace
 
 QosProfiles QosProfiles::Load(const std::string& path) {
+  QosProfiles result = Check(path);
+  auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
+  if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
+    throw QosError("QoS profiles: " + path +
+                   ": Fast DDS rejected the file (see its log above for the element)");
+  }
+  return result;
+}
+
+QosProfiles QosProfiles::Check(const std::string& path) {
   QosProfiles result;
   result.path_ = path;
   try {
@@ -146,11 +156,6 @@ QosProfiles QosProfiles::Load(const std::string& path) {
                        "\">, which the components' topics use");
       }
     }
-  }
-  auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
-  if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
-    throw QosError("QoS profiles: " + path +
-                   ": Fast DDS rejected the file (see its log above for the element)");
   }
   return result;
 }

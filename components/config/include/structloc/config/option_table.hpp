@@ -242,6 +242,7 @@ class OptionTable {
         }
         get(s) = static_cast<T>(value);
       } else {
+        static_cast<void>(range);  // checked after reading, by `check`
         get(s) = static_cast<T>(reader.Double(name.c_str()));
       }
     };

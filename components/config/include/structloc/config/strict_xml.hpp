@@ -24,9 +24,15 @@ class ConfigError : public std::runtime_error {
 // A parsed XML file that remembers its path for error messages.
 class XmlFile {
  public:
-  // Throws ConfigError when the file is missing, a folder, unreadable, not
-  // well-formed, or has more than one root element.
-  static XmlFile Load(const std::string& path);
+  // The largest XML file read: a map of 250000 walls (the largest a world
+  // may have) takes about 25 MB.
+  static constexpr size_t kDefaultMaxBytes = 64u << 20;
+
+  // Throws ConfigError when the file is missing, a folder, unreadable, larger
+  // than `max_bytes`, not well-formed, has a document type declaration
+  // (<!DOCTYPE ...>: no entity is ever defined or expanded, no external file
+  // read), or has more than one root element.
+  static XmlFile Load(const std::string& path, size_t max_bytes = kDefaultMaxBytes);
 
   const tinyxml2::XMLElement& Root() const;
   // Checks the root element's name.

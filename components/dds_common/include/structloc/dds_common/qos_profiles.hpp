@@ -28,6 +28,9 @@ class QosProfiles {
   // Validates the file's structure, values and topic profiles, then loads it
   // into Fast DDS. Throws QosError naming the file, line and problem.
   static QosProfiles Load(const std::string& path);
+  // The same validation without loading the file into Fast DDS (what Load
+  // checks first; fuzzed on its own).
+  static QosProfiles Check(const std::string& path);
 
   eprosima::fastdds::dds::DomainParticipantQos Participant(const std::string& profile) const;
   eprosima::fastdds::dds::DataWriterQos Writer(eprosima::fastdds::dds::Publisher& publisher,

@@ -1,0 +1,59 @@
+// libFuzzer targets: ROS map_server maps as `map import --grid` reads them,
+// and the walls vectorised from them. Built twice: with
+// STRUCTLOC_FUZZ_GRID_IMAGE the input is the image (PGM, or PNG through
+// OpenCV) under a fixed YAML; otherwise the YAML beside a fixed small PGM.
+#include <stdexcept>
+#include <string>
+
+#include "fuzz_input.hpp"
+#include "structloc/map_building/grid_vectoriser.hpp"
+#include "structloc/map_formats/grid_map_file.hpp"
+
+namespace {
+
+#ifndef STRUCTLOC_FUZZ_GRID_IMAGE
+// A 24 x 16 trinary PGM: a room's outline and a pillar-sized blob.
+std::string FixedPgm() {
+  const int w = 24, h = 16;
+  std::string image = "P5\n" + std::to_string(w) + " " + std::to_string(h) + "\n255\n";
+  for (int r = 0; r < h; ++r) {
+    for (int c = 0; c < w; ++c) {
+      const bool wall = r == 1 || r == h - 2 || c == 1 || c == w - 2;
+      const bool blob = r >= 6 && r <= 8 && c >= 10 && c <= 12;
+      image.push_back(static_cast<char>(wall || blob ? 0 : (r == 0 || c == 0 ? 205 : 254)));
+    }
+  }
+  return image;
+}
+#endif
+
+void Import(const std::string& yaml) {
+  const auto grid = structloc::map_formats::LoadGridMap(yaml);
+  if (grid.cells.size() <= 200000) (void)structloc::map_building::VectoriseGrid(grid, {});
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using structloc::fuzz::WriteFile;
+#ifdef STRUCTLOC_FUZZ_GRID_IMAGE
+  for (const char* image : {"map.pgm", "map.png"}) {
+    const std::string yaml = std::string("image: ") + image +
+                             "\nresolution: 0.05\norigin: [-1.0, -2.0, 0.0]\nnegate: 0\n"
+                             "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    WriteFile(image, data, size);
+    try {
+      Import(WriteFile("map.yaml", yaml.data(), yaml.size()));
+    } catch (const std::exception&) {
+    }
+  }
+#else
+  const std::string pgm = FixedPgm();
+  WriteFile("map.pgm", pgm.data(), pgm.size());
+  try {
+    Import(WriteFile("map.yaml", data, size));
+  } catch (const std::exception&) {
+  }
+#endif
+  return 0;
+}
