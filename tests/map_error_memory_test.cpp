@@ -118,15 +118,7 @@ double RmsError(double map_error_travel_m) {
     EXPECT_FALSE(tracker.AddOdometry(t, pose_at(t)));
     const auto cast =
         testing::CastScan(truth_scene, pose_at(t), {361, geometry::kPi, 30.0, 0.005}, rng);
-    ScanInput scan;
-    scan.stamp = t;
-    scan.angle_min = cast.angle_min;
-    scan.angle_increment = cast.angle_increment;
-    scan.angle_max = cast.angle_min + cast.angle_increment * 360;
-    scan.range_max = cast.max_range_m;
-    scan.ranges = cast.ranges.data();
-    scan.count = cast.ranges.size();
-    const auto out = tracker.ProcessScan(scan, 1.0);
+    const auto out = tracker.ProcessScan(testing::TrackerInput(cast, t), 1.0);
     EXPECT_EQ(out.verdict, PoseTracker::ScanVerdict::kProcessed);
     const geometry::Pose2D truth = pose_at(t), estimate = out.pose.pose;
     sum2 += std::pow(estimate.x - truth.x, 2) + std::pow(estimate.y - truth.y, 2);

@@ -39,14 +39,7 @@ TrackRun Track(const geometry::Pose2D& start, double min_explained_share) {
   TrackRun run;
   for (int k = 1; k <= 40; ++k) {
     const auto synthetic = office.Scan(1081, rng);
-    ScanInput scan;
-    scan.stamp = 0.1 * k;
-    scan.angle_min = synthetic.angle_min;
-    scan.angle_increment = synthetic.angle_increment;
-    scan.angle_max = synthetic.angle_min + synthetic.angle_increment * 1080;
-    scan.range_max = synthetic.max_range_m;
-    scan.ranges = synthetic.ranges.data();
-    scan.count = synthetic.ranges.size();
+    const ScanInput scan = testing::TrackerInput(synthetic, 0.1 * k);
     const auto out = tracker.ProcessScan(scan, 1.0);
     EXPECT_EQ(out.verdict, PoseTracker::ScanVerdict::kProcessed);
     if (out.reacquired && !run.reacquired) {

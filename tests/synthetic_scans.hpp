@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/pose_tracker.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/world_model.hpp"
 
@@ -36,6 +37,20 @@ struct SyntheticScan {
     return v;
   }
 };
+
+// The scan as the pose tracker takes it, stamped `stamp` (its ranges stay in `scan`).
+inline localisation_core::ScanInput TrackerInput(const SyntheticScan& scan, double stamp) {
+  localisation_core::ScanInput in;
+  in.stamp = stamp;
+  in.angle_min = scan.angle_min;
+  in.angle_increment = scan.angle_increment;
+  in.angle_max =
+      scan.angle_min + scan.angle_increment * static_cast<double>(scan.ranges.size() - 1);
+  in.range_max = scan.max_range_m;
+  in.ranges = scan.ranges.data();
+  in.count = scan.ranges.size();
+  return in;
+}
 
 inline SyntheticScan CastScan(const world_model::Scene& scene, const geometry::Pose2D& sensor,
                               const ScanSpec& spec, std::mt19937& rng) {

@@ -110,8 +110,10 @@ void SimulatorComponent::PublishStep(const simulation_core::SimState& state) {
 }
 
 void SimulatorComponent::PublishStandingStill(double before_start_s) {
-  const double stamp = clock_offset_s_ - before_start_s;
-  if (stamp - last_standing_stamp_s_ < 1.0 / sim_.GetScenario().odom_rate_hz) return;
+  // On the odometry's own time grid, which the clock's first steps continue.
+  const double period = static_cast<double>(odom_every_) * sim_.GetScenario().step_s;
+  const double stamp = clock_offset_s_ - std::ceil(before_start_s / period) * period;
+  if (stamp < last_standing_stamp_s_ + 0.5 * period) return;
   last_standing_stamp_s_ = stamp;
   odom_.Write(ToOdometry(sim_.State(), 0.0, stamp, options_.frames));
   ground_truth_.Write(ToGroundTruth(sim_.State(), stamp, options_.frames));

@@ -1,7 +1,5 @@
 // libFuzzer target: the calibration's encoders.csv (both drive kinds, a
 // 16-bit and a 64-bit counter) and fixes.csv.
-#include <stdexcept>
-
 #include "fuzz_input.hpp"
 #include "structloc/calibration_core/calibration_data.hpp"
 
@@ -11,15 +9,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const auto kind : {structloc::kinematics::DriveKind::kTricycle,
                           structloc::kinematics::DriveKind::kDifferential}) {
     for (const int bits : {16, 64}) {
-      try {
-        (void)cc::ReadEncodersCsv(path, bits, kind);
-      } catch (const std::exception&) {
-      }
+      structloc::fuzz::Parse([&] { (void)cc::ReadEncodersCsv(path, bits, kind); });
     }
   }
-  try {
-    (void)cc::ReadFixesCsv(path);
-  } catch (const std::exception&) {
-  }
+  structloc::fuzz::Parse([&] { (void)cc::ReadFixesCsv(path); });
   return 0;
 }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 namespace structloc::fuzz {
@@ -39,6 +40,16 @@ inline std::string WriteFile(const std::string& name, const void* data, size_t s
 
 inline std::string WriteInput(const uint8_t* data, size_t size, const std::string& name) {
   return WriteFile(name, data, size);
+}
+
+// Runs `parse`: an exception is a refusal a user would see as an error
+// message, the parser doing its job; anything else is for libFuzzer to catch.
+template <class F>
+void Parse(F parse) {
+  try {
+    parse();
+  } catch (const std::exception&) {
+  }
 }
 
 }  // namespace structloc::fuzz

@@ -42,18 +42,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                              "\nresolution: 0.05\norigin: [-1.0, -2.0, 0.0]\nnegate: 0\n"
                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
     WriteFile(image, data, size);
-    try {
-      Import(WriteFile("map.yaml", yaml.data(), yaml.size()));
-    } catch (const std::exception&) {
-    }
+    structloc::fuzz::Parse([&] { Import(WriteFile("map.yaml", yaml.data(), yaml.size())); });
   }
 #else
   const std::string pgm = FixedPgm();
   WriteFile("map.pgm", pgm.data(), pgm.size());
-  try {
-    Import(WriteFile("map.yaml", data, size));
-  } catch (const std::exception&) {
-  }
+  structloc::fuzz::Parse([&] { Import(WriteFile("map.yaml", data, size)); });
 #endif
   return 0;
 }

@@ -1,14 +1,10 @@
 // libFuzzer target: ROS 2 parameter files (`<param from="params.yaml"/>`).
-#include <stdexcept>
-
 #include "fuzz_input.hpp"
 #include "structloc/process/launch_param_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = structloc::fuzz::WriteInput(data, size, "params.yaml");
-  try {
-    (void)structloc::process::ReadNodeParameters(path, "robot1/localisation");
-  } catch (const std::exception&) {
-  }
+  structloc::fuzz::Parse(
+      [&] { (void)structloc::process::ReadNodeParameters(path, "robot1/localisation"); });
   return 0;
 }

@@ -1,8 +1,6 @@
 // libFuzzer target: launch XML as `structloc launch` reads it (arguments,
 // substitutions, groups, conditions; <include> and <param from> name files
 // that do not exist here and are refused).
-#include <stdexcept>
-
 #include "fuzz_input.hpp"
 #include "structloc/process/launch_file.hpp"
 
@@ -11,9 +9,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   structloc::process::LaunchContext context;
   context.package_share_dir = "/nonexistent/share/structloc";
   context.executables_dir = "/nonexistent/bin";
-  try {
-    (void)structloc::process::ReadLaunchFile(path, context);
-  } catch (const std::exception&) {
-  }
+  structloc::fuzz::Parse([&] { (void)structloc::process::ReadLaunchFile(path, context); });
   return 0;
 }
