@@ -19,7 +19,7 @@ packages=(
   libeigen3-dev libopencv-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   cyclonedds-dev cyclonedds-tools
-  iproute2 procps iptables
+  iproute2 procps iptables openssl
 )
 
 # For the container test (run by "./setup.sh test" after ctest): Docker's

@@ -32,6 +32,10 @@ inline constexpr int kLaunchRun = 77;
 inline constexpr int kComponentTeardown = 81;
 // tests/install/install_test.sh (a script: tests/CMakeLists.txt passes it 82).
 inline constexpr int kInstallTest = 82;
+inline constexpr int kDdsSecurity = 83;
+// tests/security/secure_demo_test.sh (a script: tests/CMakeLists.txt passes it 84).
+inline constexpr int kSecureDemo = 84;
+inline constexpr int kRepeatedFaults = 85;
 // tests/multihost/netns_multihost_test.sh (a script: tests/CMakeLists.txt passes it 78).
 inline constexpr int kNetnsMultihost = 78;
 // tests/interop/cyclone_interop_test.sh (a script: tests/CMakeLists.txt passes it 79).
@@ -42,6 +46,7 @@ inline constexpr int kFleetBenchmark = 80;
 inline constexpr int kFleetDomainsFirst = 21;
 inline constexpr int kFleetDomainsMost = 30;
 inline constexpr int kLatencyBenchmark = 90;
+inline constexpr int kSoakBenchmark = 86;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kQosProfiles,
@@ -63,10 +68,14 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kLaunchRun,
                                     kComponentTeardown,
                                     kInstallTest,
+                                    kDdsSecurity,
+                                    kSecureDemo,
+                                    kRepeatedFaults,
                                     kNetnsMultihost,
                                     kCycloneInterop,
                                     kFleetBenchmark,
-                                    kLatencyBenchmark};
+                                    kLatencyBenchmark,
+                                    kSoakBenchmark};
 
 constexpr bool AllDistinctAndSafe() {
   for (size_t i = 0; i < kAll.size(); ++i) {

@@ -38,8 +38,8 @@ int DemoCommand(const Invocation& inv) {
     rendering::MapCanvas::CheckPictureName(png);
     std::filesystem::create_directories(std::filesystem::path(png).parent_path());
 
-    dds_common::NodeOptions node_options{"demo_observer", domain, share + "/qos/structloc_qos.xml",
-                                         "structloc_localhost", ""};
+    dds_common::NodeOptions node_options{
+        "demo_observer", domain, share + "/qos/structloc_qos.xml", "structloc_localhost", "", {}};
     dds_common::Node node(node_options);
     evaluation::LiveEvaluator evaluator(node, scenario.initial_pose);
     const auto& p = scenario.initial_pose;

@@ -43,7 +43,7 @@ int WatchCommand(const Invocation& inv) {
     bar.min_poses = static_cast<size_t>(cli.IntegerIn("min-poses", 500, 1, 100000000));
     const auto scenario =
         simulation_core::LoadScenario(cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
-    const auto options = dds_common::NodeOptionsFrom(cli, "watch");
+    const auto options = dds_common::NodeOptionsFrom(cli, "watch", "operator");
     dds_common::Node node(options);
     evaluation::LiveEvaluator evaluator(node, scenario.initial_pose);
     std::printf(

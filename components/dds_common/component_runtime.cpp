@@ -21,6 +21,13 @@ std::vector<config::OptionSpec> StandardOptions() {
       {"namespace", true,
        "ROS 2 namespace of every topic: rt/X becomes rt/NS/X (e.g. robot1, for several robots on "
        "one domain; default none)"},
+      {"security-keystore", true,
+       "DDS Security: a keystore made by structloc_keystore; authenticates, encrypts and "
+       "access-controls every topic, and refuses to start when a file is missing or invalid "
+       "(default none: security off)"},
+      {"security-identity", true,
+       "DDS Security: this participant's enclave in the keystore (default the component's "
+       "kind, e.g. localisation)"},
       {"help", false, "print the options and exit"},
   };
 }
@@ -54,7 +61,8 @@ FrameIds FrameIdsFrom(const config::CommandLine& cli) {
   return frames;
 }
 
-NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& name) {
+NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& name,
+                            const std::string& identity) {
   NodeOptions options;
   options.ros_namespace = NormaliseNamespace(cli.GetOr("namespace", ""));
   // Two robots' components differ by namespace, not by kind.
@@ -62,6 +70,8 @@ NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& n
   options.domain_id = static_cast<int>(cli.IntegerIn("domain", DefaultDomain(), 0, 232));
   options.qos_file = cli.PathOr("qos", "qos/structloc_qos.xml");
   options.participant_profile = cli.GetOr("participant-profile", "structloc_localhost");
+  options.security.keystore = cli.GetOr("security-keystore", "");
+  options.security.identity = cli.GetOr("security-identity", identity.empty() ? name : identity);
   return options;
 }
 

@@ -26,10 +26,20 @@ Node::Node(const NodeOptions& options)
   }
   auto participant_qos = qos_.Participant(options.participant_profile);
   participant_qos.name(options.name);
+  for (auto& [name, value] : SecurityProperties(options.security)) {
+    participant_qos.properties().properties().emplace_back(name, value);
+  }
   participant_ =
       eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->create_participant(
           options.domain_id, participant_qos, monitor_.get(),
           eprosima::fastdds::dds::StatusMask::none());
+  if (participant_ == nullptr && options.security.Enabled()) {
+    throw std::runtime_error(
+        "DDS Security refused the enclave " + options.security.EnclaveFolder() +
+        ": a certificate, key, governance or permissions file there is invalid, expired, not "
+        "signed by its CA or grants nothing on domain " +
+        std::to_string(options.domain_id) + " (Fast DDS's log above says which)");
+  }
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(options.domain_id) + " with profile '" +

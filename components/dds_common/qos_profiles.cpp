@@ -25,6 +25,7 @@ const std::map<std::string, std::set<std::string>>& KnownKinds() {
       {"ownership", {"SHARED", "EXCLUSIVE"}},
       {"destinationOrder", {"BY_RECEPTION_TIMESTAMP", "BY_SOURCE_TIMESTAMP"}},
       {"publishMode", {"SYNCHRONOUS", "ASYNCHRONOUS"}},
+      {"data_sharing", {"AUTOMATIC", "ON", "OFF"}},
   };
   return kinds;
 }

@@ -73,7 +73,7 @@ class RobotObserver {
  public:
   RobotObserver(const std::string& ns, int domain, const std::string& qos,
                 const geometry::Pose2D& start)
-      : node_({ns + "/fleet_observer", domain, qos, "structloc_localhost", ns}),
+      : node_({ns + "/fleet_observer", domain, qos, "structloc_localhost", ns, {}}),
         evaluator_(node_, start) {
     scans_ = node_.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
         dds_common::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) {

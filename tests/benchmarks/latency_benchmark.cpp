@@ -17,13 +17,13 @@
 #include <thread>
 
 #include "benchmarks/process_cpu.hpp"
+#include "benchmarks/realtime_feed.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/dds_common/node.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
-#include "structloc/simulator/sim_conversions.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
 
@@ -45,11 +45,12 @@ int main(int argc, char** argv) {
   auto scenario = simulation_core::LoadScenario(source + "/maps/scenarios/office_people.xml");
   scenario.laser.rate_hz = rate;
   scenario.duration_s = seconds;
-  dds_common::NodeOptions options{"latency_feeder", domain, source + "/qos/structloc_qos.xml",
-                                  "structloc_localhost", ""};
+  dds_common::NodeOptions options{"latency_feeder",      domain, source + "/qos/structloc_qos.xml",
+                                  "structloc_localhost", "",     {}};
   dds_common::Node node(options);
-  auto scans = node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan);
-  auto odom = node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom);
+  structloc::testing::RealtimeWriters writers{
+      node.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan),
+      node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)};
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::vector<double> latency_ms;
@@ -78,31 +79,17 @@ int main(int argc, char** argv) {
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(domain), "--qos", options.qos_file, "--initial-pose",
        std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
-  while (scans.MatchedReaders() == 0 || odom.MatchedReaders() == 0) {
+  while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   simulation_core::Simulation sim(scenario);
-  const double offset = 1.0e9;
   const auto start = Clock::now();
   const double cpu_start = structloc::testing::CpuSeconds(loc.Pid());
-  long steps = 0;
-  while (!sim.Finished()) {
-    const auto& s = sim.Step();
-    if (++steps % 2 == 0) {
-      auto o = simulator::ToOdometry(s, 0.0, offset);
-      odom.Write(o);
-    }
-    if (auto scan = sim.TakeScan()) {
-      auto msg = simulator::ToLaserScan(*scan, offset);
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        sent[dds_common::FromRosTime(msg.header().stamp())] = Clock::now();
-      }
-      scans.Write(msg);
-    }
-    std::this_thread::sleep_until(start + std::chrono::duration<double>(s.time));
-  }
+  structloc::testing::FeedInRealTime(sim, writers, 1.0e9, [&](double stamp) {
+    std::lock_guard<std::mutex> lock(mutex);
+    sent[stamp] = Clock::now();
+  });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   const double cpu = structloc::testing::CpuSeconds(loc.Pid()) - cpu_start;

@@ -1,5 +1,6 @@
-// CPU time of a running process from /proc/PID/stat, for the benchmarks that
-// report the load of the components they start.
+// CPU time, resident memory and thread count of a running process from
+// /proc/PID/stat and /proc/PID/status, for the benchmarks that report the load
+// of the components they start.
 #pragma once
 
 #include <sys/types.h>
@@ -25,6 +26,16 @@ inline double CpuSeconds(pid_t pid) {
     if (i == 15) stime = std::stod(f);
   }
   return (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+// A "Key:   value kB" (or plain count) field of /proc/PID/status, e.g.
+// "VmRSS" or "Threads"; -1 when it cannot be read.
+inline long long ProcStatusField(pid_t pid, const std::string& key) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind(key + ":", 0) == 0) return std::stoll(line.substr(key.size() + 1));
+  }
+  return -1;
 }
 
 }  // namespace structloc::testing

@@ -33,9 +33,11 @@ using ComponentFactory =
 
 // Options every component accepts, documented with their defaults.
 std::vector<config::OptionSpec> StandardOptions();
-// The node those options describe (`name`: the participant's, before any namespace);
-// throws config::ConfigError for a bad domain or namespace.
-NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& name);
+// The node those options describe (`name`: the participant's, before any
+// namespace; `identity`: its DDS Security enclave unless --security-identity
+// names one, "" = `name`); throws config::ConfigError for a bad domain or namespace.
+NodeOptions NodeOptionsFrom(const config::CommandLine& cli, const std::string& name,
+                            const std::string& identity = "");
 
 // The frame-id options of components that stamp frames (--map-frame,
 // --odom-frame, --laser-frame and, for one that names the robot base,

@@ -23,6 +23,7 @@
 
 #include "structloc/dds_common/peer_monitor.hpp"
 #include "structloc/dds_common/qos_profiles.hpp"
+#include "structloc/dds_common/security_enclave.hpp"
 #include "structloc/dds_common/subscription.hpp"
 #include "structloc/dds_common/topic_namespace.hpp"
 #include "structloc/dds_common/topics.hpp"
@@ -37,6 +38,8 @@ struct NodeOptions {
   // ROS 2 namespace of every topic this node reads or writes ("" = none;
   // normalised, see topic_namespace.hpp): rt/scan becomes rt/<ns>/scan.
   std::string ros_namespace;
+  // DDS Security (off by default): the keystore and this node's identity in it.
+  SecurityOptions security;
 };
 
 // A typed DataWriter handle; Write returns false when DDS refused the sample.

@@ -72,6 +72,13 @@ class Subscription {
     subscriber_ = nullptr;
   }
   bool Active() const { return reader_ != nullptr; }
+  // Writers matched to this reader now (0 once Reset).
+  size_t MatchedWriters() const {
+    if (reader_ == nullptr || node_alive_.expired()) return 0;
+    eprosima::fastdds::dds::SubscriptionMatchedStatus status;
+    reader_->get_subscription_matched_status(status);
+    return static_cast<size_t>(status.current_count);
+  }
 
  private:
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
