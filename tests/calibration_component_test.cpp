@@ -1,8 +1,8 @@
 // The live calibration over DDS: simulator (known parameter errors),
 // localisation (fixes on rt/pose with covariances) and calibration as
 // separate processes. After recording, the result is published RELIABLE +
-// TRANSIENT_LOCAL: a subscriber that joins afterwards still receives it, and
-// its values meet the accuracy bars.
+// TRANSIENT_LOCAL: a subscriber that joins afterwards still receives it, also
+// after the component was restarted, and its values meet the accuracy bars.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -143,6 +143,17 @@ TEST(CalibrationComponent, LiveRecordingGivesALatchedResultWithinTheBars) {
               1e-6 * s.wheel_radius_m() * s.wheel_radius_m());
   EXPECT_TRUE(std::filesystem::exists(out + "/calibrated.xml"));
   EXPECT_TRUE(std::filesystem::exists(out + "/encoders.csv"));
+
+  // Restarted alone (every process of the run is gone), the component
+  // publishes its last result again: a subscriber that joins now gets it.
+  process::ChildProcess restarted(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_calibration",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--out-dir", out});
+  const auto again = LatchedResult();
+  ASSERT_TRUE(again.has_value()) << "no result after a restart\n" << restarted.CapturedOutput();
+  EXPECT_TRUE(*again == result) << "the restarted component published another result";
+  EXPECT_NE(restarted.CapturedOutput().find("published the last result again"), std::string::npos)
+      << restarted.CapturedOutput();
 }
 
 TEST(CalibrationComponent, DifferentialDriveIsCalibratedLive) {

@@ -36,6 +36,8 @@ inline constexpr int kDdsSecurity = 83;
 // tests/security/secure_demo_test.sh (a script: tests/CMakeLists.txt passes it 84).
 inline constexpr int kSecureDemo = 84;
 inline constexpr int kRepeatedFaults = 85;
+// tests/multihost/netns_packet_loss_test.sh (a script: tests/CMakeLists.txt passes it 87).
+inline constexpr int kPacketLoss = 87;
 // tests/multihost/netns_multihost_test.sh (a script: tests/CMakeLists.txt passes it 78).
 inline constexpr int kNetnsMultihost = 78;
 // tests/interop/cyclone_interop_test.sh (a script: tests/CMakeLists.txt passes it 79).
@@ -71,6 +73,7 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kDdsSecurity,
                                     kSecureDemo,
                                     kRepeatedFaults,
+                                    kPacketLoss,
                                     kNetnsMultihost,
                                     kCycloneInterop,
                                     kFleetBenchmark,

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "structloc/calibration/calibration_conversions.hpp"
+#include "structloc/calibration/last_result_file.hpp"
 #include "structloc/calibration_core/calibration_problem.hpp"
 #include "structloc/config/output_file.hpp"
 #include "structloc/dds_common/diagnostics.hpp"
@@ -20,10 +21,13 @@ namespace {
 
 // The estimate in a few lines for the log.
 std::string Summary(const calibration_core::CalibrationReport& report, size_t encoders,
-                    size_t fixes) {
+                    size_t fixes, const calibration_core::RecorderStats& stream, double max_gap_s) {
   std::ostringstream text;
   text << "calibration: " << (report.success ? "estimated" : "FAILED") << " from " << encoders
        << " encoder samples and " << fixes << " fixes";
+  text << "\n  encoder stream: largest gap " << stream.largest_gap_s << " s, " << stream.gaps
+       << " gaps over " << max_gap_s << " s, " << stream.encoders_out_of_order
+       << " samples out of order; fixes refused: " << stream.fixes_rejected;
   for (int k = 0; k < calibration_core::kParameterCount; ++k) {
     if (!report.estimated[static_cast<size_t>(k)]) continue;
     text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
@@ -124,6 +128,7 @@ CalibrationComponent::CalibrationComponent(dds_common::Node& node,
   } else {
     length << "until stopped";
   }
+  RepublishLastResult();
   std::cout << "calibration: recording " << dds_common::topics::kWheelEncoders.name << " and "
             << options_.fix_topic << " for " << length.str() << std::endl;
 }
@@ -183,9 +188,11 @@ void CalibrationComponent::Stop() {
 
 void CalibrationComponent::Estimate(bool stopped_early) {
   calibration_core::Recording recording;
+  calibration_core::RecorderStats stream;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     recording = recorder_.Finish();
+    stream = recorder_.Stats();
     estimated_ = true;
   }
   const auto& encoders = recording.encoders;
@@ -197,12 +204,15 @@ void CalibrationComponent::Estimate(bool stopped_early) {
     report.success = false;
     report.failure = e.what();
   }
-  std::cout << Summary(report, encoders.size(), fixes.size()) << std::endl;
-  const std::string write_error = WriteResults(encoders, fixes, report);
+  std::cout << Summary(report, encoders.size(), fixes.size(), stream,
+                       options_.calibration.max_encoder_gap_s)
+            << std::endl;
+  std::string write_error = WriteResults(encoders, fixes, report);
+  const auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.front().t,
+                                       encoders.empty() ? 0.0 : encoders.back().t);
+  const std::string save_error = PublishResult(msg);
+  if (write_error.empty()) write_error = save_error;
   if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
-  auto msg = ToCalibrationResult(report, encoders.empty() ? 0.0 : encoders.front().t,
-                                 encoders.empty() ? 0.0 : encoders.back().t);
-  result_.Write(msg);
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string why = !report.failure.empty()   ? report.failure
                           : report.warnings.empty() ? std::string("?")
@@ -217,23 +227,27 @@ void CalibrationComponent::Estimate(bool stopped_early) {
 
 void CalibrationComponent::EstimateOnline() {
   calibration_core::OnlineCalibration::Window window;
+  calibration_core::RecorderStats stream;
   {
     // Only the copy under the lock: samples keep arriving while it estimates.
     std::lock_guard<std::mutex> lock(mutex_);
     window = online_->NextWindow();
+    stream = online_->Stats();
   }
   const calibration_core::OnlineEstimate estimate = online_->Estimate(window);
   const auto& encoders = window.recording.encoders;
   const auto& fixes = window.recording.fixes;
   const auto message = ToCalibrationResult(estimate);
   std::ostringstream text;
-  text << Summary(estimate.report, encoders.size(), fixes.size()) << "\n  window "
-       << estimate.window_start_s << " .. " << estimate.window_end_s << " s";
+  text << Summary(estimate.report, encoders.size(), fixes.size(), stream,
+                  options_.calibration.max_encoder_gap_s)
+       << "\n  window " << estimate.window_start_s << " .. " << estimate.window_end_s << " s";
   for (const auto& change : message.changed()) text << "\n  CHANGED: " << change;
   std::cout << text.str() << std::endl;
-  const std::string write_error = WriteResults(encoders, fixes, estimate.report);
+  std::string write_error = WriteResults(encoders, fixes, estimate.report);
+  const std::string save_error = PublishResult(message);
+  if (write_error.empty()) write_error = save_error;
   if (!write_error.empty()) std::cerr << "calibration: " << write_error << std::endl;
-  result_.Write(message);
   estimated_ = true;
   std::lock_guard<std::mutex> lock(mutex_);
   changed_ = message.changed();
@@ -242,6 +256,27 @@ void CalibrationComponent::EstimateOnline() {
           ? "calibrated over the window ending at " + std::to_string(estimate.window_end_s) + " s"
           : "calibration of the window failed: " + estimate.report.failure;
   if (!write_error.empty()) failure_ = "the result could not be written: " + write_error;
+}
+
+std::string CalibrationComponent::PublishResult(const structloc_msgs::msg::CalibrationResult& msg) {
+  result_.Write(msg);
+  if (options_.out_dir.empty()) return "";
+  return SaveLastResult(options_.out_dir + "/" + kLastResultFileName, msg);
+}
+
+void CalibrationComponent::RepublishLastResult() {
+  if (options_.out_dir.empty()) return;
+  const std::string path = options_.out_dir + "/" + kLastResultFileName;
+  if (!std::filesystem::exists(path)) return;
+  std::string why;
+  if (const auto last = LoadLastResult(path, why)) {
+    result_.Write(*last);
+    std::cout << "calibration: published the last result again, from " << path << " ("
+              << (last->success() ? "a calibration" : "a failed calibration") << " of "
+              << last->window_end().sec() << " s)" << std::endl;
+  } else {
+    std::cerr << "calibration: WARNING: not publishing the last result again: " << why << std::endl;
+  }
 }
 
 std::string CalibrationComponent::WriteResults(

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "structloc/evaluation/pose_age.hpp"
 #include "structloc/geometry/pose2d.hpp"
 
 namespace structloc::cli {
@@ -23,7 +24,17 @@ bool PrintSummaryAndJudge(evaluation::LiveEvaluator& evaluator, dds_common::Node
       "at the end\n",
       1e3 * odo.position_rmse_m, 1e3 * odo.position_max_m,
       odo.heading_rmse_rad * 180 / geometry::kPi, odo.final_position_m);
+  const auto arrivals = evaluator.PoseArrivals();
+  const double age_p95_s = evaluation::NewestPoseAgeQuantile(arrivals, 0.95);
+  std::printf("  poses received: %zu; the newest pose's age: p95 %.0f ms, max %.0f ms\n",
+              arrivals.size(), 1e3 * age_p95_s,
+              1e3 * evaluation::NewestPoseAgeQuantile(arrivals, 1.0));
   bool passed = true;
+  if (bar.max_pose_age_p95_s > 0 && !(age_p95_s <= bar.max_pose_age_p95_s)) {
+    std::printf("  FAILED the bar: the newest pose's age p95 must be <= %.0f ms\n",
+                1e3 * bar.max_pose_age_p95_s);
+    passed = false;
+  }
   for (const auto& problem : node.PeerProblems()) {
     std::printf("  PROBLEM: %s\n", problem.c_str());
     passed = false;

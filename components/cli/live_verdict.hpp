@@ -17,6 +17,9 @@ struct LiveBar {
   double max_error_m = 0.030;         // largest position error
   double max_heading_rmse_deg = 0.3;  // heading RMSE
   size_t min_poses = 500;             // poses matched to ground truth
+  // 95th percentile of the newest pose's age while poses flow (pose_age.hpp);
+  // 0 = printed, not judged.
+  double max_pose_age_p95_s = 0.0;
 };
 
 // Prints the localised and odometry-only errors and every problem (peer

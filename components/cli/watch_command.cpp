@@ -12,6 +12,7 @@
 #include "live_verdict.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/dds_common/component_runtime.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "subcommands.hpp"
 
@@ -29,6 +30,11 @@ int WatchCommand(const Invocation& inv) {
   specs.push_back({"max-rmse-m", true, "bar: position RMSE (default 0.010)"});
   specs.push_back({"max-error-m", true, "bar: largest position error (default 0.030)"});
   specs.push_back({"min-poses", true, "bar: poses matched to ground truth (default 500)"});
+  specs.push_back({"max-pose-age-ms", true,
+                   "bar: 95th percentile of the newest pose's age while poses flow, 1..60000 ms "
+                   "(default: printed, not judged)"});
+  specs.push_back({"estimate-out", true,
+                   "write the poses received to this TUM file (stamp x y z qx qy qz qw)"});
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     if (cli.Has("help")) {
@@ -41,6 +47,10 @@ int WatchCommand(const Invocation& inv) {
     bar.max_rmse_m = cli.NumberIn("max-rmse-m", bar.max_rmse_m, 1e-6, 1e3);
     bar.max_error_m = cli.NumberIn("max-error-m", bar.max_error_m, 1e-6, 1e3);
     bar.min_poses = static_cast<size_t>(cli.IntegerIn("min-poses", 500, 1, 100000000));
+    if (cli.Has("max-pose-age-ms")) {
+      bar.max_pose_age_p95_s = 1e-3 * cli.NumberIn("max-pose-age-ms", 200, 1, 60000);
+    }
+    const std::string estimate_out = cli.GetOr("estimate-out", "");
     const auto scenario =
         simulation_core::LoadScenario(cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
     const auto options = dds_common::NodeOptionsFrom(cli, "watch", "operator");
@@ -72,6 +82,11 @@ int WatchCommand(const Invocation& inv) {
                     timeout.count());
         return 1;
       }
+    }
+    if (!estimate_out.empty()) {
+      log_formats::TumWriter tum(estimate_out);
+      for (const auto& p : evaluator.Estimate()) tum.Pose(p.stamp, p.pose);
+      tum.Close();
     }
     return PrintSummaryAndJudge(evaluator, node, bar, "") ? 0 : 1;
   } catch (const config::ConfigError& e) {

@@ -1,6 +1,8 @@
 // Live evaluation over DDS (see header).
 #include "structloc/evaluation/live_evaluator.hpp"
 
+#include <chrono>
+
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "structloc/dds_common/ros_conversions.hpp"
@@ -34,7 +36,11 @@ LiveEvaluator::LiveEvaluator(dds_common::Node& node, const geometry::Pose2D& ini
       }));
   subscriptions_.push_back(node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds_common::topics::kPose, [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+        const double arrived =
+            std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+                .count();
         std::lock_guard<std::mutex> lock(mutex_);
+        pose_arrivals_s_.push_back(arrived);
         estimate_.push_back(Stamped(m.header().stamp(), m.pose().pose()));
         ++snapshot_.poses;
         // Truth at the pose's stamp, interpolated between the samples around it.
@@ -73,6 +79,10 @@ LiveSnapshot LiveEvaluator::Snapshot() {
 std::vector<log_formats::StampedPose> LiveEvaluator::Truth() {
   std::lock_guard<std::mutex> lock(mutex_);
   return truth_;
+}
+std::vector<double> LiveEvaluator::PoseArrivals() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return pose_arrivals_s_;
 }
 std::vector<log_formats::StampedPose> LiveEvaluator::Estimate() {
   std::lock_guard<std::mutex> lock(mutex_);

@@ -48,30 +48,20 @@ work="$(mktemp -d)"
 declare -A launch_pid
 
 netns_names=()
-for h in "${hosts[@]}" br; do netns_names+=("$prefix-$h"); done
 # shellcheck source=../netns_cleanup.sh
 source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
+# shellcheck source=netns_network.sh
+source "$(dirname "${BASH_SOURCE[0]}")/netns_network.sh"
 trap netns_cleanup EXIT
 trap 'exit 130' INT TERM
 
-# The network: a bridge in its own namespace, one veth per host.
-ip netns add "$prefix-br"
-ip -n "$prefix-br" link add br0 type bridge
-ip -n "$prefix-br" link set br0 up
-i=1
-for h in "${hosts[@]}"; do
-  ip netns add "$prefix-$h"
-  ip link add eth0 netns "$prefix-$h" type veth peer name "v$h" netns "$prefix-br"
-  ip -n "$prefix-br" link set "v$h" master br0 up
-  ip -n "$prefix-$h" link set lo up
-  ip -n "$prefix-$h" addr add "$subnet.$i/24" dev eth0
-  ip -n "$prefix-$h" link set eth0 up
-  if [ "$mode" = discovery_server ]; then
+netns_make_network "$prefix" "$subnet" "${hosts[@]}"
+if [ "$mode" = discovery_server ]; then
+  for h in "${hosts[@]}"; do
     ip netns exec "$prefix-$h" iptables -A OUTPUT -d 224.0.0.0/4 -j DROP
     ip netns exec "$prefix-$h" iptables -A INPUT -d 224.0.0.0/4 -j DROP
-  fi
-  i=$((i + 1))
-done
+  done
+fi
 echo "network: ${#hosts[@]} hosts on $subnet.0/24 (bridge in $prefix-br), mode $mode, domain $domain"
 
 discovery_server=""

@@ -3,8 +3,10 @@
 // topic) for a given time, or until it is stopped, then estimates the
 // parameters with the DDS-free calibration core, publishes the result latched
 // (RELIABLE + TRANSIENT_LOCAL: late subscribers still get it) and writes the
-// recording and the calibrated robot file. What is recorded and when to
-// estimate is the DDS-free calibration_core::CalibrationRecorder's policy (gaps in the encoder
+// recording and the calibrated robot file; a restarted component publishes
+// the last result kept in its --out-dir again (last_result_file.hpp). What is
+// recorded and when to estimate is the DDS-free
+// calibration_core::CalibrationRecorder's policy (gaps in the encoder
 // stream are detected and reported, never silently bridged); this component
 // converts and moves messages around it. A failed estimate of a
 // complete recording, or a result that cannot be written, makes the process
@@ -75,6 +77,12 @@ class CalibrationComponent : public dds_common::Component {
                            const std::vector<calibration_core::Fix>& fixes,
                            const calibration_core::CalibrationReport& report) const;
   void PublishDiagnostics(double now);
+  // Publishes `msg` and, with an --out-dir, keeps it there for a restart;
+  // returns what could not be saved ("" when all went well).
+  std::string PublishResult(const structloc_msgs::msg::CalibrationResult& msg);
+  // At start: publishes the result a previous run kept in --out-dir, if any
+  // (a file that cannot be read is reported and left alone).
+  void RepublishLastResult();
 
   CalibrationComponentOptions options_;
   dds_common::TopicWriter<structloc_msgs::msg::CalibrationResultPubSubType> result_;

@@ -34,6 +34,8 @@ class LiveEvaluator {
   LiveSnapshot Snapshot();
   std::vector<log_formats::StampedPose> Truth();
   std::vector<log_formats::StampedPose> Estimate();
+  // When each pose arrived (steady-clock seconds), for pose_age.hpp.
+  std::vector<double> PoseArrivals();
   std::vector<log_formats::StampedPose> OdometryInMap();
   uint64_t LostCount();
   replay::TrajectoryError EstimateError();
@@ -47,6 +49,7 @@ class LiveEvaluator {
   std::mutex mutex_;
   geometry::Pose2D initial_pose_;
   std::vector<log_formats::StampedPose> truth_, estimate_, odometry_;
+  std::vector<double> pose_arrivals_s_;
   LiveSnapshot snapshot_;
   uint64_t lost_ = 0;
   // Last: destroyed first, so no callback reaches the members above then.
