@@ -31,14 +31,9 @@ case "$mode" in
     exit 2
     ;;
 esac
-if [ "$(id -u)" -ne 0 ]; then
-  echo "SKIPPED: network namespaces need root (run the test command as root)"
-  exit 77
-fi
-if ! command -v iptables >/dev/null; then
-  echo "SKIPPED: iptables is not installed (./setup.sh deps installs it)"
-  exit 77
-fi
+# shellcheck source=netns_network.sh
+source "$(dirname "${BASH_SOURCE[0]}")/netns_network.sh"
+netns_require_root
 
 prefix="slmh$$"
 hosts=(chk cal loc sim srv)
@@ -47,13 +42,7 @@ server_ip="$subnet.5"
 work="$(mktemp -d)"
 declare -A launch_pid
 
-netns_names=()
-# shellcheck source=../netns_cleanup.sh
-source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
-# shellcheck source=netns_network.sh
-source "$(dirname "${BASH_SOURCE[0]}")/netns_network.sh"
-trap netns_cleanup EXIT
-trap 'exit 130' INT TERM
+netns_trap_cleanup
 
 netns_make_network "$prefix" "$subnet" "${hosts[@]}"
 if [ "$mode" = discovery_server ]; then

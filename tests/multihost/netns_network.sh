@@ -4,7 +4,31 @@
 # SUBNET.k/24 on eth0. No real interface is touched and no packet can leave
 # the machine. Fills netns_names (for netns_cleanup.sh) as it goes, so that a
 # failure half-way still removes what was made. Usage:
+#   source netns_network.sh; netns_require_root
+#   work="$(mktemp -d)"; netns_trap_cleanup
 #   netns_make_network PREFIX SUBNET HOST...
+
+# shellcheck source=../netns_cleanup.sh
+source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
+
+# Exits 77 (ctest: skipped), saying why, unless namespaces and iptables can be used.
+netns_require_root() {
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "SKIPPED: network namespaces need root (run the test command as root)"
+    exit 77
+  fi
+  if ! command -v iptables >/dev/null; then
+    echo "SKIPPED: iptables is not installed (./setup.sh deps installs it)"
+    exit 77
+  fi
+}
+
+# On any exit, also a failed one, removes the namespaces made so far and $work.
+netns_trap_cleanup() {
+  netns_names=()
+  trap netns_cleanup EXIT
+  trap 'exit 130' INT TERM
+}
 netns_make_network() {
   local prefix="$1" subnet="$2" h i=1
   shift 2

@@ -20,27 +20,16 @@ build_dir="$(cd "$1" && pwd)"
 loss="$2"
 domain="$3"
 bin="$build_dir/bin"
-if [ "$(id -u)" -ne 0 ]; then
-  echo "SKIPPED: network namespaces need root (run the test command as root)"
-  exit 77
-fi
-if ! command -v iptables >/dev/null; then
-  echo "SKIPPED: iptables is not installed (./setup.sh deps installs it)"
-  exit 77
-fi
+# shellcheck source=netns_network.sh
+source "$(dirname "${BASH_SOURCE[0]}")/netns_network.sh"
+netns_require_root
 probability="$(awk -v p="$loss" 'BEGIN { printf "%.4f", p / 100 }')"
 
 prefix="slpl$$"
 hosts=(chk cal loc sim)
 subnet="10.214.0"
 work="$(mktemp -d)"
-netns_names=()
-# shellcheck source=../netns_cleanup.sh
-source "$(dirname "${BASH_SOURCE[0]}")/../netns_cleanup.sh"
-# shellcheck source=netns_network.sh
-source "$(dirname "${BASH_SOURCE[0]}")/netns_network.sh"
-trap netns_cleanup EXIT
-trap 'exit 130' INT TERM
+netns_trap_cleanup
 
 netns_make_network "$prefix" "$subnet" "${hosts[@]}"
 for h in "${hosts[@]}"; do
