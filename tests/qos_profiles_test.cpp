@@ -60,7 +60,7 @@ TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
   };
   for (const auto& e :
        {Expected{"sensor_data", BEST_EFFORT_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 5},
-        Expected{"reliable_state", RELIABLE_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 10},
+        Expected{"reliable_state", RELIABLE_RELIABILITY_QOS, VOLATILE_DURABILITY_QOS, 100},
         Expected{"latched_result", RELIABLE_RELIABILITY_QOS, TRANSIENT_LOCAL_DURABILITY_QOS, 1}}) {
     const auto w = qos.Writer(*pub, e.profile);
     const auto r = qos.Reader(*sub, e.profile);
@@ -71,7 +71,14 @@ TEST(QosProfiles, ShippedFileHasTheProfilesAndValuesWeRelyOn) {
     EXPECT_EQ(w.history().kind, KEEP_LAST_HISTORY_QOS) << e.profile;
     EXPECT_EQ(w.history().depth, e.depth) << e.profile;
     EXPECT_EQ(r.history().depth, e.depth) << e.profile;
+    // No /dev/shm segment a killed process could leave behind.
+    EXPECT_EQ(w.data_sharing().kind(), eprosima::fastdds::dds::OFF) << e.profile;
+    EXPECT_EQ(r.data_sharing().kind(), eprosima::fastdds::dds::OFF) << e.profile;
   }
+  // A lost state sample is asked for again within 50 ms (the packet-loss test).
+  const auto state_writer = qos.Writer(*pub, "reliable_state");
+  EXPECT_EQ(state_writer.reliable_writer_qos().times.heartbeatPeriod.seconds, 0);
+  EXPECT_EQ(state_writer.reliable_writer_qos().times.heartbeatPeriod.nanosec, 50000000u);
   EXPECT_THROW(qos.Writer(*pub, "no_such_profile"), dds_common::QosError);
   participant->delete_contained_entities();
   factory->delete_participant(participant);
@@ -118,7 +125,8 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, BrokenQos,
     ::testing::Values(
         BrokenCase{"depth0", "<depth>5</depth>", "<depth>0</depth>", "history depth '0'"},
-        BrokenCase{"depthneg", "<depth>10</depth>", "<depth>-3</depth>", "history depth '-3'"},
+        BrokenCase{"depthneg", "<depth>100</depth>", "<depth>-3</depth>", "history depth '-3'"},
+        BrokenCase{"sharing", "<kind>OFF</kind>", "<kind>OF</kind>", "unknown data_sharing kind"},
         BrokenCase{"kind", "<kind>BEST_EFFORT</kind>", "<kind>BEST_EFORT</kind>",
                    "unknown reliability kind"},
         BrokenCase{"duration", "<sec>3</sec>", "<sec>-1</sec>", "duration '-1'"},
