@@ -15,7 +15,10 @@ trap 'rm -rf "$stage"' EXIT
 
 cmake --install "$build_dir" --prefix "$stage/prefix" >/dev/null
 rm -rf "$stage/prefix/include" "$stage/prefix/lib"  # headers and static libraries: not run
-for f in "$stage"/prefix/bin/*; do ldd "$f"; done | awk '$3 ~ /^\// { print $3 }' | sort -u |
+# Scripts (structloc_keystore) link nothing: ldd is asked about programs only.
+for f in "$stage"/prefix/bin/*; do
+  if ldd "$f" >/dev/null 2>&1; then ldd "$f"; fi
+done | awk '$3 ~ /^\// { print $3 }' | sort -u |
   while read -r library; do
     real="$(readlink -f "$library")"
     for candidate in "$library" "$real" "${library#/usr}" "/usr$library" "${real#/usr}"; do
