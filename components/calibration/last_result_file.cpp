@@ -4,11 +4,12 @@
 #include <fastcdr/exceptions/Exception.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <vector>
+
+#include "structloc/config/output_file.hpp"
 
 namespace structloc::calibration {
 namespace {
@@ -31,15 +32,13 @@ std::string SaveLastResult(const std::string& path,
   auto copy = result;
   eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&copy)());
   if (!type.serialize(&copy, &payload)) return "cannot encode the result for " + path;
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(payload.data), payload.length);
-    if (!out.good()) return "cannot write " + temporary;
+  try {
+    config::OutputFile file(path);
+    file.Stream().write(reinterpret_cast<const char*>(payload.data), payload.length);
+    file.Commit();
+  } catch (const std::exception& e) {
+    return e.what();
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) return "cannot replace " + path + ": " + error.message();
   return "";
 }
 

@@ -15,7 +15,8 @@ inline constexpr const char* kLastResultFileName = "last_result.cdr";
 // A result is a few kB; a larger file is refused naming this limit.
 inline constexpr long long kMaxLastResultBytes = 1 << 20;
 
-// Writes `result` to `path` atomically (a temporary file renamed over it);
+// Writes `result` to `path` atomically (config::OutputFile: a temporary file
+// renamed over it);
 // returns what went wrong, or "" when it was written.
 std::string SaveLastResult(const std::string& path,
                            const structloc_msgs::msg::CalibrationResult& result);
