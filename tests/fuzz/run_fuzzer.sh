@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for RUNS executions on a copy of its seed corpus
 # (our own shipped files), in a temporary folder removed afterwards, even on
-# failure. Exit 0 when no input crashed it, tripped a sanitizer, hung (10 s)
+# failure (under STRUCTLOC_FUZZ_WORK_DIR, else TMPDIR or /tmp; ctest points it
+# into the build tree, where only a run killed outright, as by ctest's time
+# limit, leaves its folder behind). Exit 0 when no input crashed it, tripped a sanitizer, hung (10 s)
 # or went over 2 GB; otherwise libFuzzer's exit code, with the input it saved
 # and how to reproduce it.
 # Usage: tests/fuzz/run_fuzzer.sh FUZZER RUNS SEED_FILE...
 set -euo pipefail
 fuzzer="$1" runs="$2"
 shift 2
-work="$(mktemp -d "${TMPDIR:-/tmp}/structloc-fuzz.XXXXXX")"
+work="$(mktemp -d "${STRUCTLOC_FUZZ_WORK_DIR:-${TMPDIR:-/tmp}}/structloc-fuzz.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/corpus" "$work/tmp" "$work/findings"
 for seed in "$@"; do
