@@ -1,6 +1,7 @@
 // Node: participant creation from a validated QoS file, and clean teardown.
 #include "structloc/dds_common/node.hpp"
 
+#include <fastrtps/config.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include <iostream>
@@ -24,6 +25,15 @@ Node::Node(const NodeOptions& options)
   if (auto warning = DomainPortWarning(options.domain_id)) {
     std::cerr << options.name << ": WARNING: " << *warning << std::endl;
   }
+#if !HAVE_SECURITY
+  // Fast DDS built without security ignores the dds.sec properties: refuse
+  // rather than run unprotected when protection was asked for.
+  if (options.security.Enabled()) {
+    throw config::ConfigError(
+        "DDS Security was asked for (--security-keystore) but this Fast DDS was built without "
+        "it (HAVE_SECURITY 0); install a Fast DDS with security or leave the option out");
+  }
+#endif
   auto participant_qos = qos_.Participant(options.participant_profile);
   participant_qos.name(options.name);
   for (auto& [name, value] : SecurityProperties(options.security)) {

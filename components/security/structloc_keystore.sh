@@ -79,9 +79,20 @@ fi
 
 umask 077
 mkdir -p "$keystore/private" "$keystore/public" "$keystore/enclaves"
+work="$(mktemp -d)"
+# On any failure: openssl's own messages, and no half-made keystore left
+# behind (a rerun would refuse the existing folder).
+trap 'status=$?; if [ "$status" -ne 0 ]; then
+  echo "structloc_keystore: failed; openssl said:" >&2; cat "$work/openssl.log" >&2
+  rm -rf -- "$keystore"; fi; rm -rf -- "$work"' EXIT
+ssl() { openssl "$@" 2>>"$work/openssl.log"; }
+
 ca_key="$keystore/private/ca.key.pem"
 ca_cert="$keystore/public/ca.cert.pem"
-# A day back, so that a host whose clock runs behind still accepts the grants.
+# Certificates and grants are valid from a day back, so that a host whose
+# clock runs behind the one that made the keystore still accepts them.
+start_date="$(date -u -d "-1 day" +%Y%m%d%H%M%SZ)"
+end_date="$(date -u -d "+$days days" +%Y%m%d%H%M%SZ)"
 not_before="$(date -u -d "-1 day" +%Y-%m-%dT%H:%M:%S)"
 not_after="$(date -u -d "+$days days" +%Y-%m-%dT%H:%M:%S)"
 
@@ -90,12 +101,48 @@ not_after="$(date -u -d "+$days days" +%Y-%m-%dT%H:%M:%S)"
 subject_arg() { echo "/C=$country/O=$organisation/CN=$1"; }
 subject_name() { echo "CN=$1, O=$organisation, C=$country"; }
 
-openssl genpkey -algorithm EC -pkeyopt ec_paramgen_curve:prime256v1 -out "$ca_key" 2>/dev/null
-openssl req -new -x509 -sha256 -days "$days" -key "$ca_key" -out "$ca_cert" \
-  -subj "$(subject_arg "structloc CA")" 2>/dev/null
+# OpenSSL's "ca" command, as it alone sets a start date: the CA (self-signed,
+# CA:TRUE) and identities (CA:FALSE, as SROS2 makes them), fresh serials.
+mkdir "$work/issued"
+touch "$work/index.txt"
+ssl rand -hex 8 >"$work/serial"
+cat >"$work/ca.cnf" <<CNF
+[ ca ]
+default_ca = signer
+[ signer ]
+database = $work/index.txt
+new_certs_dir = $work/issued
+serial = $work/serial
+default_md = sha256
+policy = subject
+unique_subject = no
+email_in_dn = no
+[ subject ]
+countryName = supplied
+organizationName = supplied
+commonName = supplied
+[ ca_extensions ]
+basicConstraints = critical, CA:TRUE
+subjectKeyIdentifier = hash
+authorityKeyIdentifier = keyid:always
+[ identity_extensions ]
+basicConstraints = CA:FALSE
+subjectKeyIdentifier = hash
+authorityKeyIdentifier = keyid, issuer
+CNF
+issue() {  # issue KEY CN OUT EXTENSIONS [ca options...]
+  local key="$1" cn="$2" out="$3" extensions="$4"
+  shift 4
+  ssl req -new -key "$key" -subj "$(subject_arg "$cn")" -out "$work/request.pem"
+  ssl ca -batch -notext -config "$work/ca.cnf" -in "$work/request.pem" -out "$out" \
+    -extensions "$extensions" -startdate "$start_date" -enddate "$end_date" "$@"
+}
+
+ssl genpkey -algorithm EC -pkeyopt ec_paramgen_curve:prime256v1 -out "$ca_key"
+issue "$ca_key" "structloc CA" "$ca_cert" ca_extensions -selfsign -keyfile "$ca_key"
 
 sign() {  # sign FILE.xml -> FILE.p7s with the CA
-  openssl smime -sign -text -in "$1" -out "${1%.xml}.p7s" -signer "$ca_cert" -inkey "$ca_key" 2>/dev/null
+  ssl smime -sign -text -in "$1" -out "${1%.xml}.p7s" -signer "$ca_cert" -inkey "$ca_key"
 }
 
 cat >"$keystore/enclaves/governance.xml" <<GOV
@@ -143,10 +190,8 @@ topic_list() {  # topic_list NAME... -> <topic> lines, plain and namespaced
 enclave() {
   local name="$1" dir="$keystore/enclaves/$1"
   mkdir -p "$dir"
-  openssl genpkey -algorithm EC -pkeyopt ec_paramgen_curve:prime256v1 -out "$dir/key.pem" 2>/dev/null
-  openssl req -new -sha256 -key "$dir/key.pem" -subj "$(subject_arg "$name")" 2>/dev/null |
-    openssl x509 -req -sha256 -days "$days" -CA "$ca_cert" -CAkey "$ca_key" -set_serial "0x$(openssl rand -hex 8)" \
-      -out "$dir/cert.pem" 2>/dev/null
+  ssl genpkey -algorithm EC -pkeyopt ec_paramgen_curve:prime256v1 -out "$dir/key.pem"
+  issue "$dir/key.pem" "$name" "$dir/cert.pem" identity_extensions -cert "$ca_cert" -keyfile "$ca_key"
   # shellcheck disable=SC2086
   cat >"$dir/permissions.xml" <<PERM
 <?xml version="1.0" encoding="UTF-8"?>
