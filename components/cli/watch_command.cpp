@@ -69,7 +69,10 @@ int WatchCommand(const Invocation& inv) {
       const size_t truth = evaluator.Truth().size();
       const auto now = Clock::now();
       if (truth != truth_seen) {
-        if (truth_seen == 0) std::printf("  ground truth arriving\n");
+        if (truth_seen == 0) {
+          std::printf("  ground truth arriving\n");
+          std::fflush(stdout);  // scripts wait for this line (tests/security)
+        }
         truth_seen = truth;
         last_change = now;
       } else if (truth_seen > 0 && now - last_change > quiet) {

@@ -29,14 +29,22 @@ trap 'exit 130' INT TERM
   >"$work/watch.log" 2>&1 &
 watch_pid=$!
 pids+=("$watch_pid")
-"$structloc" watch --domain "$domain" --timeout-s 20 >"$work/stranger.log" 2>&1 &
-stranger_pid=$!
-pids+=("$stranger_pid")
 "$structloc" launch "$here/../../launch_xml/structloc.launch.xml" "domain:=$domain" \
   "security_keystore:=$work/keys" calibration:=false time_scale:=2 wait_for_subscribers:=1 \
   exit_when_done:=true >"$work/launch.log" 2>&1 &
 launch_pid=$!
 pids+=("$launch_pid")
+# The stranger listens only while the secure run is known to be publishing
+# (the operator hears its ground truth), so that hearing nothing means
+# something.
+for _ in $(seq 600); do
+  grep -q "ground truth arriving" "$work/watch.log" && break
+  kill -0 "$watch_pid" 2>/dev/null || break
+  sleep 0.2
+done
+"$structloc" watch --domain "$domain" --timeout-s 15 >"$work/stranger.log" 2>&1 &
+stranger_pid=$!
+pids+=("$stranger_pid")
 
 watch_status=0
 wait "$watch_pid" || watch_status=$?
@@ -49,7 +57,10 @@ if [ "$watch_status" -ne 0 ]; then
   cat "$work/launch.log"
   failed=1
 fi
-if ! { [ "$stranger_status" -eq 1 ] && grep -q "no ground truth" "$work/stranger.log"; }; then
+if ! grep -q "ground truth arriving" "$work/watch.log"; then
+  echo "FAILED: the operator never heard the secure run, so the stranger's silence proves nothing"
+  failed=1
+elif ! { [ "$stranger_status" -eq 1 ] && grep -q "no ground truth" "$work/stranger.log"; }; then
   echo "FAILED: an unauthenticated participant heard the secure run (exit $stranger_status):"
   cat "$work/stranger.log"
   failed=1
