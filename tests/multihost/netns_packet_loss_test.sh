@@ -93,6 +93,9 @@ fixes="$work/cal/fixes.csv"
 if [ ! -s "$fixes" ]; then
   echo "FAILED: the calibration wrote no fixes.csv"
   failed=1
+elif [ ! -s "$work/estimate.tum" ]; then
+  echo "FAILED: the checker wrote no poses to compare the fixes with (see its verdict above)"
+  failed=1
 else
   # Every pose the checker received from the calibration's first fix on.
   read -r recorded missing < <(awk -F'[ ,]' '
