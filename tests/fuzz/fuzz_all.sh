@@ -19,7 +19,7 @@ start=$(date +%s)
 log="$build/fuzz_all.log"
 set +o pipefail
 ctest --test-dir "$build" -L fuzz -R "$only" -j 2 --output-on-failure -V 2>&1 | tee "$log" |
-  { grep --line-buffered -E ": [0-9?]+ executions|FINDING|Timeout|tests passed," || true; } |
+  { grep --line-buffered -E ": [0-9?]+ executions|FINDING|interrupted|Timeout|tests passed," || true; } |
   sed -u 's/^[0-9]*: //'
 status=${PIPESTATUS[0]}
 set -o pipefail

@@ -5,7 +5,7 @@
 # into the build tree, where only a run killed outright, as by ctest's time
 # limit, leaves its folder behind). Exit 0 when no input crashed it, tripped a sanitizer, hung (10 s)
 # or went over 2 GB; otherwise libFuzzer's exit code, with the input it saved
-# and how to reproduce it.
+# and how to reproduce it (72 when it was interrupted, which is no finding).
 # Usage: tests/fuzz/run_fuzzer.sh FUZZER RUNS SEED_FILE...
 set -euo pipefail
 fuzzer="$1" runs="$2"
@@ -22,6 +22,10 @@ TMPDIR="$work/tmp" "$fuzzer" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -max_l
   -print_final_stats=1 -artifact_prefix="$work/findings/" "$work/corpus" >"$work/log" 2>&1 || status=$?
 executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/log")
 coverage=$(grep -o 'cov: [0-9]*' "$work/log" | tail -1 | cut -d' ' -f2)
+if [ "$status" -eq 72 ]; then  # libFuzzer's exit code when SIGINT or SIGTERM stopped it
+  echo "$name: interrupted after ${executions:-?} executions (not a finding)"
+  exit "$status"
+fi
 if [ "$status" -ne 0 ]; then
   echo "$name: FINDING after ${executions:-?} executions (exit $status)"
   tail -60 "$work/log"
