@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "shipped_copy.hpp"
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/process/child_process.hpp"
@@ -34,13 +35,10 @@ using testing::TempDir;
 // `dir`; relative references of scenarios are made absolute.
 std::string Mutated(const TempDir& dir, const std::string& relative, const std::string& from,
                     const std::string& to) {
-  std::string text = testing::ReadFile(SourcePath(relative));
+  std::string text = testing::ShippedTextForCopy(relative);
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from << " not in " << relative;
   if (at != std::string::npos) text.replace(at, from.size(), to);
-  for (size_t pos = 0; (pos = text.find("file=\"../", pos)) != std::string::npos;) {
-    text.replace(pos, 9, "file=\"" + SourcePath("maps/"));
-  }
   std::string name = relative;
   for (auto& c : name) c = c == '/' ? '_' : c;
   return dir.Write(name, text);

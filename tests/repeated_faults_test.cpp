@@ -10,14 +10,13 @@
 #include <algorithm>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "shipped_copy.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -130,7 +129,7 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
     std::vector<std::string> args = {"--domain", std::to_string(kDomain), "--qos",
                                      testing::ShippedQos()};
     if (component == "simulator") {
-      args.insert(args.end(), {"--scenario", LoopedScenario()});
+      args.insert(args.end(), {"--scenario", looped_scenario_});
     } else if (component == "calibration") {
       // It records through the whole test, so that SIGTERM ends its recording
       // early and its estimate is not judged here: fixes from a localisation
@@ -147,25 +146,20 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
 
   // The office scenario, 600 s long with its path driven in a loop.
   std::string LoopedScenario() const {
-    std::ifstream in(testing::SourcePath("maps/scenarios/office_people.xml"));
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string xml = text.str();
-    const auto replace = [&xml](const std::string& from, const std::string& to) {
+    std::string xml = testing::ShippedTextForCopy("maps/scenarios/office_people.xml");
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{"duration_s=\"60\"", "duration_s=\"600\""},
+          {"loop=\"false\"", "loop=\"true\""}}) {
       const auto at = xml.find(from);
       if (at == std::string::npos) throw std::runtime_error("office_people.xml lacks " + from);
       xml.replace(at, from.size(), to);
-    };
-    replace("duration_s=\"60\"", "duration_s=\"600\"");
-    replace("loop=\"false\"", "loop=\"true\"");
-    const std::string scenarios = testing::SourcePath("maps/scenarios/");
-    for (auto at = xml.find("file=\"../"); at != std::string::npos; at = xml.find("file=\"../"))
-      xml.replace(at, 6, "file=\"" + scenarios);
+    }
     return temp_.Write("office_looped.xml", xml);
   }
 
   testing::TempDir temp_;
   std::string state_file_ = temp_ / "pose_state";
+  std::string looped_scenario_ = LoopedScenario();  // written once, for every start
 };
 
 TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSeconds) {
