@@ -91,10 +91,13 @@ ca_key="$keystore/private/ca.key.pem"
 ca_cert="$keystore/public/ca.cert.pem"
 # Certificates and grants are valid from a day back, so that a host whose
 # clock runs behind the one that made the keystore still accepts them.
-start_date="$(date -u -d "-1 day" +%Y%m%d%H%M%SZ)"
-end_date="$(date -u -d "+$days days" +%Y%m%d%H%M%SZ)"
-not_before="$(date -u -d "-1 day" +%Y-%m-%dT%H:%M:%S)"
-not_after="$(date -u -d "+$days days" +%Y-%m-%dT%H:%M:%S)"
+# The same two instants in OpenSSL's and in the permissions' notation.
+first="$(date -u -d "-1 day" +%s)"
+last="$(date -u -d "+$days days" +%s)"
+start_date="$(date -u -d "@$first" +%Y%m%d%H%M%SZ)"
+end_date="$(date -u -d "@$last" +%Y%m%d%H%M%SZ)"
+not_before="$(date -u -d "@$first" +%Y-%m-%dT%H:%M:%S)"
+not_after="$(date -u -d "@$last" +%Y-%m-%dT%H:%M:%S)"
 
 # The subject as OpenSSL's -subj takes it, and as the permissions must spell
 # it for Fast DDS (CN, O, C in that order).
