@@ -114,32 +114,49 @@ class CallbackListener : public DetachableListener {
   // The reader this listener serves, for TakeWaiting().
   void Attach(eprosima::fastdds::dds::DataReader* reader) { reader_ = reader; }
   void TakeWaiting() override {
-    if (reader_ != nullptr) on_data_available(reader_);
+    if (reader_ != nullptr) Drain(reader_);
   }
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
     if (held_) return;  // taken by TakeWaiting() when the hold ends
-    typename PubSubType::type sample;
-    eprosima::fastdds::dds::SampleInfo info;
-    std::lock_guard<std::mutex> lock(mutex_);
-    while (callback_ && reader->take_next_sample(&sample, &info) ==
-                            eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data) continue;
-      try {
-        callback_(sample);
-      } catch (const std::exception& e) {
-        std::cerr << node_ << ": error handling a sample on " << topic_ << ": " << e.what()
-                  << std::endl;
+    Drain(reader);
+  }
+
+ private:
+  // Takes every waiting sample and calls back, on whichever thread comes
+  // first, and never waits for a thread that is taking: Fast DDS calls
+  // on_data_available with the reader locked, and taking locks the reader, so
+  // a DDS thread waiting here for TakeWaiting's thread would hold the lock
+  // that thread needs (a deadlock that once hung a component at start-up). A
+  // thread that finds another taking leaves the samples to it: `pending_`
+  // makes the taker look again once it has let go.
+  void Drain(eprosima::fastdds::dds::DataReader* reader) {
+    pending_ = true;
+    while (pending_) {
+      std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+      if (!lock.owns_lock()) return;
+      pending_ = false;
+      typename PubSubType::type sample;
+      eprosima::fastdds::dds::SampleInfo info;
+      while (callback_ && reader->take_next_sample(&sample, &info) ==
+                              eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data) continue;
+        try {
+          callback_(sample);
+        } catch (const std::exception& e) {
+          std::cerr << node_ << ": error handling a sample on " << topic_ << ": " << e.what()
+                    << std::endl;
+        }
       }
     }
   }
 
- private:
   std::string node_;
   std::string topic_;
   PeerMonitor& monitor_;
   const std::atomic<bool>& held_;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
-  std::mutex mutex_;
+  std::mutex mutex_;  // held while taking and calling back
+  std::atomic<bool> pending_{false};
   std::function<void(const typename PubSubType::type&)> callback_;
 };
 
