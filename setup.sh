@@ -30,6 +30,10 @@ container_packages=(docker.io docker-compose debootstrap)
 # the sanitizers' runtimes).
 fuzz_packages=(clang libclang-rt-14-dev)
 
+# For tests that find a component stuck: gdb prints its threads' stacks, so
+# that a failure seen once in CI says where it was stuck.
+debug_packages=(gdb)
+
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
 }
@@ -37,7 +41,7 @@ as_root() {
 install_dependencies() {
   local missing=() wanted=("${packages[@]}")
   if [ "${1:-}" = for-tests ]; then
-    wanted+=("${fuzz_packages[@]}")
+    wanted+=("${fuzz_packages[@]}" "${debug_packages[@]}")
     # Only root can start a Docker engine: others skip the container test.
     [ "$(id -u)" -eq 0 ] && wanted+=("${container_packages[@]}")
   fi

@@ -20,6 +20,7 @@
 #include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
+#include "stuck_process.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 
@@ -170,7 +171,7 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
   for (const auto& c : kComponents) running[c] = Start(c, true);
   for (const auto& c : kComponents) {
     ASSERT_TRUE(testing::WaitUntil([&] { return observer.Matched(c) > 0; }))
-        << c << " never matched:\n"
+        << c << " never matched: " << testing::WhyUnresponsive(*running[c]) << "\nits output:\n"
         << running[c]->CapturedOutput();
   }
   ASSERT_TRUE(testing::WaitUntil([&] { return observer.LastData(victim) != Clock::time_point{}; }))
@@ -192,7 +193,8 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
     running[victim] = Start(victim, false);
     const bool back = testing::WaitUntil(
         [&] { return observer.Matched(victim) > 0 && observer.LastData(victim) > started; }, 30s);
-    ASSERT_TRUE(back) << victim << " did not come back after kill " << kill + 1 << ":\n"
+    ASSERT_TRUE(back) << victim << " did not come back after kill " << kill + 1 << ": "
+                      << testing::WhyUnresponsive(*running[victim]) << "\nits output:\n"
                       << running[victim]->CapturedOutput();
     restart_s.push_back(Seconds(Clock::now() - started));
     for (const auto& c : kComponents) {
