@@ -14,7 +14,7 @@ shift
 export ASAN_OPTIONS="new_delete_type_mismatch=0:detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lsan_suppressions.txt:print_suppressions=0"
-run="cd '$build' && ctest -j$(nproc) --timeout 1200 $*"
+run="cd '$build' && ctest -j$(nproc) --timeout 1200 $(printf '%q ' "$@")"
 if [ "$(id -u)" -eq 0 ] && unshare -n true 2>/dev/null; then
   exec unshare -n bash -c "ip link set lo up && ip link set lo multicast on && \
     ip route add 224.0.0.0/4 dev lo && $run"
