@@ -3,8 +3,10 @@
 // component is matched and its data flows within 5 s of its start; the dead
 // writer is unmatched within the lease (3 s in the shipped profile) + 1 s;
 // the peers never crash and never stall (each one's diagnostics keep arriving
-// with no gap over 2.5 s, their period being 0.5-1 s); and /dev/shm holds no
-// more Fast DDS segments afterwards than before. Prints its figures.
+// with no gap over 2.5 s, their period being 0.5-1 s); /dev/shm holds no
+// more Fast DDS segments afterwards than before; and, unless the robot itself
+// was restarted, the localisation meets the demo's accuracy bar from 1 s after
+// each of its starts on, judged against ground truth. Prints its figures.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "shipped_copy.hpp"
+#include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -52,6 +55,21 @@ size_t FastDdsShmEntries() {
 
 double Seconds(Clock::duration d) {
   return std::chrono::duration<double>(d).count();
+}
+
+// The poses that arrived at least `settle_s` after every start before them
+// (`arrivals_s[i]` is when poses[i] arrived; both on the steady clock).
+std::vector<log_formats::StampedPose> PosesSettledAfter(
+    const std::vector<log_formats::StampedPose>& poses, const std::vector<double>& arrivals_s,
+    const std::vector<double>& starts_s, double settle_s) {
+  std::vector<log_formats::StampedPose> settled;
+  for (size_t i = 0; i < std::min(poses.size(), arrivals_s.size()); ++i) {
+    const bool settling = std::any_of(starts_s.begin(), starts_s.end(), [&](double start) {
+      return arrivals_s[i] >= start && arrivals_s[i] < start + settle_s;
+    });
+    if (!settling) settled.push_back(poses[i]);
+  }
+  return settled;
 }
 
 // What the test hears: each component's main output (the simulator's scans,
@@ -130,7 +148,7 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
     std::vector<std::string> args = {"--domain", std::to_string(kDomain), "--qos",
                                      testing::ShippedQos()};
     if (component == "simulator") {
-      args.insert(args.end(), {"--scenario", looped_scenario_});
+      args.insert(args.end(), {"--scenario", looped_scenario_, "--wait-for-subscribers", "2"});
     } else if (component == "calibration") {
       // It records through the whole test, so that SIGTERM ends its recording
       // early and its estimate is not judged here: fixes from a localisation
@@ -145,16 +163,25 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
         std::string(STRUCTLOC_BIN_DIR) + "/structloc_" + component, args);
   }
 
-  // The office scenario, 600 s long with its path driven in a loop.
+  // The office scenario, 600 s long, the robot driving from its start along
+  // the corridor and then round and round the east room's pillar (a closed
+  // circuit: the demo's own path ends facing away from its start, and a path
+  // looped back from there U-turns in a wide arc out of the building).
   std::string LoopedScenario() const {
     std::string xml = testing::ShippedTextForCopy("maps/scenarios/office_people.xml");
-    for (const auto& [from, to] :
-         {std::pair<std::string, std::string>{"duration_s=\"60\"", "duration_s=\"600\""},
-          {"loop=\"false\"", "loop=\"true\""}}) {
-      const auto at = xml.find(from);
-      if (at == std::string::npos) throw std::runtime_error("office_people.xml lacks " + from);
-      xml.replace(at, from.size(), to);
+    const auto duration = xml.find("duration_s=\"60\"");
+    const auto path = xml.find("<path ");
+    const auto path_end = xml.find("</path>");
+    if (duration == std::string::npos || path == std::string::npos ||
+        path_end == std::string::npos) {
+      throw std::runtime_error("office_people.xml lacks duration_s=\"60\" or its <path>");
     }
+    xml.replace(path, path_end + 7 - path,
+                "<path mode=\"waypoints\" speed_m_s=\"0.8\" dwell_s=\"0\" lookahead_m=\"0.8\" "
+                "loop=\"true\"><waypoint x=\"19.5\" y=\"6.5\"/><waypoint x=\"22.5\" "
+                "y=\"6.5\"/><waypoint x=\"22.5\" y=\"3.0\"/><waypoint x=\"19.5\" "
+                "y=\"3.0\"/></path>");
+    xml.replace(duration, 15, "duration_s=\"600\"");
     return temp_.Write("office_looped.xml", xml);
   }
 
@@ -167,6 +194,8 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
   const std::string victim = GetParam();
   const size_t shm_before = FastDdsShmEntries();
   Observer observer;
+  dds_common::Node judge_node(testing::TestNodeOptions("fault_judge", kDomain));
+  evaluation::LiveEvaluator judge(judge_node, geometry::Pose2D{2.0, 6.5, 0.0});
   std::map<std::string, std::unique_ptr<process::ChildProcess>> running;
   for (const auto& c : kComponents) running[c] = Start(c, true);
   for (const auto& c : kComponents) {
@@ -180,8 +209,9 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
   observer.ResetGaps();
 
   std::vector<double> restart_s, unmatch_s;
+  std::vector<double> localisation_starts_s;  // steady clock, as the judge's pose arrivals
   for (int kill = 0; kill < kKills; ++kill) {
-    std::this_thread::sleep_for(1s);
+    std::this_thread::sleep_for(2s);
     running[victim]->Signal(SIGKILL);
     const auto killed = Clock::now();
     ASSERT_TRUE(running[victim]->WaitExit(10s).has_value());
@@ -190,6 +220,8 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
     unmatch_s.push_back(Seconds(Clock::now() - killed));
 
     const auto started = Clock::now();
+    if (victim == "localisation")
+      localisation_starts_s.push_back(Seconds(started.time_since_epoch()));
     running[victim] = Start(victim, false);
     const bool back = testing::WaitUntil(
         [&] { return observer.Matched(victim) > 0 && observer.LastData(victim) > started; }, 30s);
@@ -223,6 +255,26 @@ TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSecon
   }
   EXPECT_LE(max_of(restart_s), Seconds(kRestartBar));
   EXPECT_LE(max_of(unmatch_s), Seconds(kUnmatchBar));
+  // Unless the robot itself was restarted (the simulator starts its path
+  // again), the localisation must meet the demo's bar (RMSE <= 10 mm, max <=
+  // 30 mm, never lost) from 1 s after each of its starts on, as after one
+  // restart: a restarted one confirms its saved correction with a local search
+  // before it publishes, however far the odometry drifted while it was down.
+  if (victim != "simulator") {
+    std::this_thread::sleep_for(2s);
+    const auto e = replay::CompareTrajectories(
+        PosesSettledAfter(judge.Estimate(), judge.PoseArrivals(), localisation_starts_s, 1.0),
+        judge.Truth(), 0.011);
+    std::printf(
+        "  localisation against ground truth from 1 s after each start: RMSE %.1f mm, max %.1f "
+        "mm over %zu poses, lost %llu times\n",
+        1e3 * e.position_rmse_m, 1e3 * e.position_max_m, e.matched,
+        static_cast<unsigned long long>(judge.LostCount()));
+    EXPECT_GT(e.matched, 100u);
+    EXPECT_LE(e.position_rmse_m, 0.010) << running["localisation"]->CapturedOutput();
+    EXPECT_LE(e.position_max_m, 0.030);
+    EXPECT_EQ(judge.LostCount(), 0u);
+  }
   for (auto& [c, process] : running) {
     process->Signal(SIGTERM);
     EXPECT_EQ(process->WaitExit(testing::kGenerousTimeout), 0) << c << ":\n"

@@ -1,6 +1,7 @@
 // Localisation component (see header).
 #include "structloc/localisation/localisation_component.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
@@ -35,12 +36,26 @@ LocalisationComponent::LocalisationComponent(
         *options_.initial_pose,
         localisation_core::TrackingSession::InitialPoseWhen::kAtFirstOdometry);
     std::cout << "localisation: initial pose from the command line" << std::endl;
-  } else if (!options_.state_file.empty()) {
+  }
+  if (world_) {
+    global_ = std::make_unique<localisation_core::GlobalStart>(
+        *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
+  }
+  if (!options_.initial_pose && !options_.state_file.empty()) {
     try {
       if (const auto saved = LoadSavedPose(options_.state_file)) {
-        session_.ResumeFrom({saved->map_to_odom, saved->variance});
-        std::cout << "localisation: resuming from the pose saved in " << options_.state_file
-                  << std::endl;
+        const localisation_core::SessionState state{saved->map_to_odom, saved->variance};
+        if (global_) {
+          localisation_core::SavedPoseCheckOptions check;
+          check.radius_m = session_options.tracker.reacquire_max_radius_m;
+          saved_pose_check_.emplace(state, check);
+          std::cout << "localisation: resuming from the pose saved in " << options_.state_file
+                    << " once a search around it confirms it" << std::endl;
+        } else {
+          session_.ResumeFrom(state);
+          std::cout << "localisation: resuming from the pose saved in " << options_.state_file
+                    << std::endl;
+        }
       }
     } catch (const std::exception& e) {
       // A crash can leave exactly such a file; it must not stop the start-up.
@@ -48,11 +63,7 @@ LocalisationComponent::LocalisationComponent(
       session_.NoteProblem(std::string("saved pose ignored: ") + e.what(), started_s_);
     }
   }
-  if (world_) {
-    global_ = std::make_unique<localisation_core::GlobalStart>(
-        *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
-  }
-  if (session_.WaitingForInitialPose()) {
+  if (session_.WaitingForInitialPose() && !saved_pose_check_) {
     std::cout << "localisation: no initial pose: locating the robot globally from the scans "
               << "until one pose explains a scan without a doubt (or one comes on "
               << dds_common::topics::kInitialPose.name << ")" << std::endl;
@@ -113,6 +124,34 @@ void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& sc
             << p.y << ", " << p.theta << ")" << std::endl;
 }
 
+void LocalisationComponent::CheckSavedPose(const localisation_core::SessionScan& scan, double now) {
+  if (!session_.OdometryReaches(scan.geometry.stamp)) return;  // the prediction needs it
+  const auto odometry = session_.OdometryAt(scan.geometry.stamp);
+  using Verdict = localisation_core::SavedPoseCheck::Verdict;
+  const auto outcome = saved_pose_check_->Check(*global_, scan, *odometry);
+  const auto& q = outcome.predicted;
+  std::cout << std::fixed << std::setprecision(3);
+  if (outcome.verdict == Verdict::kFound) {
+    const auto& p = outcome.found->pose;
+    session_.SetInitialPose(*outcome.found, "the saved pose, confirmed", now);
+    std::cout << "localisation: saved pose confirmed by a local search: robot at (" << p.x << ", "
+              << p.y << ", " << p.theta << "), " << std::hypot(p.x - q.x, p.y - q.y) << " m and "
+              << std::abs(geometry::WrapAngle(p.theta - q.theta))
+              << " rad from where the saved correction put it" << std::endl;
+    saved_pose_check_.reset();
+  } else if (outcome.verdict == Verdict::kGiveUp) {
+    std::cout << "localisation: WARNING: no local search confirmed the saved pose (the last: "
+              << localisation_core::ToString(outcome.result.decision) << " near (" << q.x << ", "
+              << q.y << ", " << q.theta << ")); resuming from it unconfirmed: publish "
+              << dds_common::topics::kInitialPose.name
+              << " or request a global relocalisation if the robot was moved" << std::endl;
+    session_.NoteProblem("the saved pose was resumed unconfirmed: no local search confirmed it",
+                         now);
+    session_.ResumeFrom(saved_pose_check_->Saved());
+    saved_pose_check_.reset();
+  }
+}
+
 void LocalisationComponent::Stop() {
   inbox_.Stop();
   if (worker_.joinable()) worker_.join();
@@ -131,16 +170,23 @@ void LocalisationComponent::Worker() {
       std::lock_guard<std::mutex> lock(session_mutex_);
       if (relocalise_requested_.exchange(false) && global_) {
         session_.ForgetPose();
+        saved_pose_check_.reset();
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
       }
       std::optional<localisation_core::SessionScan> scan = std::move(inputs.scan);
       inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
+        saved_pose_check_.reset();  // a pose given outranks the saved one
         std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
                   << std::endl;
       }
-      if (scan && global_ && session_.WaitingForInitialPose()) TryGlobally(*scan, now);
+      if (scan && saved_pose_check_ && session_.WaitingForInitialPose()) {
+        CheckSavedPose(*scan, now);
+      } else if (scan && global_ && session_.WaitingForInitialPose() &&
+                 session_.OdometryReaches(scan->geometry.stamp)) {
+        TryGlobally(*scan, now);
+      }
       if (scan) session_.AddScan(std::move(*scan), inputs.scan_arrived_s);
       const auto report = session_.Next(now);
       if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;

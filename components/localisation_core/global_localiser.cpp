@@ -228,6 +228,16 @@ double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
   return RankScore(UsablePoints(points), laser_pose);
 }
 
+// A window's poses: the refinement may climb a coarse step beyond its edge,
+// no farther (a pose found far outside was never weighed against the rest of
+// the map).
+bool GlobalLocaliser::InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const {
+  return (pose.Translation() - window.centre.Translation()).norm() <=
+             window.radius_m + options_.coarse_step_m &&
+         std::abs(geometry::WrapAngle(pose.theta - window.centre.theta)) <=
+             window.heading_rad + options_.coarse_heading_step_rad;
+}
+
 // Hill climbing on the fine field: moves of one step in x, y or heading while
 // they raise the score, halving the steps when none does.
 geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
@@ -343,6 +353,7 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
                                  geometry::WrapAngle(hit.heading * heading_step)};
     const geometry::Pose2D pose = Refine(fine_gain_, points, start, 0.5 * options_.coarse_step_m,
                                          0.5 * options_.coarse_heading_step_rad);
+    if (window != nullptr && !InWindow(pose, *window)) continue;  // climbed out of it
     converged.push_back({pose, FineScore(fine_gain_, points, pose)});
   }
   std::sort(converged.begin(), converged.end(), by_score);
@@ -359,7 +370,9 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
   // Polishing on the sharp field with all points, and ranking.
   for (auto& candidate : refined) {
     candidate.pose = Refine(rank_gain_, all, candidate.pose, 0.05, 0.01);
-    candidate.score = RankScore(all, candidate.pose);
+    candidate.score = window != nullptr && !InWindow(candidate.pose, *window)
+                          ? 0.0
+                          : RankScore(all, candidate.pose);
   }
   std::sort(refined.begin(), refined.end(), by_score);
   if (refined.empty()) {

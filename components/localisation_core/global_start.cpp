@@ -10,11 +10,47 @@ GlobalStart::GlobalStart(const world_model::WorldModel& world, const geometry::P
     : search_(world, options), mount_(sensor_mount), covariance_(covariance) {}
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
+  return Locate(scan, nullptr);
+}
+
+GlobalStart::Attempt GlobalStart::TryNear(const SessionScan& scan,
+                                          const geometry::Pose2D& robot_pose, double radius_m,
+                                          double heading_rad) const {
+  const SearchWindow window{geometry::Compose(robot_pose, mount_), radius_m, heading_rad};
+  return Locate(scan, &window);
+}
+
+std::optional<InitialPoseInput> GlobalStart::NearestOfTie(const SessionScan& scan,
+                                                          const GlobalResult& result,
+                                                          const geometry::Pose2D& robot_pose,
+                                                          double distance_m,
+                                                          double heading_rad) const {
+  const geometry::Pose2D laser = geometry::Compose(robot_pose, mount_);
+  std::optional<geometry::Pose2D> nearest;
+  double nearest_m = INFINITY;
+  for (const auto* candidate : {&result.best, &result.runner_up}) {
+    if (!candidate->has_value()) continue;
+    const geometry::Pose2D& p = (*candidate)->pose;
+    const double d = std::hypot(p.x - laser.x, p.y - laser.y);
+    if (d <= distance_m && std::abs(geometry::WrapAngle(p.theta - laser.theta)) <= heading_rad &&
+        d < nearest_m) {
+      nearest = p;
+      nearest_m = d;
+    }
+  }
+  if (!nearest) return std::nullopt;
+  return InitialPoseInput{scan.geometry.stamp,
+                          geometry::Compose(*nearest, geometry::Inverse(mount_)), covariance_};
+}
+
+GlobalStart::Attempt GlobalStart::Locate(const SessionScan& scan,
+                                         const SearchWindow* window) const {
   const auto& g = scan.geometry;
   const double max_range = g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY;
   Attempt attempt;
   attempt.result = search_.Locate(
-      ScanPointsInLaserFrame(scan.ranges, g.angle_min, g.angle_increment, g.range_min, max_range));
+      ScanPointsInLaserFrame(scan.ranges, g.angle_min, g.angle_increment, g.range_min, max_range),
+      window);
   if (attempt.result.decision == GlobalDecision::kFound) {
     attempt.found = InitialPoseInput{
         g.stamp, geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount_)),

@@ -115,6 +115,13 @@ size_t TrackingSession::Apply(SessionInputs& inputs, const std::string& initial_
   return set;
 }
 
+bool TrackingSession::OdometryReaches(double t) const {
+  if (scheduling_ == Scheduling::kNewestWins) {
+    return tracker_ && !tracker_->Odometry().Empty() && t >= tracker_->Odometry().Oldest();
+  }
+  return !odometry_log_.empty() && t >= odometry_log_.front().stamp;
+}
+
 std::optional<geometry::Pose2D> TrackingSession::OdometryAt(double t) const {
   if (scheduling_ == Scheduling::kNewestWins) {
     if (!tracker_ || tracker_->Odometry().Empty()) return std::nullopt;

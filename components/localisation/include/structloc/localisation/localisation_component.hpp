@@ -23,6 +23,7 @@
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
 #include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/saved_pose_check.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -52,6 +53,8 @@ class LocalisationComponent : public dds_common::Component {
   void PublishDiagnostics(double now);
   // Without a pose: the scan against the whole map; a pose found starts tracking.
   void TryGlobally(const localisation_core::SessionScan& scan, double now);
+  // After a restart: the saved correction checked by a local search.
+  void CheckSavedPose(const localisation_core::SessionScan& scan, double now);
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
@@ -68,6 +71,8 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::TrackingSession session_;
   // Locates a robot without a pose (none given, none saved, or asked to).
   std::unique_ptr<localisation_core::GlobalStart> global_;
+  // The saved correction until it is confirmed, or given up on.
+  std::optional<localisation_core::SavedPoseCheck> saved_pose_check_;
   std::atomic<bool> relocalise_requested_{false};
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed

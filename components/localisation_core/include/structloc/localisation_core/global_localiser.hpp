@@ -91,7 +91,8 @@ class GlobalLocaliser {
   GlobalLocaliser(const world_model::WorldModel& world, const GlobalLocaliserOptions& options);
 
   // The laser poses explaining `points` (laser frame, metres), over the whole
-  // map or, with `window`, only there.
+  // map or, with `window`, only there (a pose refined to beyond the window's
+  // edge by more than a coarse step is dropped).
   GlobalResult Locate(const std::vector<Eigen::Vector2d>& points,
                       const SearchWindow* window = nullptr) const;
 
@@ -120,6 +121,7 @@ class GlobalLocaliser {
                    const geometry::Pose2D& pose) const;
   double RankScore(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& pose) const;
   bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  bool InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const;
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame
   geometry::Pose2D Refine(const std::vector<float>& gain,
                           const std::vector<Eigen::Vector2d>& points, geometry::Pose2D pose,

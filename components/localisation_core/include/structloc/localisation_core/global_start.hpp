@@ -2,8 +2,10 @@
 // a request to relocalise): each incoming scan goes to the global localiser
 // until one gives a "found" pose, never an ambiguous or unfound one; that pose
 // (the laser's, turned into the robot's with the sensor mount) becomes the
-// initial pose at the scan's stamp. The localisation component runs it;
-// DDS-free.
+// initial pose at the scan's stamp. TryNear searches only around a pose the
+// robot is believed to be near (a saved map -> odom correction after a
+// restart, which drifts with the odometry while the component was down). The
+// localisation component runs it; DDS-free.
 #pragma once
 
 #include <optional>
@@ -25,8 +27,20 @@ class GlobalStart {
     std::optional<InitialPoseInput> found;  // the robot's initial pose, when found
   };
   Attempt Try(const SessionScan& scan) const;
+  // The same, over robot positions within `radius_m` of `robot_pose` and
+  // headings within `heading_rad` of its heading.
+  Attempt TryNear(const SessionScan& scan, const geometry::Pose2D& robot_pose, double radius_m,
+                  double heading_rad) const;
+  // Of an ambiguous result's best pose and runner-up, the one within
+  // `distance_m` and `heading_rad` of `robot_pose` (the nearer if both are),
+  // as the robot's initial pose at the scan's stamp; nullopt if neither is.
+  std::optional<InitialPoseInput> NearestOfTie(const SessionScan& scan, const GlobalResult& result,
+                                               const geometry::Pose2D& robot_pose,
+                                               double distance_m, double heading_rad) const;
 
  private:
+  Attempt Locate(const SessionScan& scan, const SearchWindow* window) const;
+
   GlobalLocaliser search_;
   geometry::Pose2D mount_;
   Eigen::Matrix3d covariance_;

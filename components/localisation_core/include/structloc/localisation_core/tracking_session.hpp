@@ -103,6 +103,10 @@ class TrackingSession {
   // The odometry pose at `t` from what has arrived (interpolated; the newest
   // beyond it); nullopt before the first sample.
   std::optional<geometry::Pose2D> OdometryAt(double t) const;
+  // Whether odometry from `t` or before has arrived. A component's first
+  // scans can be older than its first odometry (its readers match one by one),
+  // and a pose found in such a scan must not be tied to later odometry.
+  bool OdometryReaches(double t) const;
 
   // The correction to save when saving is due at `now` (then counted as saved).
   std::optional<SessionState> StateToSave(double now);

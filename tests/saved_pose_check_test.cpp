@@ -1,0 +1,110 @@
+// SavedPoseCheck (saved_pose_check.hpp): after a restart, a saved map -> odom
+// correction that drifted (the odometry ran on while the localisation was
+// down) is confirmed and mended by a local search around the pose it
+// predicts (the prediction breaking a tie between two equally good poses); a
+// scan that confirms nothing is tried again, and after the attempts allowed
+// the check gives up (the caller then resumes unconfirmed).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "office_scene.hpp"
+#include "structloc/localisation_core/saved_pose_check.hpp"
+
+namespace structloc::localisation_core {
+namespace {
+
+SessionScan ToSessionScan(const testing::SyntheticScan& synthetic, double stamp) {
+  SessionScan scan;
+  scan.geometry.stamp = stamp;
+  scan.geometry.angle_min = synthetic.angle_min;
+  scan.geometry.angle_increment = synthetic.angle_increment;
+  scan.geometry.range_max = synthetic.max_range_m;
+  scan.ranges = synthetic.ranges;
+  return scan;
+}
+
+// The correction that puts the robot at `robot` for the odometry pose `odom`,
+// turned by `turn` and shifted by (dx, dy): a saved correction gone stale.
+SessionState Stale(const geometry::Pose2D& robot, const geometry::Pose2D& odom, double dx,
+                   double dy, double turn) {
+  const geometry::Pose2D exact = geometry::Compose(robot, geometry::Inverse(odom));
+  return {geometry::Pose2D{exact.x + dx, exact.y + dy, exact.theta + turn},
+          Eigen::Vector3d(1e-6, 1e-6, 1e-7)};
+}
+
+TEST(SavedPoseCheck, MendsACorrectionThatDriftedWhileTheLocalisationWasDown) {
+  const testing::OfficeScene office(4.71238898038469);
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(0.0025, 0.0025, 0.0009).asDiagonal();
+  const GlobalStart search(office.world, office.options.sensor_mount, covariance);
+  const geometry::Pose2D odom{3.0, -1.0, 0.4};
+  // 0.4 m and 0.06 rad off: far outside the tracker's gates under the
+  // variance the correction was saved with, well inside the search.
+  SavedPoseCheck check(Stale(office.truth, odom, 0.3, -0.25, 0.06), {});
+  std::mt19937 rng(3);
+  const auto outcome = check.Check(search, ToSessionScan(office.Scan(1081, rng), 7.0), odom);
+  ASSERT_EQ(outcome.verdict, SavedPoseCheck::Verdict::kFound) << outcome.result.reason;
+  EXPECT_GT(std::hypot(outcome.predicted.x - office.truth.x, outcome.predicted.y - office.truth.y),
+            0.1);
+  ASSERT_TRUE(outcome.found);
+  EXPECT_DOUBLE_EQ(outcome.found->stamp, 7.0);
+  EXPECT_NEAR(outcome.found->pose.x, office.truth.x, 0.05);
+  EXPECT_NEAR(outcome.found->pose.y, office.truth.y, 0.05);
+  EXPECT_NEAR(outcome.found->pose.theta, office.truth.theta, 0.03);
+  EXPECT_EQ(outcome.found->covariance, covariance);
+}
+
+TEST(SavedPoseCheck, LooksOnlyNearThePredictedPose) {
+  const testing::OfficeScene office(4.71238898038469);
+  const GlobalStart search(office.world, office.options.sensor_mount, Eigen::Matrix3d::Identity());
+  const geometry::Pose2D odom{0.0, 0.0, 0.0};
+  SavedPoseCheckOptions options;
+  options.attempts = 2;
+  // The correction puts the robot 4 m from where it is: nothing near there
+  // explains the scan, so nothing is confirmed, and after two scans it gives up.
+  SavedPoseCheck check(Stale(office.truth, odom, 3.0, -3.0, 0.0), options);
+  std::mt19937 rng(4);
+  const auto first = check.Check(search, ToSessionScan(office.Scan(1081, rng), 1.0), odom);
+  EXPECT_NE(first.verdict, SavedPoseCheck::Verdict::kFound);
+  if (first.found) {
+    EXPECT_GT(
+        std::hypot(first.found->pose.x - office.truth.x, first.found->pose.y - office.truth.y),
+        1.0);
+  }
+  EXPECT_EQ(first.verdict, SavedPoseCheck::Verdict::kTryAgain);
+  const auto second = check.Check(search, ToSessionScan(office.Scan(1081, rng), 1.1), odom);
+  EXPECT_EQ(second.verdict, SavedPoseCheck::Verdict::kGiveUp);
+}
+
+// Two poses explaining the scan equally well (along a corridor): the one near
+// the pose the saved correction predicts is taken, none when neither is near.
+TEST(SavedPoseCheck, ThePredictionBreaksATieAsATrackersPriorWould) {
+  const testing::OfficeScene office(4.71238898038469);
+  const GlobalStart search(office.world, office.options.sensor_mount, Eigen::Matrix3d::Identity());
+  const geometry::Pose2D mount = office.options.sensor_mount;
+  GlobalResult tie;
+  tie.decision = GlobalDecision::kAmbiguous;
+  tie.best = GlobalCandidate{geometry::Compose(geometry::Pose2D{5.0, 6.5, 0.0}, mount), 0.8};
+  tie.runner_up = GlobalCandidate{geometry::Compose(geometry::Pose2D{7.0, 6.5, 0.0}, mount), 0.78};
+  SessionScan scan;
+  scan.geometry.stamp = 4.0;
+  const auto near_runner_up = search.NearestOfTie(scan, tie, {6.9, 6.45, 0.05}, 0.3, 0.1);
+  ASSERT_TRUE(near_runner_up);
+  EXPECT_DOUBLE_EQ(near_runner_up->stamp, 4.0);
+  EXPECT_NEAR(near_runner_up->pose.x, 7.0, 1e-9);
+  EXPECT_NEAR(near_runner_up->pose.y, 6.5, 1e-9);
+  EXPECT_FALSE(search.NearestOfTie(scan, tie, {6.0, 6.5, 0.0}, 0.3, 0.1));
+  EXPECT_FALSE(search.NearestOfTie(scan, tie, {5.0, 6.5, 0.3}, 0.3, 0.1));
+}
+
+TEST(SavedPoseCheck, RefusesOptionsThatSearchNothing) {
+  SavedPoseCheckOptions options;
+  options.radius_m = 0.0;
+  EXPECT_THROW(SavedPoseCheck({}, options), std::invalid_argument);
+  options = {};
+  options.attempts = 0;
+  EXPECT_THROW(SavedPoseCheck({}, options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace structloc::localisation_core
