@@ -12,22 +12,12 @@
 namespace structloc::localisation_core {
 namespace {
 
-SessionScan ToSessionScan(const testing::SyntheticScan& synthetic, double stamp) {
-  SessionScan scan;
-  scan.geometry.stamp = stamp;
-  scan.geometry.angle_min = synthetic.angle_min;
-  scan.geometry.angle_increment = synthetic.angle_increment;
-  scan.geometry.range_max = synthetic.max_range_m;
-  scan.ranges = synthetic.ranges;
-  return scan;
-}
-
 TEST(GlobalStart, AHallScanGivesTheRobotsPose) {
   const testing::OfficeScene office(4.71238898038469);
   const Eigen::Matrix3d covariance = Eigen::Vector3d(0.0025, 0.0025, 0.0009).asDiagonal();
   const GlobalStart start(office.world, office.options.sensor_mount, covariance);
   std::mt19937 rng(2);
-  const auto attempt = start.Try(ToSessionScan(office.Scan(1081, rng), 12.5));
+  const auto attempt = start.Try(testing::SessionScanOf(office.Scan(1081, rng), 12.5));
   ASSERT_EQ(attempt.result.decision, GlobalDecision::kFound) << attempt.result.reason;
   ASSERT_TRUE(attempt.found);
   EXPECT_DOUBLE_EQ(attempt.found->stamp, 12.5);

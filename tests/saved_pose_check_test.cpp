@@ -14,16 +14,6 @@
 namespace structloc::localisation_core {
 namespace {
 
-SessionScan ToSessionScan(const testing::SyntheticScan& synthetic, double stamp) {
-  SessionScan scan;
-  scan.geometry.stamp = stamp;
-  scan.geometry.angle_min = synthetic.angle_min;
-  scan.geometry.angle_increment = synthetic.angle_increment;
-  scan.geometry.range_max = synthetic.max_range_m;
-  scan.ranges = synthetic.ranges;
-  return scan;
-}
-
 // The correction that puts the robot at `robot` for the odometry pose `odom`,
 // turned by `turn` and shifted by (dx, dy): a saved correction gone stale.
 SessionState Stale(const geometry::Pose2D& robot, const geometry::Pose2D& odom, double dx,
@@ -42,7 +32,8 @@ TEST(SavedPoseCheck, MendsACorrectionThatDriftedWhileTheLocalisationWasDown) {
   // variance the correction was saved with, well inside the search.
   SavedPoseCheck check(Stale(office.truth, odom, 0.3, -0.25, 0.06), {});
   std::mt19937 rng(3);
-  const auto outcome = check.Check(search, ToSessionScan(office.Scan(1081, rng), 7.0), odom);
+  const auto outcome =
+      check.Check(search, testing::SessionScanOf(office.Scan(1081, rng), 7.0), odom);
   ASSERT_EQ(outcome.verdict, SavedPoseCheck::Verdict::kFound) << outcome.result.reason;
   EXPECT_GT(std::hypot(outcome.predicted.x - office.truth.x, outcome.predicted.y - office.truth.y),
             0.1);
@@ -64,7 +55,7 @@ TEST(SavedPoseCheck, LooksOnlyNearThePredictedPose) {
   // explains the scan, so nothing is confirmed, and after two scans it gives up.
   SavedPoseCheck check(Stale(office.truth, odom, 3.0, -3.0, 0.0), options);
   std::mt19937 rng(4);
-  const auto first = check.Check(search, ToSessionScan(office.Scan(1081, rng), 1.0), odom);
+  const auto first = check.Check(search, testing::SessionScanOf(office.Scan(1081, rng), 1.0), odom);
   EXPECT_NE(first.verdict, SavedPoseCheck::Verdict::kFound);
   if (first.found) {
     EXPECT_GT(
@@ -72,7 +63,8 @@ TEST(SavedPoseCheck, LooksOnlyNearThePredictedPose) {
         1.0);
   }
   EXPECT_EQ(first.verdict, SavedPoseCheck::Verdict::kTryAgain);
-  const auto second = check.Check(search, ToSessionScan(office.Scan(1081, rng), 1.1), odom);
+  const auto second =
+      check.Check(search, testing::SessionScanOf(office.Scan(1081, rng), 1.1), odom);
   EXPECT_EQ(second.verdict, SavedPoseCheck::Verdict::kGiveUp);
 }
 

@@ -9,6 +9,7 @@
 
 #include "structloc/localisation_core/localiser.hpp"
 #include "structloc/localisation_core/pose_tracker.hpp"
+#include "structloc/localisation_core/session_scan.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/world_model.hpp"
 
@@ -50,6 +51,17 @@ inline localisation_core::ScanInput TrackerInput(const SyntheticScan& scan, doub
   in.ranges = scan.ranges.data();
   in.count = scan.ranges.size();
   return in;
+}
+
+// The scan as the tracking session and the global start take it, stamped `stamp`.
+inline localisation_core::SessionScan SessionScanOf(const SyntheticScan& synthetic, double stamp) {
+  localisation_core::SessionScan scan;
+  scan.geometry.stamp = stamp;
+  scan.geometry.angle_min = synthetic.angle_min;
+  scan.geometry.angle_increment = synthetic.angle_increment;
+  scan.geometry.range_max = synthetic.max_range_m;
+  scan.ranges = synthetic.ranges;
+  return scan;
 }
 
 inline SyntheticScan CastScan(const world_model::Scene& scene, const geometry::Pose2D& sensor,
