@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "initial_pose_expectations.hpp"
 #include "office_scene.hpp"
 #include "structloc/localisation_core/global_start.hpp"
 
@@ -20,11 +21,7 @@ TEST(GlobalStart, AHallScanGivesTheRobotsPose) {
   const auto attempt = start.Try(testing::SessionScanOf(office.Scan(1081, rng), 12.5));
   ASSERT_EQ(attempt.result.decision, GlobalDecision::kFound) << attempt.result.reason;
   ASSERT_TRUE(attempt.found);
-  EXPECT_DOUBLE_EQ(attempt.found->stamp, 12.5);
-  EXPECT_NEAR(attempt.found->pose.x, office.truth.x, 0.05);
-  EXPECT_NEAR(attempt.found->pose.y, office.truth.y, 0.05);
-  EXPECT_NEAR(attempt.found->pose.theta, office.truth.theta, 0.03);
-  EXPECT_EQ(attempt.found->covariance, covariance);
+  testing::ExpectFoundAt(*attempt.found, 12.5, office.truth, covariance);
 }
 
 TEST(GlobalStart, AScanThatSeesNothingGivesNoPose) {

@@ -169,19 +169,19 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
   // looped back from there U-turns in a wide arc out of the building).
   std::string LoopedScenario() const {
     std::string xml = testing::ShippedTextForCopy("maps/scenarios/office_people.xml");
-    const auto duration = xml.find("duration_s=\"60\"");
-    const auto path = xml.find("<path ");
-    const auto path_end = xml.find("</path>");
-    if (duration == std::string::npos || path == std::string::npos ||
-        path_end == std::string::npos) {
-      throw std::runtime_error("office_people.xml lacks duration_s=\"60\" or its <path>");
-    }
-    xml.replace(path, path_end + 7 - path,
+    const std::string duration = "duration_s=\"60\"", path = "<path ", path_end = "</path>";
+    const auto duration_at = xml.find(duration);
+    if (duration_at == std::string::npos)
+      throw std::runtime_error("office_people.xml lacks " + duration);
+    xml.replace(duration_at, duration.size(), "duration_s=\"600\"");
+    const auto path_at = xml.find(path), path_end_at = xml.find(path_end);
+    if (path_at == std::string::npos || path_end_at == std::string::npos)
+      throw std::runtime_error("office_people.xml lacks its <path>");
+    xml.replace(path_at, path_end_at + path_end.size() - path_at,
                 "<path mode=\"waypoints\" speed_m_s=\"0.8\" dwell_s=\"0\" lookahead_m=\"0.8\" "
                 "loop=\"true\"><waypoint x=\"19.5\" y=\"6.5\"/><waypoint x=\"22.5\" "
                 "y=\"6.5\"/><waypoint x=\"22.5\" y=\"3.0\"/><waypoint x=\"19.5\" "
                 "y=\"3.0\"/></path>");
-    xml.replace(duration, 15, "duration_s=\"600\"");
     return temp_.Write("office_looped.xml", xml);
   }
 

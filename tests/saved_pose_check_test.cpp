@@ -8,6 +8,7 @@
 
 #include <random>
 
+#include "initial_pose_expectations.hpp"
 #include "office_scene.hpp"
 #include "structloc/localisation_core/saved_pose_check.hpp"
 
@@ -38,11 +39,7 @@ TEST(SavedPoseCheck, MendsACorrectionThatDriftedWhileTheLocalisationWasDown) {
   EXPECT_GT(std::hypot(outcome.predicted.x - office.truth.x, outcome.predicted.y - office.truth.y),
             0.1);
   ASSERT_TRUE(outcome.found);
-  EXPECT_DOUBLE_EQ(outcome.found->stamp, 7.0);
-  EXPECT_NEAR(outcome.found->pose.x, office.truth.x, 0.05);
-  EXPECT_NEAR(outcome.found->pose.y, office.truth.y, 0.05);
-  EXPECT_NEAR(outcome.found->pose.theta, office.truth.theta, 0.03);
-  EXPECT_EQ(outcome.found->covariance, covariance);
+  testing::ExpectFoundAt(*outcome.found, 7.0, office.truth, covariance);
 }
 
 TEST(SavedPoseCheck, LooksOnlyNearThePredictedPose) {

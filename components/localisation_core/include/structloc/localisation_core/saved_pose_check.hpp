@@ -4,9 +4,11 @@
 // would mend it and coasts on, metres off, while it seems sure of itself.
 // SavedPoseCheck confirms the correction with a local search around the pose
 // it predicts at each scan (GlobalStart::TryNear) and hands back the pose
-// found; after `attempts` scans with nothing found without a doubt it gives
-// up, and the caller resumes from the correction unconfirmed, as a robot in a
-// featureless place must. DDS-free.
+// found; where two poses explain the scan equally well (along a corridor) the
+// prediction breaks the tie, as a tracker's prior would (NearestOfTie). After
+// `attempts` scans with nothing found without a doubt it gives up, and the
+// caller resumes from the correction unconfirmed, as a robot in a featureless
+// place must. DDS-free.
 #pragma once
 
 #include <optional>
