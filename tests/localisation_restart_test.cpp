@@ -1,8 +1,12 @@
-// Restart: kill -9 the localisation mid-run, start it again with no initial
-// pose; it resumes from the pose it saved and is accurate again within 1 s of
-// simulated time.
+// Starting the localisation while the robot drives. Restart: kill -9 it
+// mid-run, start it again with no initial pose; it resumes from the pose it
+// saved. Late start: its command-line initial pose (the robot's start) holds
+// for the first odometry it receives, which comes after the robot drove
+// about a metre. Either way it is accurate within 1 s of simulated time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 
@@ -18,6 +22,17 @@ namespace {
 
 using namespace std::chrono_literals;
 constexpr int kDomain = testing::domains::kLocalisationRestart;
+
+// Every pose more than 1 s (simulated) after `from` against the truth.
+replay::TrajectoryError AccuracyAfter(const std::vector<log_formats::StampedPose>& estimate,
+                                      const std::vector<log_formats::StampedPose>& truth,
+                                      double from) {
+  std::vector<log_formats::StampedPose> after;
+  for (const auto& e : estimate) {
+    if (e.stamp > from + 1.0) after.push_back(e);
+  }
+  return replay::CompareTrajectories(after, truth, 0.011);
+}
 
 TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto scenario =
@@ -62,11 +77,9 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto estimate = evaluator.Estimate();
   const auto truth = evaluator.Truth();
   const double resumed = estimate[poses_before].stamp;
-  std::vector<log_formats::StampedPose> after;
-  for (size_t i = poses_before; i < estimate.size(); ++i) {
-    if (estimate[i].stamp > resumed + 1.0) after.push_back(estimate[i]);
-  }
-  const auto e = replay::CompareTrajectories(after, truth, 0.011);
+  const auto e = AccuracyAfter(
+      std::vector<log_formats::StampedPose>(estimate.begin() + poses_before, estimate.end()), truth,
+      resumed);
   std::printf(
       "killed at t = %.1f s; resumed %.2f s later; after 1 s: %zu poses, RMSE %.2f mm, max %.2f "
       "mm\n",
@@ -78,6 +91,51 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   simulator.Signal(SIGTERM);
   second.Signal(SIGTERM);
   EXPECT_EQ(second.WaitExit(testing::kGenerousTimeout), 0);
+}
+
+// The same race as on a lossy network, where the localisation's odometry
+// reader matches seconds late: a tracker started a metre from the robot kept
+// that metre for the whole run while it called itself localised.
+TEST(LocalisationRestart, StartedLateItMendsItsInitialPoseByALocalSearch) {
+  const auto scenario =
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_people.xml"));
+  dds_common::Node observer(testing::TestNodeOptions("late_start_observer", kDomain));
+  evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
+  process::ChildProcess simulator(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
+       testing::SourcePath("maps/scenarios/office_people.xml"), "--time-scale", "1",
+       "--exit-when-done"});
+  ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Snapshot().sim_time_s > 1.0; }, 30s));
+  const auto& p = scenario.initial_pose;
+  process::ChildProcess localisation(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
+       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
+  ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > 40; }, 30s))
+      << localisation.CapturedOutput();
+  const auto estimate = evaluator.Estimate();
+  const auto truth = evaluator.Truth();
+  const double first = estimate.front().stamp;
+  const auto start = std::lower_bound(
+      truth.begin(), truth.end(), first,
+      [](const log_formats::StampedPose& t, double stamp) { return t.stamp < stamp; });
+  ASSERT_NE(start, truth.end());
+  const double moved = std::hypot(start->pose.x - p.x, start->pose.y - p.y);
+  const auto e = AccuracyAfter(estimate, truth, first);
+  std::printf(
+      "first pose when the robot had moved %.2f m from the given start; after 1 s: %zu poses, "
+      "RMSE %.2f mm, max %.2f mm\n",
+      moved, e.matched, 1e3 * e.position_rmse_m, 1e3 * e.position_max_m);
+  EXPECT_GT(moved, 0.5) << "the robot had not moved far enough to test the late start";
+  EXPECT_NE(localisation.CapturedOutput().find("confirmed by a local search"), std::string::npos)
+      << localisation.CapturedOutput();
+  ASSERT_GT(e.matched, 10u);
+  EXPECT_LE(e.position_max_m, 0.03);
+  EXPECT_LE(e.position_rmse_m, 0.01);
+  simulator.Signal(SIGTERM);
+  localisation.Signal(SIGTERM);
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);
 }
 
 }  // namespace

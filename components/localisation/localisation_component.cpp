@@ -31,24 +31,28 @@ LocalisationComponent::LocalisationComponent(
       started_s_(dds_common::WallClockSeconds()),
       session_(world_.get(), localiser_options, session_options,
                localisation_core::Scheduling::kNewestWins) {
-  if (options_.initial_pose) {
+  if (world_) {
+    global_ = std::make_unique<localisation_core::GlobalStart>(
+        *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
+  }
+  hint_check_options_.radius_m = session_options.tracker.reacquire_max_radius_m;
+  if (options_.initial_pose && global_) {
+    command_line_pose_ = options_.initial_pose;
+    std::cout << "localisation: initial pose from the command line, for the first odometry; "
+              << "a search around it confirms it" << std::endl;
+  } else if (options_.initial_pose) {
     session_.ExpectInitialPose(
         *options_.initial_pose,
         localisation_core::TrackingSession::InitialPoseWhen::kAtFirstOdometry);
     std::cout << "localisation: initial pose from the command line" << std::endl;
-  }
-  if (world_) {
-    global_ = std::make_unique<localisation_core::GlobalStart>(
-        *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
   }
   if (!options_.initial_pose && !options_.state_file.empty()) {
     try {
       if (const auto saved = LoadSavedPose(options_.state_file)) {
         const localisation_core::SessionState state{saved->map_to_odom, saved->variance};
         if (global_) {
-          localisation_core::SavedPoseCheckOptions check;
-          check.radius_m = session_options.tracker.reacquire_max_radius_m;
-          saved_pose_check_.emplace(state, check);
+          pose_hint_check_.emplace(state, "the pose saved in " + options_.state_file,
+                                   hint_check_options_);
           std::cout << "localisation: resuming from the pose saved in " << options_.state_file
                     << " once a search around it confirms it" << std::endl;
         } else {
@@ -63,7 +67,7 @@ LocalisationComponent::LocalisationComponent(
       session_.NoteProblem(std::string("saved pose ignored: ") + e.what(), started_s_);
     }
   }
-  if (session_.WaitingForInitialPose() && !saved_pose_check_) {
+  if (session_.WaitingForInitialPose() && !pose_hint_check_ && !command_line_pose_) {
     std::cout << "localisation: no initial pose: locating the robot globally from the scans "
               << "until one pose explains a scan without a doubt (or one comes on "
               << dds_common::topics::kInitialPose.name << ")" << std::endl;
@@ -124,32 +128,44 @@ void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& sc
             << p.y << ", " << p.theta << ")" << std::endl;
 }
 
-void LocalisationComponent::CheckSavedPose(const localisation_core::SessionScan& scan, double now) {
+void LocalisationComponent::CheckPoseHint(const localisation_core::SessionScan& scan, double now) {
   if (!session_.OdometryReaches(scan.geometry.stamp)) return;  // the prediction needs it
   const auto odometry = session_.OdometryAt(scan.geometry.stamp);
-  using Verdict = localisation_core::SavedPoseCheck::Verdict;
-  const auto outcome = saved_pose_check_->Check(*global_, scan, *odometry);
+  using Verdict = localisation_core::PoseHintCheck::Verdict;
+  const auto outcome = pose_hint_check_->Check(*global_, scan, *odometry);
   const auto& q = outcome.predicted;
   std::cout << std::fixed << std::setprecision(3);
+  const std::string& source = pose_hint_check_->Source();
   if (outcome.verdict == Verdict::kFound) {
     const auto& p = outcome.found->pose;
-    session_.SetInitialPose(*outcome.found, "the saved pose, confirmed", now);
-    std::cout << "localisation: saved pose confirmed by a local search: robot at (" << p.x << ", "
-              << p.y << ", " << p.theta << "), " << std::hypot(p.x - q.x, p.y - q.y) << " m and "
-              << std::abs(geometry::WrapAngle(p.theta - q.theta))
-              << " rad from where the saved correction put it" << std::endl;
-    saved_pose_check_.reset();
+    session_.SetInitialPose(*outcome.found, source + ", confirmed", now);
+    std::cout << "localisation: " << source << " confirmed by a local search: robot at (" << p.x
+              << ", " << p.y << ", " << p.theta << "), " << std::hypot(p.x - q.x, p.y - q.y)
+              << " m and " << std::abs(geometry::WrapAngle(p.theta - q.theta))
+              << " rad from where it put the robot" << std::endl;
+    pose_hint_check_.reset();
   } else if (outcome.verdict == Verdict::kGiveUp) {
-    std::cout << "localisation: WARNING: no local search confirmed the saved pose (the last: "
-              << localisation_core::ToString(outcome.result.decision) << " near (" << q.x << ", "
-              << q.y << ", " << q.theta << ")); resuming from it unconfirmed: publish "
+    std::cout << "localisation: WARNING: no local search confirmed " << source
+              << " (the last: " << localisation_core::ToString(outcome.result.decision) << " near ("
+              << q.x << ", " << q.y << ", " << q.theta
+              << ")); starting from it unconfirmed: publish "
               << dds_common::topics::kInitialPose.name
               << " or request a global relocalisation if the robot was moved" << std::endl;
-    session_.NoteProblem("the saved pose was resumed unconfirmed: no local search confirmed it",
-                         now);
-    session_.ResumeFrom(saved_pose_check_->Saved());
-    saved_pose_check_.reset();
+    session_.NoteProblem(source + " was taken unconfirmed: no local search confirmed it", now);
+    session_.ResumeFrom(pose_hint_check_->Hint());
+    pose_hint_check_.reset();
   }
+}
+
+void LocalisationComponent::HintFromCommandLine() {
+  // The pose holds for the first odometry sample, whenever it arrived.
+  const auto first_odometry = session_.OldestOdometry();
+  if (!first_odometry) return;
+  const localisation_core::SessionState hint{
+      geometry::Compose(*command_line_pose_, geometry::Inverse(*first_odometry)),
+      session_.Options().tracker.InitialCovariance().diagonal()};
+  pose_hint_check_.emplace(hint, "the initial pose from the command line", hint_check_options_);
+  command_line_pose_.reset();
 }
 
 void LocalisationComponent::Stop() {
@@ -170,19 +186,22 @@ void LocalisationComponent::Worker() {
       std::lock_guard<std::mutex> lock(session_mutex_);
       if (relocalise_requested_.exchange(false) && global_) {
         session_.ForgetPose();
-        saved_pose_check_.reset();
+        pose_hint_check_.reset();
+        command_line_pose_.reset();
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
       }
       std::optional<localisation_core::SessionScan> scan = std::move(inputs.scan);
       inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
-        saved_pose_check_.reset();  // a pose given outranks the saved one
+        pose_hint_check_.reset();  // a pose published outranks a hint
+        command_line_pose_.reset();
         std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
                   << std::endl;
       }
-      if (scan && saved_pose_check_ && session_.WaitingForInitialPose()) {
-        CheckSavedPose(*scan, now);
+      if (command_line_pose_) HintFromCommandLine();
+      if (scan && pose_hint_check_ && session_.WaitingForInitialPose()) {
+        CheckPoseHint(*scan, now);
       } else if (scan && global_ && session_.WaitingForInitialPose() &&
                  session_.OdometryReaches(scan->geometry.stamp)) {
         TryGlobally(*scan, now);

@@ -13,7 +13,10 @@ int main(int argc, char** argv) {
       {"exit-when-done", false, "exit when the scenario ends"},
       {"wait-for-subscribers", true,
        "hold the simulation clock until N readers of rt/scan and rt/odom are matched (default "
-       "0)"}};
+       "0)"},
+      {"stand-s", true,
+       "with --wait-for-subscribers: seconds the robot stands at its start, publishing odometry, "
+       "after the readers matched (default 1)"}};
   const auto frame_options =
       structloc::dds_common::FrameIdOptions(structloc::dds_common::BaseFrame::kNamed);
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
@@ -37,6 +40,9 @@ int main(int argc, char** argv) {
         options.wait_for_subscribers = static_cast<int>(cli.Integer("wait-for-subscribers", 0));
         if (options.wait_for_subscribers < 0)
           throw ConfigError("--wait-for-subscribers must be >= 0");
+        options.stand_s = cli.Number("stand-s", options.stand_s);
+        if (!(options.stand_s >= 0.0 && options.stand_s <= 3600.0))
+          throw ConfigError("--stand-s must be in [0, 3600]");
         return std::make_unique<structloc::simulator::SimulatorComponent>(node, scenario, options);
       },
       structloc::simulation_core::PrintScenarioOptions);

@@ -54,10 +54,10 @@ void SimulatorComponent::Step() {
     started_ = true;
     // A reader matched here may not have matched this writer yet (discovery
     // is not symmetric in time; with many participants it lags by seconds):
-    // the robot first stands at its start for kSettleS, publishing odometry,
-    // so that a subscriber that takes its first odometry as the moment of an
-    // initial pose takes it at the start, not half a metre on.
-    const double settle = needed > 0 ? kSettleS : 0.0;
+    // the robot first stands at its start, publishing odometry, so that a
+    // subscriber that takes its first odometry as the moment of an initial
+    // pose takes it at the start, not half a metre on.
+    const double settle = needed > 0 ? options_.stand_s : 0.0;
     wall_start_ = std::chrono::steady_clock::now() +
                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                       std::chrono::duration<double>(settle));

@@ -63,10 +63,15 @@ on loc "$bin/structloc_localisation" "${common[@]}" --initial-pose "2.0 6.5 0" \
   >"$work/loc.log" 2>&1 &
 loc_pid=$!
 # Discovery under loss takes retries: every participant has found the others
-# long before the robot moves.
+# long before the robot moves. The simulator's writers find the localisation's
+# readers by themselves; the localisation may find the odometry's writer
+# seconds later (a lost announcement waits for the next heartbeat), so the
+# robot stands 5 s, publishing odometry, before it drives. (Should the first
+# odometry still come late, the localisation's local search around its
+# initial pose mends that: LocalisationRestart.StartedLate...)
 sleep 10
 on sim "$bin/structloc_simulator" "${common[@]}" --scenario "$work/office_40hz.xml" \
-  --wait-for-subscribers 1 --exit-when-done \
+  --wait-for-subscribers 1 --stand-s 5 --exit-when-done \
   >"$work/sim.log" 2>&1 &
 sim_pid=$!
 

@@ -23,7 +23,7 @@
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
 #include "structloc/localisation_core/global_start.hpp"
-#include "structloc/localisation_core/saved_pose_check.hpp"
+#include "structloc/localisation_core/pose_hint_check.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -53,8 +53,11 @@ class LocalisationComponent : public dds_common::Component {
   void PublishDiagnostics(double now);
   // Without a pose: the scan against the whole map; a pose found starts tracking.
   void TryGlobally(const localisation_core::SessionScan& scan, double now);
-  // After a restart: the saved correction checked by a local search.
-  void CheckSavedPose(const localisation_core::SessionScan& scan, double now);
+  // A saved correction, or the command line's initial pose, checked by a
+  // local search around it before tracking starts.
+  void CheckPoseHint(const localisation_core::SessionScan& scan, double now);
+  // The command line's initial pose as a hint, once the first odometry came.
+  void HintFromCommandLine();
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
@@ -71,8 +74,12 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::TrackingSession session_;
   // Locates a robot without a pose (none given, none saved, or asked to).
   std::unique_ptr<localisation_core::GlobalStart> global_;
-  // The saved correction until it is confirmed, or given up on.
-  std::optional<localisation_core::SavedPoseCheck> saved_pose_check_;
+  // The command line's initial pose until the first odometry sample comes.
+  std::optional<geometry::Pose2D> command_line_pose_;
+  // A saved correction or the command line's pose until it is confirmed, or
+  // given up on.
+  std::optional<localisation_core::PoseHintCheck> pose_hint_check_;
+  localisation_core::PoseHintCheckOptions hint_check_options_;
   std::atomic<bool> relocalise_requested_{false};
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed

@@ -22,8 +22,14 @@ struct SimulatorComponentOptions {
   double time_scale = 1.0;      // simulated seconds per wall second; 0 = as fast as possible
   bool exit_when_done = false;  // exit (code 0) when the scenario ends
   // Hold the clock until this many readers of rt/scan and rt/odom match, then
-  // stand at the start for 1 s publishing odometry before it starts.
+  // stand at the start for stand_s publishing odometry before it starts.
   int wait_for_subscribers = 0;
+  // Seconds standing at the start after the readers matched (with
+  // wait_for_subscribers > 0): a reader matched by this writer may match it
+  // only later (on a lossy network, after discovery's retries), and a
+  // subscriber that takes its first odometry as the moment of its initial
+  // pose must take it at the start.
+  double stand_s = 1.0;
   dds_common::FrameIds frames;  // stamped into every header
 };
 
@@ -40,7 +46,6 @@ class SimulatorComponent : public dds_common::Component {
   // Before the clock starts: odometry and ground truth of the start pose,
   // stamped `before_start_s` ahead of the clock's start.
   void PublishStandingStill(double before_start_s);
-  static constexpr double kSettleS = 1.0;  // standing at the start after the readers matched
   double last_standing_stamp_s_ = -1e300;
   void PublishDiagnostics();
 

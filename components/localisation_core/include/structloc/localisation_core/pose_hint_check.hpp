@@ -1,0 +1,59 @@
+// A pose the localisation is handed is a hint, not a fact. A map -> odom
+// correction saved before a restart has gone stale while the odometry ran on
+// (and the file may be old); an initial pose given at start-up holds for the
+// first odometry sample, which may reach the localisation only after the
+// robot has moved (DDS readers match one by one, later on a lossy network),
+// and an operator's pose is approximate. A tracker started from such a hint
+// gates out the scans that would mend it and coasts on, a metre off, while
+// it seems sure of itself. PoseHintCheck confirms the hint's correction with
+// a local search around the pose it predicts at each scan
+// (GlobalStart::TryNear) and hands back the pose found; where two poses
+// explain the scan equally well (along a corridor) the prediction breaks the
+// tie, as a tracker's prior would (NearestOfTie). After `attempts` scans with
+// nothing found without a doubt it gives up, and the caller starts from the
+// hint unconfirmed, as a robot in a featureless place must. DDS-free.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/tracking_session.hpp"
+
+namespace structloc::localisation_core {
+
+struct PoseHintCheckOptions {
+  double radius_m = 2.0;         // laser positions searched around the predicted one
+  double heading_rad = 0.52;     // headings searched either side of the predicted one (30 deg)
+  double tie_distance_m = 0.3;   // of two equally good poses, one this near the prediction ...
+  double tie_heading_rad = 0.1;  // ... and turned at most this much from it is taken
+  int attempts = 10;             // scans tried before resuming unconfirmed
+};
+
+class PoseHintCheck {
+ public:
+  // `source` names the hint in messages ("the pose saved in F").
+  PoseHintCheck(const SessionState& hint, std::string source, const PoseHintCheckOptions& options);
+
+  enum class Verdict { kFound, kTryAgain, kGiveUp };
+  struct Outcome {
+    Verdict verdict = Verdict::kTryAgain;
+    geometry::Pose2D predicted;             // the robot pose the hint's correction gives
+    std::optional<InitialPoseInput> found;  // when kFound
+    GlobalResult result;                    // the search's answer (laser poses)
+  };
+  // One scan and the odometry pose at its stamp.
+  Outcome Check(const GlobalStart& search, const SessionScan& scan,
+                const geometry::Pose2D& odometry_at_scan);
+
+  const SessionState& Hint() const { return hint_; }
+  const std::string& Source() const { return source_; }
+
+ private:
+  SessionState hint_;
+  std::string source_;
+  PoseHintCheckOptions options_;
+  int tried_ = 0;
+};
+
+}  // namespace structloc::localisation_core
