@@ -2,13 +2,17 @@
 // pose and no saved state, the localisation component locates the robot from
 // the scans against the whole map and then tracks it as if it had been given
 // the pose; asked on rt/reinitialize_global_localization, it drops its pose
-// and locates the robot again. Real processes on a real Fast DDS domain.
+// and locates the robot again; an approximate pose on rt/initialpose is
+// confirmed by a local search around it. Real processes on a real Fast DDS
+// domain.
 #include <gtest/gtest.h>
 
 #include <csignal>
 
 #include "dds_test_support.hpp"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "std_msgs/msg/EmptyPubSubTypes.h"
+#include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/replay/trajectory_error.hpp"
@@ -80,6 +84,57 @@ TEST(LocalisationGlobalStart, LocatesTheRobotWithoutAPoseAndAgainWhenAsked) {
   ASSERT_GT(again.matched, 10u);
   EXPECT_LE(again.position_rmse_m, 0.01);
   EXPECT_LE(again.position_max_m, 0.03);
+  simulator.Signal(SIGTERM);
+  localisation.Signal(SIGTERM);
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);
+}
+
+// An operator's pose (RViz's "2D Pose Estimate", with its covariance) is
+// approximate: published 0.8 m and 3 deg off while the robot drives, it is
+// confirmed by a local search around it, not tracked from where it was put.
+TEST(LocalisationGlobalStart, AnOperatorsApproximatePoseIsConfirmedNearby) {
+  const std::string scenario_path = testing::SourcePath("maps/scenarios/office_people.xml");
+  const auto scenario = simulation_core::LoadScenario(scenario_path);
+  dds_common::Node observer(testing::TestNodeOptions("operator_pose_observer", kDomain));
+  evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
+  auto operator_pose =
+      observer.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds_common::topics::kInitialPose);
+  process::ChildProcess localisation(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos()});
+  process::ChildProcess simulator(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
+       scenario_path, "--time-scale", "2", "--wait-for-subscribers", "1", "--exit-when-done"});
+  ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > 40; }, 60s))
+      << localisation.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil([&] { return operator_pose.MatchedReaders() > 0; }, 30s));
+  const auto truth = evaluator.Truth().back();
+  geometry_msgs::msg::PoseWithCovarianceStamped given;
+  given.header().stamp(dds_common::ToRosTime(truth.stamp));
+  given.header().frame_id("map");
+  given.pose().pose().position().x(truth.pose.x + 0.7);
+  given.pose().pose().position().y(truth.pose.y - 0.4);
+  given.pose().pose().orientation(dds_common::ToQuaternion(truth.pose.theta + 0.05));
+  given.pose().covariance()[0] = given.pose().covariance()[7] = 0.25;
+  given.pose().covariance()[35] = 0.068;
+  const size_t before = evaluator.Estimate().size();
+  ASSERT_TRUE(operator_pose.Write(given));
+  ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > before + 40; }, 60s))
+      << localisation.CapturedOutput();
+  EXPECT_NE(localisation.CapturedOutput().find("the pose on rt/initialpose confirmed"),
+            std::string::npos)
+      << localisation.CapturedOutput();
+  const auto after = ErrorAfter(evaluator, truth.stamp + 1.0);
+  std::printf(
+      "pose given 0.81 m off at t = %.2f s; after 1 s: %zu poses, RMSE %.2f mm, max %.2f "
+      "mm\n",
+      truth.stamp - evaluator.Truth().front().stamp, after.matched, 1e3 * after.position_rmse_m,
+      1e3 * after.position_max_m);
+  ASSERT_GT(after.matched, 10u);
+  EXPECT_LE(after.position_rmse_m, 0.01);
+  EXPECT_LE(after.position_max_m, 0.03);
   simulator.Signal(SIGTERM);
   localisation.Signal(SIGTERM);
   EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);

@@ -168,6 +168,19 @@ void LocalisationComponent::HintFromCommandLine() {
   command_line_pose_.reset();
 }
 
+void LocalisationComponent::HintFromPublishedPose() {
+  // The session checked the pose and tied it to the odometry at its stamp;
+  // an operator's pose (RViz's "2D Pose Estimate") is approximate, so that
+  // correction is a hint like any other.
+  const auto latest = session_.Latest();
+  if (!latest) return;
+  const localisation_core::SessionState hint{session_.Tracker()->MapToOdom(),
+                                             latest->covariance.diagonal()};
+  session_.ForgetPose();
+  pose_hint_check_.emplace(hint, "the pose on " + dds_common::topics::kInitialPose.name,
+                           hint_check_options_);
+}
+
 void LocalisationComponent::Stop() {
   inbox_.Stop();
   if (worker_.joinable()) worker_.join();
@@ -194,10 +207,11 @@ void LocalisationComponent::Worker() {
       std::optional<localisation_core::SessionScan> scan = std::move(inputs.scan);
       inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
-        pose_hint_check_.reset();  // a pose published outranks a hint
+        pose_hint_check_.reset();  // a pose published outranks an older hint
         command_line_pose_.reset();
         std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
-                  << std::endl;
+                  << (global_ ? "; a search around it confirms it" : "") << std::endl;
+        if (global_) HintFromPublishedPose();
       }
       if (command_line_pose_) HintFromCommandLine();
       if (scan && pose_hint_check_ && session_.WaitingForInitialPose()) {

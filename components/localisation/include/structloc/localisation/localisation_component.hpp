@@ -58,6 +58,8 @@ class LocalisationComponent : public dds_common::Component {
   void CheckPoseHint(const localisation_core::SessionScan& scan, double now);
   // The command line's initial pose as a hint, once the first odometry came.
   void HintFromCommandLine();
+  // The pose just set from rt/initialpose, taken back as a hint.
+  void HintFromPublishedPose();
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
