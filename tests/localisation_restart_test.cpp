@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "dds_test_support.hpp"
+#include "live_accuracy.hpp"
 #include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -22,17 +23,6 @@ namespace {
 
 using namespace std::chrono_literals;
 constexpr int kDomain = testing::domains::kLocalisationRestart;
-
-// Every pose more than 1 s (simulated) after `from` against the truth.
-replay::TrajectoryError AccuracyAfter(const std::vector<log_formats::StampedPose>& estimate,
-                                      const std::vector<log_formats::StampedPose>& truth,
-                                      double from) {
-  std::vector<log_formats::StampedPose> after;
-  for (const auto& e : estimate) {
-    if (e.stamp > from + 1.0) after.push_back(e);
-  }
-  return replay::CompareTrajectories(after, truth, 0.011);
-}
 
 TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto scenario =
@@ -77,17 +67,12 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   const auto estimate = evaluator.Estimate();
   const auto truth = evaluator.Truth();
   const double resumed = estimate[poses_before].stamp;
-  const auto e = AccuracyAfter(
+  const auto e = testing::ErrorFromOneSecondAfter(
       std::vector<log_formats::StampedPose>(estimate.begin() + poses_before, estimate.end()), truth,
       resumed);
-  std::printf(
-      "killed at t = %.1f s; resumed %.2f s later; after 1 s: %zu poses, RMSE %.2f mm, max %.2f "
-      "mm\n",
-      killed_at, resumed - (truth.empty() ? 0 : truth.front().stamp) - killed_at, e.matched,
-      1e3 * e.position_rmse_m, 1e3 * e.position_max_m);
-  ASSERT_GT(e.matched, 10u);
-  EXPECT_LE(e.position_max_m, 0.03);
-  EXPECT_LE(e.position_rmse_m, 0.01);
+  std::printf("killed at t = %.1f s; resumed %.2f s later\n", killed_at,
+              resumed - (truth.empty() ? 0 : truth.front().stamp) - killed_at);
+  testing::ExpectDemoAccuracy(e, "resumed");
   simulator.Signal(SIGTERM);
   second.Signal(SIGTERM);
   EXPECT_EQ(second.WaitExit(testing::kGenerousTimeout), 0);
@@ -130,17 +115,12 @@ TEST(LocalisationRestart, StartedLateItMendsItsInitialPoseByALocalSearch) {
       [](const log_formats::StampedPose& t, double stamp) { return t.stamp < stamp; });
   ASSERT_NE(start, truth.end());
   const double moved = std::hypot(start->pose.x - p.x, start->pose.y - p.y);
-  const auto e = AccuracyAfter(estimate, truth, first);
-  std::printf(
-      "first pose when the robot had moved %.2f m from the given start; after 1 s: %zu poses, "
-      "RMSE %.2f mm, max %.2f mm\n",
-      moved, e.matched, 1e3 * e.position_rmse_m, 1e3 * e.position_max_m);
+  std::printf("first pose when the robot had moved %.2f m from the given start\n", moved);
   EXPECT_GT(moved, 0.5) << "the robot had not moved far enough to test the late start";
   EXPECT_NE(localisation.CapturedOutput().find("confirmed by a local search"), std::string::npos)
       << localisation.CapturedOutput();
-  ASSERT_GT(e.matched, 10u);
-  EXPECT_LE(e.position_max_m, 0.03);
-  EXPECT_LE(e.position_rmse_m, 0.01);
+  testing::ExpectDemoAccuracy(testing::ErrorFromOneSecondAfter(estimate, truth, first),
+                              "started late");
   simulator.Signal(SIGTERM);
   localisation.Signal(SIGTERM);
   EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);
