@@ -36,15 +36,14 @@ LocalisationComponent::LocalisationComponent(
         *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
   }
   hint_check_options_.radius_m = session_options.tracker.reacquire_max_radius_m;
-  if (options_.initial_pose && global_) {
-    command_line_pose_ = options_.initial_pose;
-    std::cout << "localisation: initial pose from the command line, for the first odometry; "
-              << "a search around it confirms it" << std::endl;
-  } else if (options_.initial_pose) {
+  if (options_.initial_pose) {
     session_.ExpectInitialPose(
         *options_.initial_pose,
         localisation_core::TrackingSession::InitialPoseWhen::kAtFirstOdometry);
-    std::cout << "localisation: initial pose from the command line" << std::endl;
+    if (global_) given_pose_source_ = "the initial pose from the command line";
+    std::cout << "localisation: initial pose from the command line"
+              << (global_ ? ", for the first odometry; a search around it confirms it" : "")
+              << std::endl;
   }
   if (!options_.initial_pose && !options_.state_file.empty()) {
     try {
@@ -67,7 +66,7 @@ LocalisationComponent::LocalisationComponent(
       session_.NoteProblem(std::string("saved pose ignored: ") + e.what(), started_s_);
     }
   }
-  if (session_.WaitingForInitialPose() && !pose_hint_check_ && !command_line_pose_) {
+  if (session_.WaitingForInitialPose() && !pose_hint_check_) {
     std::cout << "localisation: no initial pose: locating the robot globally from the scans "
               << "until one pose explains a scan without a doubt (or one comes on "
               << dds_common::topics::kInitialPose.name << ")" << std::endl;
@@ -157,28 +156,16 @@ void LocalisationComponent::CheckPoseHint(const localisation_core::SessionScan& 
   }
 }
 
-void LocalisationComponent::HintFromCommandLine() {
-  // The pose holds for the first odometry sample, whenever it arrived.
-  const auto first_odometry = session_.OldestOdometry();
-  if (!first_odometry) return;
-  const localisation_core::SessionState hint{
-      geometry::Compose(*command_line_pose_, geometry::Inverse(*first_odometry)),
-      session_.Options().tracker.InitialCovariance().diagonal()};
-  pose_hint_check_.emplace(hint, "the initial pose from the command line", hint_check_options_);
-  command_line_pose_.reset();
-}
-
-void LocalisationComponent::HintFromPublishedPose() {
-  // The session checked the pose and tied it to the odometry at its stamp;
-  // an operator's pose (RViz's "2D Pose Estimate") is approximate, so that
-  // correction is a hint like any other.
+void LocalisationComponent::TakeBackAsHint() {
+  // The session checked the given pose and tied it to the odometry (at its
+  // stamp, or the first sample); the correction that makes is the hint.
   const auto latest = session_.Latest();
   if (!latest) return;
   const localisation_core::SessionState hint{session_.Tracker()->MapToOdom(),
                                              latest->covariance.diagonal()};
   session_.ForgetPose();
-  pose_hint_check_.emplace(hint, "the pose on " + dds_common::topics::kInitialPose.name,
-                           hint_check_options_);
+  pose_hint_check_.emplace(hint, given_pose_source_, hint_check_options_);
+  given_pose_source_.clear();
 }
 
 void LocalisationComponent::Stop() {
@@ -200,7 +187,7 @@ void LocalisationComponent::Worker() {
       if (relocalise_requested_.exchange(false) && global_) {
         session_.ForgetPose();
         pose_hint_check_.reset();
-        command_line_pose_.reset();
+        given_pose_source_.clear();
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
       }
@@ -208,12 +195,11 @@ void LocalisationComponent::Worker() {
       inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         pose_hint_check_.reset();  // a pose published outranks an older hint
-        command_line_pose_.reset();
+        if (global_) given_pose_source_ = "the pose on " + dds_common::topics::kInitialPose.name;
         std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
                   << (global_ ? "; a search around it confirms it" : "") << std::endl;
-        if (global_) HintFromPublishedPose();
       }
-      if (command_line_pose_) HintFromCommandLine();
+      if (!given_pose_source_.empty() && session_.HasInitialPose()) TakeBackAsHint();
       if (scan && pose_hint_check_ && session_.WaitingForInitialPose()) {
         CheckPoseHint(*scan, now);
       } else if (scan && global_ && session_.WaitingForInitialPose() &&

@@ -122,15 +122,6 @@ bool TrackingSession::OdometryReaches(double t) const {
   return !odometry_log_.empty() && t >= odometry_log_.front().stamp;
 }
 
-std::optional<geometry::Pose2D> TrackingSession::OldestOdometry() const {
-  if (scheduling_ == Scheduling::kNewestWins) {
-    if (!tracker_ || tracker_->Odometry().Empty()) return std::nullopt;
-    return tracker_->Odometry().At(tracker_->Odometry().Oldest());
-  }
-  if (odometry_log_.empty()) return std::nullopt;
-  return odometry_log_.front().pose;
-}
-
 std::optional<geometry::Pose2D> TrackingSession::OdometryAt(double t) const {
   if (scheduling_ == Scheduling::kNewestWins) {
     if (!tracker_ || tracker_->Odometry().Empty()) return std::nullopt;

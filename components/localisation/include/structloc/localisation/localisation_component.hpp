@@ -53,13 +53,11 @@ class LocalisationComponent : public dds_common::Component {
   void PublishDiagnostics(double now);
   // Without a pose: the scan against the whole map; a pose found starts tracking.
   void TryGlobally(const localisation_core::SessionScan& scan, double now);
-  // A saved correction, or the command line's initial pose, checked by a
-  // local search around it before tracking starts.
+  // A pose hint (saved, given or published) checked by a local search
+  // around it before tracking starts.
   void CheckPoseHint(const localisation_core::SessionScan& scan, double now);
-  // The command line's initial pose as a hint, once the first odometry came.
-  void HintFromCommandLine();
-  // The pose just set from rt/initialpose, taken back as a hint.
-  void HintFromPublishedPose();
+  // A given pose that just started tracking, taken back as a hint.
+  void TakeBackAsHint();
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
@@ -76,10 +74,11 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::TrackingSession session_;
   // Locates a robot without a pose (none given, none saved, or asked to).
   std::unique_ptr<localisation_core::GlobalStart> global_;
-  // The command line's initial pose until the first odometry sample comes.
-  std::optional<geometry::Pose2D> command_line_pose_;
-  // A saved correction or the command line's pose until it is confirmed, or
-  // given up on.
+  // Where a pose given on the command line or rt/initialpose came from, until
+  // the session has started tracking from it and it is taken back as a hint
+  // (empty: none waiting).
+  std::string given_pose_source_;
+  // A hint until it is confirmed, or given up on.
   std::optional<localisation_core::PoseHintCheck> pose_hint_check_;
   localisation_core::PoseHintCheckOptions hint_check_options_;
   std::atomic<bool> relocalise_requested_{false};

@@ -107,9 +107,6 @@ class TrackingSession {
   // scans can be older than its first odometry (its readers match one by one),
   // and a pose found in such a scan must not be tied to later odometry.
   bool OdometryReaches(double t) const;
-  // The oldest odometry sample kept (the first accepted, until history is
-  // trimmed); nullopt before the first.
-  std::optional<geometry::Pose2D> OldestOdometry() const;
 
   // The correction to save when saving is due at `now` (then counted as saved).
   std::optional<SessionState> StateToSave(double now);
