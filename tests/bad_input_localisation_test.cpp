@@ -11,6 +11,7 @@
 
 #include "cli_runner.hpp"
 #include "localisation_feed.hpp"
+#include "pose_argument.hpp"
 #include "structloc/localisation_core/pose_tracker.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -59,10 +60,6 @@ struct TrackerFixture {
     return tracker.ProcessScan(scan, 0.0);
   }
 };
-
-std::string PoseArgument(const geometry::Pose2D& p) {
-  return std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta);
-}
 
 process::ChildProcess StartLocalisation(std::vector<std::string> extra, int domain = kDomain) {
   std::vector<std::string> args = {"--domain", std::to_string(domain), "--qos",
@@ -138,7 +135,8 @@ TEST(BadInputLocalisation, M7_LocaliserRejectionsAreCountedWithTheirReason) {
 TEST(BadInputLocalisation, H4_M1_M11_HostileSamplesAreRejectedWithReasonsAndTrackingHolds) {
   const auto scenario = Office(10.0);
   testing::LocalisationFeed feed("hostile_feeder", kDomain);
-  auto localisation = StartLocalisation({"--initial-pose", PoseArgument(scenario.initial_pose)});
+  auto localisation =
+      StartLocalisation({"--initial-pose", testing::PoseArgument(scenario.initial_pose)});
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   feed.Play(scenario,
             [&](int k, const simulation_core::SimState& s, sensor_msgs::msg::LaserScan& scan) {

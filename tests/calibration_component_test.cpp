@@ -13,6 +13,7 @@
 
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "pose_argument.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "structloc_msgs/msg/CalibrationResultPubSubTypes.h"
@@ -68,10 +69,8 @@ LiveRun RunLive(
   const std::string bin = STRUCTLOC_BIN_DIR;
   const auto& p = scenario.initial_pose;
   process::ChildProcess calibration(bin + "/structloc_calibration", args(calibration_args));
-  process::ChildProcess localisation(
-      bin + "/structloc_localisation",
-      args({"--initial-pose",
-            std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)}));
+  process::ChildProcess localisation(bin + "/structloc_localisation",
+                                     args({"--initial-pose", testing::PoseArgument(p)}));
   process::ChildProcess simulator(
       bin + "/structloc_simulator",
       args({"--scenario", testing::SourcePath(scenario_file), "--time-scale", "8",

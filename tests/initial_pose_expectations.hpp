@@ -1,4 +1,4 @@
-// Test helper: the checks a pose found by a search (global start, saved-pose
+// Test helper: the checks a pose found by a search (global start, pose-hint
 // check) must pass against the robot's true pose, shared by their tests.
 #pragma once
 

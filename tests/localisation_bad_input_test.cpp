@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "localisation_feed.hpp"
+#include "pose_argument.hpp"
 #include "structloc/process/child_process.hpp"
 #include "test_domains.hpp"
 
@@ -30,7 +31,7 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
   process::ChildProcess localisation(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
-       std::to_string(p0.x) + " " + std::to_string(p0.y) + " " + std::to_string(p0.theta)});
+       testing::PoseArgument(p0)});
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   int bad_sent = 0;
   size_t good_sent = 0;

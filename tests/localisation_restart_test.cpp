@@ -12,6 +12,7 @@
 
 #include "dds_test_support.hpp"
 #include "live_accuracy.hpp"
+#include "pose_argument.hpp"
 #include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -40,8 +41,7 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   };
   auto first = std::make_unique<process::ChildProcess>(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      with({"--initial-pose",
-            std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)}));
+      with({"--initial-pose", testing::PoseArgument(p)}));
   process::ChildProcess simulator(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
@@ -104,7 +104,7 @@ TEST(LocalisationRestart, StartedLateItMendsItsInitialPoseByALocalSearch) {
   process::ChildProcess localisation(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
-       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
+       testing::PoseArgument(p)});
   ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > 40; }, 30s))
       << localisation.CapturedOutput();
   const auto estimate = evaluator.Estimate();

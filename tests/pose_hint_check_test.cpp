@@ -1,9 +1,10 @@
-// PoseHintCheck (pose_hint_check.hpp): after a restart, a saved map -> odom
-// correction that drifted (the odometry ran on while the localisation was
-// down) is confirmed and mended by a local search around the pose it
-// predicts (the prediction breaking a tie between two equally good poses); a
-// scan that confirms nothing is tried again, and after the attempts allowed
-// the check gives up (the caller then resumes unconfirmed).
+// PoseHintCheck (pose_hint_check.hpp): a hint's map -> odom correction that
+// is off (a saved one that drifted while the localisation was down, an
+// initial pose held for odometry that came late) is confirmed and mended by
+// a local search around the pose it predicts (the prediction breaking a tie
+// between two equally good poses); a scan that confirms nothing is tried
+// again, and after the attempts allowed the check gives up (the caller then
+// starts from the hint unconfirmed).
 #include <gtest/gtest.h>
 
 #include <random>
