@@ -3,8 +3,7 @@
 // until one gives a "found" pose, never an ambiguous or unfound one; that pose
 // (the laser's, turned into the robot's with the sensor mount) becomes the
 // initial pose at the scan's stamp. TryNear searches only around a pose the
-// robot is believed to be near (a saved map -> odom correction after a
-// restart, which drifts with the odometry while the component was down). The
+// robot is believed to be near (a pose hint: PoseHintCheck). The
 // localisation component runs it; DDS-free.
 #pragma once
 
