@@ -3,16 +3,20 @@
 // the scans against the whole map and then tracks it as if it had been given
 // the pose; asked on rt/reinitialize_global_localization, it drops its pose
 // and locates the robot again; an approximate pose on rt/initialpose is
-// confirmed by a local search around it. Real processes on a real Fast DDS
-// domain.
+// confirmed by a local search around it, also one sent before any odometry.
+// Real processes on a real Fast DDS domain.
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "dds_test_support.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "live_accuracy.hpp"
 #include "std_msgs/msg/EmptyPubSubTypes.h"
+#include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
@@ -26,25 +30,32 @@ using namespace std::chrono_literals;
 constexpr int kDomain = testing::domains::kLocalisationGlobalStart;
 
 // The office run with a localisation started without a pose, watched by an
-// observer that judges it against the simulator's ground truth.
+// observer that judges it against the simulator's ground truth. The robot
+// (the simulator) starts with it unless the test starts it later.
 struct RunWithoutPose {
-  explicit RunWithoutPose(const std::string& observer_name)
+  enum class Robot { kStarted, kLater };
+  explicit RunWithoutPose(const std::string& observer_name, Robot robot = Robot::kStarted)
       : scenario(simulation_core::LoadScenario(scenario_path)),
         observer(testing::TestNodeOptions(observer_name, kDomain)),
         evaluator(observer, scenario.initial_pose),
         localisation(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-                     {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos()}),
-        simulator(std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
-                  {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(),
-                   "--scenario", scenario_path, "--time-scale", "2", "--wait-for-subscribers", "1",
-                   "--exit-when-done"}) {}
+                     {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos()}) {
+    if (robot == Robot::kStarted) StartRobot();
+  }
+  void StartRobot() {
+    simulator.emplace(
+        std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
+        std::vector<std::string>{"--domain", std::to_string(kDomain), "--qos",
+                                 testing::ShippedQos(), "--scenario", scenario_path, "--time-scale",
+                                 "2", "--wait-for-subscribers", "1", "--exit-when-done"});
+  }
   // The accuracy bar from 1 s after `start` on.
   void ExpectAccurateAfter(double start, const std::string& what) {
     testing::ExpectDemoAccuracy(
         testing::ErrorFromOneSecondAfter(evaluator.Estimate(), evaluator.Truth(), start), what);
   }
   void Stop() {
-    simulator.Signal(SIGTERM);
+    if (simulator) simulator->Signal(SIGTERM);
     localisation.Signal(SIGTERM);
     EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);
   }
@@ -54,8 +65,23 @@ struct RunWithoutPose {
   dds_common::Node observer;
   evaluation::LiveEvaluator evaluator;
   process::ChildProcess localisation;
-  process::ChildProcess simulator;
+  std::optional<process::ChildProcess> simulator;
 };
+
+// An operator's pose, 0.8 m and 3 deg off the truth `truth`, as RViz's "2D Pose
+// Estimate" sends it (its covariance).
+geometry_msgs::msg::PoseWithCovarianceStamped ApproximatePose(const geometry::Pose2D& truth,
+                                                              double stamp) {
+  geometry_msgs::msg::PoseWithCovarianceStamped given;
+  given.header().stamp(dds_common::ToRosTime(stamp));
+  given.header().frame_id("map");
+  given.pose().pose().position().x(truth.x + 0.7);
+  given.pose().pose().position().y(truth.y - 0.4);
+  given.pose().pose().orientation(dds_common::ToQuaternion(truth.theta + 0.05));
+  given.pose().covariance()[0] = given.pose().covariance()[7] = 0.25;
+  given.pose().covariance()[35] = 0.068;
+  return given;
+}
 
 TEST(LocalisationGlobalStart, LocatesTheRobotWithoutAPoseAndAgainWhenAsked) {
   RunWithoutPose run("global_start_observer");
@@ -104,22 +130,43 @@ TEST(LocalisationGlobalStart, AnOperatorsApproximatePoseIsConfirmedNearby) {
       << run.localisation.CapturedOutput();
   ASSERT_TRUE(testing::WaitUntil([&] { return operator_pose.MatchedReaders() > 0; }, 30s));
   const auto truth = evaluator.Truth().back();
-  geometry_msgs::msg::PoseWithCovarianceStamped given;
-  given.header().stamp(dds_common::ToRosTime(truth.stamp));
-  given.header().frame_id("map");
-  given.pose().pose().position().x(truth.pose.x + 0.7);
-  given.pose().pose().position().y(truth.pose.y - 0.4);
-  given.pose().pose().orientation(dds_common::ToQuaternion(truth.pose.theta + 0.05));
-  given.pose().covariance()[0] = given.pose().covariance()[7] = 0.25;
-  given.pose().covariance()[35] = 0.068;
   const size_t before = evaluator.Estimate().size();
-  ASSERT_TRUE(operator_pose.Write(given));
+  ASSERT_TRUE(operator_pose.Write(ApproximatePose(truth.pose, truth.stamp)));
   ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > before + 40; }, 60s))
       << run.localisation.CapturedOutput();
   EXPECT_NE(run.localisation.CapturedOutput().find("the pose on rt/initialpose confirmed"),
             std::string::npos)
       << run.localisation.CapturedOutput();
   run.ExpectAccurateAfter(truth.stamp, "a pose given 0.81 m and 3 deg off");
+  run.Stop();
+}
+
+// The same pose sent before the robot's odometry is up: the localisation
+// holds it for the first odometry sample, then confirms it in the same way.
+TEST(LocalisationGlobalStart, AnOperatorsPoseBeforeAnyOdometryIsConfirmedToo) {
+  RunWithoutPose run("early_operator_observer", RunWithoutPose::Robot::kLater);
+  auto operator_pose =
+      run.observer.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds_common::topics::kInitialPose);
+  ASSERT_TRUE(testing::WaitUntil([&] { return operator_pose.MatchedReaders() > 0; }, 30s));
+  ASSERT_TRUE(operator_pose.Write(
+      ApproximatePose(run.scenario.initial_pose, dds_common::WallClockSeconds())));
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] {
+        return run.localisation.CapturedOutput().find(
+                   "initial pose held for the first odometry from rt/initialpose") !=
+               std::string::npos;
+      },
+      30s))
+      << run.localisation.CapturedOutput();
+  run.StartRobot();
+  ASSERT_TRUE(testing::WaitUntil([&] { return run.evaluator.Estimate().size() > 80; }, 60s))
+      << run.localisation.CapturedOutput();
+  EXPECT_NE(run.localisation.CapturedOutput().find("the pose on rt/initialpose confirmed"),
+            std::string::npos)
+      << run.localisation.CapturedOutput();
+  run.ExpectAccurateAfter(run.evaluator.Estimate().front().stamp,
+                          "a pose given 0.81 m and 3 deg off before any odometry");
   run.Stop();
 }
 

@@ -196,7 +196,9 @@ void LocalisationComponent::Worker() {
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         pose_hint_check_.reset();  // a pose published outranks an older hint
         if (global_) given_pose_source_ = "the pose on " + dds_common::topics::kInitialPose.name;
-        std::cout << "localisation: initial pose set from " << dds_common::topics::kInitialPose.name
+        std::cout << "localisation: initial pose "
+                  << (session_.HasInitialPose() ? "set" : "held for the first odometry") << " from "
+                  << dds_common::topics::kInitialPose.name
                   << (global_ ? "; a search around it confirms it" : "") << std::endl;
       }
       if (!given_pose_source_.empty() && session_.HasInitialPose()) TakeBackAsHint();

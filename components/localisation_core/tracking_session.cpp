@@ -104,15 +104,16 @@ void TrackingSession::AddScan(SessionScan scan, double now) {
 
 size_t TrackingSession::Apply(SessionInputs& inputs, const std::string& initial_pose_source) {
   for (const auto& o : inputs.odometry) AddOdometry(o.stamp, o.pose, inputs.scan_arrived_s);
-  size_t set = 0;
+  size_t accepted = 0;
   for (const auto& p : inputs.initial_poses) {
-    if (SetInitialPose(p, initial_pose_source, inputs.scan_arrived_s) == InitialPoseOutcome::kSet) {
-      ++set;
+    if (SetInitialPose(p, initial_pose_source, inputs.scan_arrived_s) !=
+        InitialPoseOutcome::kRejected) {
+      ++accepted;
     }
   }
   dropped_ += inputs.dropped;
   if (inputs.scan) AddScan(std::move(*inputs.scan), inputs.scan_arrived_s);
-  return set;
+  return accepted;
 }
 
 bool TrackingSession::OdometryReaches(double t) const {

@@ -111,7 +111,7 @@ else
     failed=1
   fi
 fi
-if ! grep -q "initial pose set from rt/initialpose" "$work/localisation.log"; then
+if ! grep -Eq "initial pose (set|held for the first odometry) from rt/initialpose" "$work/localisation.log"; then
   echo "FAILED: the localisation did not take the Cyclone client's rt/initialpose"
   failed=1
 fi

@@ -87,7 +87,8 @@ class TrackingSession {
                                     double now);
   void AddScan(SessionScan scan, double now);
   // Everything an inbox collected, in the order odometry, initial poses, scan.
-  // Returns how many of its initial poses were set.
+  // Returns how many of its initial poses were accepted: set, or held until
+  // the first odometry sample when none has come yet.
   size_t Apply(SessionInputs& inputs, const std::string& initial_pose_source);
 
   // The next scan that is ready, processed; nullopt when none is (yet).
