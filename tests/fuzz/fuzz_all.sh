@@ -6,8 +6,12 @@
 # as it finishes (executions, coverage) and exiting non-zero when any target
 # found something (its input is printed for reproduction). A target's time
 # limit grows with RUNS (tests/fuzz/CMakeLists.txt).
+# With STRUCTLOC_FUZZ_CORPUS_DIR=DIR each target's corpus is kept in
+# DIR/<target> and the next run goes on from it (tests/fuzz/run_fuzzer.sh).
 # Usage: tests/fuzz/fuzz_all.sh [BUILD_DIR] [RUNS] [REGEX]
 set -euo pipefail
+[ -n "${STRUCTLOC_FUZZ_CORPUS_DIR:-}" ] &&
+  export STRUCTLOC_FUZZ_CORPUS_DIR="$(realpath -m "$STRUCTLOC_FUZZ_CORPUS_DIR")"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="${1:-$root/build-fuzz}"
 runs="${2:-1000000}"
@@ -19,7 +23,7 @@ start=$(date +%s)
 log="$build/fuzz_all.log"
 set +o pipefail
 ctest --test-dir "$build" -L fuzz -R "$only" -j 2 --output-on-failure -V 2>&1 | tee "$log" |
-  { grep --line-buffered -E ": [0-9?]+ executions|FINDING|interrupted|Timeout|tests passed," || true; } |
+  { grep --line-buffered -E ": [0-9?]+ executions|inputs at the start|FINDING|interrupted|Timeout|tests passed," || true; } |
   sed -u 's/^[0-9]*: //'
 status=${PIPESTATUS[0]}
 set -o pipefail
