@@ -1,11 +1,14 @@
-// structloc_latency_benchmark [SECONDS] [RATE_HZ]: latency and load of the
+// structloc_latency_benchmark [SECONDS] [RATE_HZ] [CSV]: latency and load of the
 // localisation component over DDS on one host. It starts the real component,
 // publishes the office scenario's 1081-beam scans (default 40 Hz) and
 // odometry in real time from the simulation core, and prints scan-published
 // -> pose-received latency (median, p99, max), where it goes (the
 // localiser's own update, from rt/structloc/status, and the rest: transport,
 // thread wake-ups, conversions), and the component's CPU use (% of one core,
-// from /proc). Figures only: it asserts nothing.
+// from /proc); with CSV, also each scan's stamp, latency and update time
+// (to see when the slow ones come). Before and after the run it measures how
+// often the machine itself stops a runnable thread (platform_stalls.hpp), the
+// floor under any latency tail. Figures only: it asserts nothing.
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "benchmarks/platform_stalls.hpp"
 #include "benchmarks/process_cpu.hpp"
 #include "benchmarks/realtime_feed.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
@@ -40,6 +44,8 @@ int main(int argc, char** argv) {
   namespace process = structloc::process;
   const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
   const double rate = argc > 2 ? std::atof(argv[2]) : 40.0;
+  constexpr double kStallProbeS = 3.0;
+  const auto stalls_before = structloc::testing::MeasurePlatformStalls(kStallProbeS);
   const std::string source = STRUCTLOC_SOURCE_DIR;
   const int domain = structloc::testing::domains::kLatencyBenchmark;
   auto scenario = simulation_core::LoadScenario(source + "/maps/scenarios/office_people.xml");
@@ -94,6 +100,7 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   const double cpu = structloc::testing::CpuSeconds(loc.Pid()) - cpu_start;
   loc.Stop(std::chrono::seconds(5));
+  const auto stalls_after = structloc::testing::MeasurePlatformStalls(kStallProbeS);
   std::lock_guard<std::mutex> lock(mutex);
   std::sort(latency_ms.begin(), latency_ms.end());
   if (latency_ms.empty()) {
@@ -122,8 +129,19 @@ int main(int argc, char** argv) {
     std::printf("  %s: median %.3f ms, p99 %.3f ms, max %.3f ms\n", what, q(0.5), q(0.99),
                 v.back());
   };
+  if (argc > 3) {
+    std::ofstream csv(argv[3]);
+    csv << "stamp_s,latency_ms,update_ms\n";
+    for (const auto& [stamp, ms] : latency_at) {
+      const auto u = update_ms.find(stamp);
+      csv << std::fixed << stamp - 1.0e9 << "," << ms << ","
+          << (u == update_ms.end() ? -1.0 : u->second) << "\n";
+    }
+  }
   quantiles(update, "of it the localiser's update");
   quantiles(rest, "of it transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
+  structloc::testing::PrintPlatformStalls("before", stalls_before);
+  structloc::testing::PrintPlatformStalls("after", stalls_after);
   return 0;
 }
