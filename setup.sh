@@ -92,11 +92,12 @@ run_container_test() {
 
 # The fuzz targets in a clang build of their own (build-fuzz beside build/),
 # each run briefly on its seed corpus (tests/fuzz; the long run is
-# tests/fuzz/fuzz_all.sh).
+# tests/fuzz/fuzz_all.sh, which leaves its own run count in the build's cache:
+# hence the short run's count is set here every time).
 run_fuzz_tests() {
   local fuzz_dir="${STRUCTLOC_FUZZ_BUILD_DIR:-$here/build-fuzz}"
   CC=clang CXX=clang++ cmake -S "$here" -B "$fuzz_dir" -DSTRUCTLOC_FUZZ=ON -DBUILD_TESTING=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRUCTLOC_FUZZ_RUNS=20000 >/dev/null
   cmake --build "$fuzz_dir" -j "$jobs" --target structloc_fuzzers
   ctest --test-dir "$fuzz_dir" -L fuzz --output-on-failure -j "$jobs"
 }
