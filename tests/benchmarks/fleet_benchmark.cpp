@@ -32,6 +32,7 @@
 
 #include "benchmarks/process_cpu.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "pose_argument.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/config/command_line.hpp"
 #include "structloc/dds_common/node.hpp"
@@ -135,8 +136,7 @@ FleetRow RunFleet(int robots, double time_scale, int domain, bool domain_per_rob
   const std::string qos = share + "/qos/structloc_qos.xml";
   const auto scenario = simulation_core::LoadScenario(share + "/maps/scenarios/office_people.xml");
   const auto& p = scenario.initial_pose;
-  const std::string start =
-      std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta);
+  const std::string start = structloc::testing::PoseArgument(p);
   std::vector<std::unique_ptr<RobotObserver>> observers;
   std::vector<std::unique_ptr<process::ChildProcess>> localisations, simulators;
   auto domain_of = [&](int k) {

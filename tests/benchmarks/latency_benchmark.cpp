@@ -24,6 +24,7 @@
 #include "benchmarks/realtime_feed.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
+#include "pose_argument.hpp"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/dds_common/node.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
   const double rate = argc > 2 ? std::atof(argv[2]) : 40.0;
   constexpr double kStallProbeS = 3.0;
+  constexpr double kStampOffsetS = 1.0e9;  // scan stamps: simulated time + this
   const auto stalls_before = structloc::testing::MeasurePlatformStalls(kStallProbeS);
   const std::string source = STRUCTLOC_SOURCE_DIR;
   const int domain = structloc::testing::domains::kLatencyBenchmark;
@@ -81,10 +83,9 @@ int main(int argc, char** argv) {
             update_ms[dds_common::FromRosTime(m.header().stamp())] = 1e-3 * m.timings().total_us();
           });
   const auto& p = scenario.initial_pose;
-  process::ChildProcess loc(
-      std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      {"--domain", std::to_string(domain), "--qos", options.qos_file, "--initial-pose",
-       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
+  process::ChildProcess loc(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+                            {"--domain", std::to_string(domain), "--qos", options.qos_file,
+                             "--initial-pose", structloc::testing::PoseArgument(p)});
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -92,7 +93,7 @@ int main(int argc, char** argv) {
   simulation_core::Simulation sim(scenario);
   const auto start = Clock::now();
   const double cpu_start = structloc::testing::CpuSeconds(loc.Pid());
-  structloc::testing::FeedInRealTime(sim, writers, 1.0e9, [&](double stamp) {
+  structloc::testing::FeedInRealTime(sim, writers, kStampOffsetS, [&](double stamp) {
     std::lock_guard<std::mutex> lock(mutex);
     sent[stamp] = Clock::now();
   });
@@ -114,10 +115,19 @@ int main(int argc, char** argv) {
               sent.size(), latency_ms.size());
   std::printf("scan published -> pose received: median %.3f ms, p99 %.3f ms, max %.3f ms\n",
               at(0.5), at(0.99), latency_ms.back());
-  // Where the time goes: the localiser's update, and everything else.
+  // Where the time goes: the localiser's update, and everything else; with
+  // CSV, every scan's figures (update -1 when its status was not received).
+  std::ofstream csv;
+  if (argc > 3) {
+    csv.open(argv[3]);
+    csv << "stamp_s,latency_ms,update_ms\n" << std::fixed;
+  }
   std::vector<double> update, rest;
   for (const auto& [stamp, ms] : latency_at) {
     const auto u = update_ms.find(stamp);
+    if (csv.is_open())
+      csv << stamp - kStampOffsetS << "," << ms << "," << (u == update_ms.end() ? -1.0 : u->second)
+          << "\n";
     if (u == update_ms.end()) continue;
     update.push_back(u->second);
     rest.push_back(ms - u->second);
@@ -129,15 +139,6 @@ int main(int argc, char** argv) {
     std::printf("  %s: median %.3f ms, p99 %.3f ms, max %.3f ms\n", what, q(0.5), q(0.99),
                 v.back());
   };
-  if (argc > 3) {
-    std::ofstream csv(argv[3]);
-    csv << "stamp_s,latency_ms,update_ms\n";
-    for (const auto& [stamp, ms] : latency_at) {
-      const auto u = update_ms.find(stamp);
-      csv << std::fixed << stamp - 1.0e9 << "," << ms << ","
-          << (u == update_ms.end() ? -1.0 : u->second) << "\n";
-    }
-  }
   quantiles(update, "of it the localiser's update");
   quantiles(rest, "of it transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);

@@ -23,6 +23,7 @@
 #include "benchmarks/process_cpu.hpp"
 #include "benchmarks/realtime_feed.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "pose_argument.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -114,8 +115,7 @@ int Run(int argc, char** argv) {
   process::ChildProcess loc(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(domain), "--qos", source + "/qos/structloc_qos.xml",
-       "--initial-pose",
-       std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.theta)});
+       "--initial-pose", structloc::testing::PoseArgument(p)});
   const auto give_up = Clock::now() + std::chrono::seconds(30);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     if (const auto code = loc.Poll()) {
