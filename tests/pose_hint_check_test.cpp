@@ -7,6 +7,7 @@
 // starts from the hint unconfirmed).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "initial_pose_expectations.hpp"
@@ -90,6 +91,51 @@ TEST(PoseHintCheck, LooksOnlyNearThePredictedPose) {
   EXPECT_EQ(second.verdict, PoseHintCheck::Verdict::kGiveUp);
 }
 
+// An operator's pose 40 deg and 0.3 m off, with RViz's default covariance
+// (0.5 m and 15 deg of standard deviation): the window spans 3 sigma of it
+// (45 deg) and mends it. The same pose sent as if it were exact is searched
+// only in the default 30 deg, finds nothing there, and is tried again.
+TEST(PoseHintCheck, SearchesAsWideAsTheHintsOwnUncertainty) {
+  const testing::OfficeScene office(4.71238898038469);
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(0.0025, 0.0025, 0.0009).asDiagonal();
+  const GlobalStart search(office.world, office.options.sensor_mount, covariance);
+  // No odometry travel: turning the correction turns the predicted pose in place.
+  const geometry::Pose2D odom{0.0, 0.0, 0.4};
+  SessionState operators = Stale(office.truth, odom, 0.2, -0.2, 0.7);
+  std::mt19937 rng(6);
+  const auto scan = testing::SessionScanOf(office.Scan(1081, rng), 3.0);
+
+  PoseHintCheck exact(operators, "a pose sent as exact", {});
+  const auto narrow = exact.Check(search, scan, odom);
+  EXPECT_NEAR(narrow.heading_rad, PoseHintCheckOptions{}.heading_rad, 1e-12);
+  EXPECT_NEAR(narrow.radius_m, PoseHintCheckOptions{}.radius_m, 1e-12);
+  EXPECT_EQ(narrow.verdict, PoseHintCheck::Verdict::kTryAgain) << narrow.result.reason;
+
+  operators.variance = Eigen::Vector3d(0.25, 0.25, 0.06853891945200942);
+  PoseHintCheck clicked(operators, "an operator's pose", {});
+  const auto wide = clicked.Check(search, scan, odom);
+  EXPECT_NEAR(wide.heading_rad, 3.0 * std::sqrt(0.06853891945200942), 1e-9);
+  EXPECT_NEAR(wide.radius_m, PoseHintCheckOptions{}.radius_m, 1e-12);  // 1.5 m < 2 m
+  ASSERT_EQ(wide.verdict, PoseHintCheck::Verdict::kFound) << wide.result.reason;
+  testing::ExpectFoundAt(*wide.found, 3.0, office.truth, covariance);
+}
+
+// "I have no idea" (a huge or infinite variance) is searched only as far as
+// max_radius_m and half a turn: wider is the global localiser's job.
+TEST(PoseHintCheck, AWindowFromAVagueHintStaysBounded) {
+  const testing::OfficeScene office(4.71238898038469);
+  const GlobalStart search(office.world, office.options.sensor_mount, Eigen::Matrix3d::Identity());
+  const geometry::Pose2D odom{0.0, 0.0, 0.0};
+  SessionState vague = Stale(office.truth, odom, 0.0, 0.0, 0.0);
+  vague.variance = Eigen::Vector3d(1e6, INFINITY, 1e6);
+  PoseHintCheck check(vague, "a vague pose", {});
+  std::mt19937 rng(7);
+  const auto outcome =
+      check.Check(search, testing::SessionScanOf(office.Scan(1081, rng), 1.0), odom);
+  EXPECT_DOUBLE_EQ(outcome.radius_m, PoseHintCheckOptions{}.max_radius_m);
+  EXPECT_DOUBLE_EQ(outcome.heading_rad, geometry::kPi);
+}
+
 // Two poses explaining the scan equally well (along a corridor): the one near
 // the pose the saved correction predicts is taken, none when neither is near.
 TEST(PoseHintCheck, ThePredictionBreaksATieAsATrackersPriorWould) {
@@ -117,6 +163,12 @@ TEST(PoseHintCheck, RefusesOptionsThatSearchNothing) {
   EXPECT_THROW(PoseHintCheck({}, "nothing", options), std::invalid_argument);
   options = {};
   options.attempts = 0;
+  EXPECT_THROW(PoseHintCheck({}, "nothing", options), std::invalid_argument);
+  options = {};
+  options.max_radius_m = options.radius_m / 2;
+  EXPECT_THROW(PoseHintCheck({}, "nothing", options), std::invalid_argument);
+  options = {};
+  options.sigmas = NAN;
   EXPECT_THROW(PoseHintCheck({}, "nothing", options), std::invalid_argument);
 }
 

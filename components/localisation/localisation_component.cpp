@@ -1,6 +1,7 @@
 // Localisation component (see header).
 #include "structloc/localisation/localisation_component.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -36,6 +37,8 @@ LocalisationComponent::LocalisationComponent(
         *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
   }
   hint_check_options_.radius_m = session_options.tracker.reacquire_max_radius_m;
+  hint_check_options_.max_radius_m =
+      std::max(hint_check_options_.max_radius_m, hint_check_options_.radius_m);
   if (options_.initial_pose) {
     session_.ExpectInitialPose(
         *options_.initial_pose,
@@ -145,7 +148,8 @@ void LocalisationComponent::CheckPoseHint(const localisation_core::SessionScan& 
     pose_hint_check_.reset();
   } else if (outcome.verdict == Verdict::kGiveUp) {
     std::cout << "localisation: WARNING: no local search confirmed " << source
-              << " (the last: " << localisation_core::ToString(outcome.result.decision) << " near ("
+              << " (the last: " << localisation_core::ToString(outcome.result.decision)
+              << " within " << outcome.radius_m << " m and " << outcome.heading_rad << " rad of ("
               << q.x << ", " << q.y << ", " << q.theta
               << ")); starting from it unconfirmed: publish "
               << dds_common::topics::kInitialPose.name

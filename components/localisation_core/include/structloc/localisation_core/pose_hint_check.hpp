@@ -9,9 +9,13 @@
 // a local search around the pose it predicts at each scan
 // (GlobalStart::TryNear) and hands back the pose found; where two poses
 // explain the scan equally well (along a corridor) the prediction breaks the
-// tie, as a tracker's prior would (NearestOfTie). After `attempts` scans with
-// nothing found without a doubt it gives up, and the caller starts from the
-// hint unconfirmed, as a robot in a featureless place must. DDS-free.
+// tie, as a tracker's prior would (NearestOfTie). The window searched spans
+// the hint's own uncertainty: an operator's click (RViz gives 0.5 m and 15 deg
+// of standard deviation by default) is searched 3 sigma wide where that
+// exceeds the default window, so a pose given 40 deg off is mended rather than
+// taken unconfirmed. After `attempts` scans with nothing found without a doubt
+// it gives up, and the caller starts from the hint unconfirmed, as a robot in a
+// featureless place must. DDS-free.
 #pragma once
 
 #include <optional>
@@ -23,8 +27,11 @@
 namespace structloc::localisation_core {
 
 struct PoseHintCheckOptions {
-  double radius_m = 2.0;         // laser positions searched around the predicted one
-  double heading_rad = 0.52;     // headings searched either side of the predicted one (30 deg)
+  double radius_m = 2.0;  // laser positions searched around the predicted one, at least
+  double heading_rad =
+      0.52;             // headings searched either side of the predicted one (30 deg), at least
+  double sigmas = 3.0;  // the window spans this many of the hint's standard deviations ...
+  double max_radius_m = 5.0;     // ... but no farther (the search's cost grows with the area)
   double tie_distance_m = 0.3;   // of two equally good poses, one this near the prediction ...
   double tie_heading_rad = 0.1;  // ... and turned at most this much from it is taken
   int attempts = 10;             // scans tried before resuming unconfirmed
@@ -38,7 +45,9 @@ class PoseHintCheck {
   enum class Verdict { kFound, kTryAgain, kGiveUp };
   struct Outcome {
     Verdict verdict = Verdict::kTryAgain;
-    geometry::Pose2D predicted;             // the robot pose the hint's correction gives
+    geometry::Pose2D predicted;  // the robot pose the hint's correction gives
+    double radius_m = 0.0;       // the window searched around it
+    double heading_rad = 0.0;
     std::optional<InitialPoseInput> found;  // when kFound
     GlobalResult result;                    // the search's answer (laser poses)
   };
@@ -53,6 +62,8 @@ class PoseHintCheck {
   SessionState hint_;
   std::string source_;
   PoseHintCheckOptions options_;
+  double radius_m_ = 0.0;  // the window searched: the options' widened to the hint's spread
+  double heading_rad_ = 0.0;
   int tried_ = 0;
 };
 
