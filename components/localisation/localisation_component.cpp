@@ -149,9 +149,9 @@ void LocalisationComponent::CheckPoseHint(const localisation_core::SessionScan& 
   } else if (outcome.verdict == Verdict::kGiveUp) {
     std::cout << "localisation: WARNING: no local search confirmed " << source
               << " (the last: " << localisation_core::ToString(outcome.result.decision)
-              << " within " << outcome.radius_m << " m and " << outcome.heading_rad << " rad of ("
-              << q.x << ", " << q.y << ", " << q.theta
-              << ")); starting from it unconfirmed: publish "
+              << " within " << pose_hint_check_->RadiusM() << " m and "
+              << pose_hint_check_->HeadingRad() << " rad of (" << q.x << ", " << q.y << ", "
+              << q.theta << ")); starting from it unconfirmed: publish "
               << dds_common::topics::kInitialPose.name
               << " or request a global relocalisation if the robot was moved" << std::endl;
     session_.NoteProblem(source + " was taken unconfirmed: no local search confirmed it", now);

@@ -34,8 +34,6 @@ PoseHintCheck::Outcome PoseHintCheck::Check(const GlobalStart& search, const Ses
                                             const geometry::Pose2D& odometry_at_scan) {
   Outcome outcome;
   outcome.predicted = geometry::Compose(hint_.map_to_odom, odometry_at_scan);
-  outcome.radius_m = radius_m_;
-  outcome.heading_rad = heading_rad_;
   auto attempt = search.TryNear(scan, outcome.predicted, radius_m_, heading_rad_);
   if (!attempt.found && attempt.result.decision == GlobalDecision::kAmbiguous)
     attempt.found = search.NearestOfTie(scan, attempt.result, outcome.predicted,

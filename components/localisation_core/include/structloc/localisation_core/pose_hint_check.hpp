@@ -27,10 +27,9 @@
 namespace structloc::localisation_core {
 
 struct PoseHintCheckOptions {
-  double radius_m = 2.0;  // laser positions searched around the predicted one, at least
-  double heading_rad =
-      0.52;             // headings searched either side of the predicted one (30 deg), at least
-  double sigmas = 3.0;  // the window spans this many of the hint's standard deviations ...
+  double radius_m = 2.0;         // laser positions searched around the predicted one, at least
+  double heading_rad = 0.52;     // headings searched either side of it, at least (30 deg)
+  double sigmas = 3.0;           // the window spans this many of the hint's standard deviations ...
   double max_radius_m = 5.0;     // ... but no farther (the search's cost grows with the area)
   double tie_distance_m = 0.3;   // of two equally good poses, one this near the prediction ...
   double tie_heading_rad = 0.1;  // ... and turned at most this much from it is taken
@@ -45,9 +44,7 @@ class PoseHintCheck {
   enum class Verdict { kFound, kTryAgain, kGiveUp };
   struct Outcome {
     Verdict verdict = Verdict::kTryAgain;
-    geometry::Pose2D predicted;  // the robot pose the hint's correction gives
-    double radius_m = 0.0;       // the window searched around it
-    double heading_rad = 0.0;
+    geometry::Pose2D predicted;             // the robot pose the hint's correction gives
     std::optional<InitialPoseInput> found;  // when kFound
     GlobalResult result;                    // the search's answer (laser poses)
   };
@@ -57,12 +54,15 @@ class PoseHintCheck {
 
   const SessionState& Hint() const { return hint_; }
   const std::string& Source() const { return source_; }
+  // The window searched around the predicted pose: the options' widened to the hint's spread.
+  double RadiusM() const { return radius_m_; }
+  double HeadingRad() const { return heading_rad_; }
 
  private:
   SessionState hint_;
   std::string source_;
   PoseHintCheckOptions options_;
-  double radius_m_ = 0.0;  // the window searched: the options' widened to the hint's spread
+  double radius_m_ = 0.0;
   double heading_rad_ = 0.0;
   int tried_ = 0;
 };
