@@ -4,9 +4,11 @@
 // recordings' corrected laser poses are the truth. Note that the maps
 // (maps/real/*.xml, `structloc map build`) were built from these same
 // recordings, so the map is as good as it gets for them; the scans still hold
-// people, doors and clutter the map does not. At least 90 % must be right
-// (within 0.2 m and 5 deg), the rest "ambiguous" or "not found", none
-// confidently wrong. Label shared_data.
+// people, doors and clutter the map does not. The issue asks for at least
+// 90 % right (within 0.2 m and 5 deg), the rest "ambiguous" or "not found",
+// none confidently wrong; the test holds none wrong and each recording's
+// measured share right (the README's figures), so that it cannot fall
+// unnoticed. Label shared_data.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -102,7 +104,7 @@ TEST_P(GlobalOnRealLog, LocatesMostRandomScansAndIsNeverConfidentlyWrong) {
 
 INSTANTIATE_TEST_SUITE_P(
     SharedData, GlobalOnRealLog,
-    ::testing::Values(Recording{"freiburg-079-corrected.log.gz", "maps/real/freiburg_079.xml", 85},
+    ::testing::Values(Recording{"freiburg-079-corrected.log.gz", "maps/real/freiburg_079.xml", 88},
                       Recording{"intel-corrected.log.gz", "maps/real/intel.xml", 75}),
     [](const ::testing::TestParamInfo<Recording>& info) {
       return std::string(info.index == 0 ? "Freiburg079" : "Intel");
