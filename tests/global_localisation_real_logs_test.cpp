@@ -6,9 +6,9 @@
 // recordings, so the map is as good as it gets for them; the scans still hold
 // people, doors and clutter the map does not. The issue asks for at least
 // 90 % right (within 0.2 m and 5 deg), the rest "ambiguous" or "not found",
-// none confidently wrong; the test holds none wrong and each recording's
-// measured share right (the README's figures), so that it cannot fall
-// unnoticed. Label shared_data.
+// none confidently wrong; the test holds none wrong and a share right just
+// below each recording's measured one (the README's figures), so that it
+// cannot fall unnoticed. Label shared_data.
 #include <gtest/gtest.h>
 
 #include <chrono>
