@@ -105,14 +105,20 @@ TEST(GlobalLocalisation, IsNeverConfidentlyWrongInTheOfficesIdenticalRooms) {
   EXPECT_EQ(rooms.wrong, 0);
 }
 
-TEST(GlobalLocalisation, ARectangularRoomIsAmbiguousNeverConfidentlyWrong) {
-  const world_model::WorldModel room(
+world_model::WorldModel RectangularRoom() {
+  return world_model::WorldModel(
       "room",
       {world_model::MakeWall(1, {0, 0}, {10, 0}), world_model::MakeWall(2, {10, 0}, {10, 6}),
        world_model::MakeWall(3, {10, 6}, {0, 6}), world_model::MakeWall(4, {0, 6}, {0, 0})},
       {}, {});
+}
+
+// A scan of the room from a random pose gives that pose and its twin (the
+// room turned by half a turn), as best and runner-up, and "ambiguous".
+void ExpectTwinsInTheRoom(const GlobalLocaliserOptions& options) {
+  const world_model::WorldModel room = RectangularRoom();
   const auto scene = world_model::Scene::FromWorld(room);
-  const GlobalLocaliser localiser(room, GlobalLocaliserOptions{});
+  const GlobalLocaliser localiser(room, options);
   std::mt19937 rng(3);
   for (int n = 0; n < 10; ++n) {
     const geometry::Pose2D truth = RandomPose(room, room.Bounds(), 0.5, rng);
@@ -128,6 +134,18 @@ TEST(GlobalLocalisation, ARectangularRoomIsAmbiguousNeverConfidentlyWrong) {
     EXPECT_TRUE((Close(result.best->pose, truth) && Close(result.runner_up->pose, twin)) ||
                 (Close(result.best->pose, twin) && Close(result.runner_up->pose, truth)));
   }
+}
+
+TEST(GlobalLocalisation, ARectangularRoomIsAmbiguousNeverConfidentlyWrong) {
+  ExpectTwinsInTheRoom(GlobalLocaliserOptions{});
+}
+
+// With no margin around the map, the walls on its far edges (x = 10 m, y = 6
+// m lie exactly on a cell border) are drawn and the lattice stays on the grid.
+TEST(GlobalLocalisation, WithoutAMarginTheWallsOnTheMapsEdgeCountToo) {
+  GlobalLocaliserOptions options;
+  options.grid_margin_m = 0.0;
+  ExpectTwinsInTheRoom(options);
 }
 
 TEST(GlobalLocalisation, AScanOfClutterOnlyIsNotFound) {
@@ -161,6 +179,15 @@ TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
   options = {};
   options.grid_resolution_m = 1e-4;  // billions of cells
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.coarse_step_m = 1e-17;  // a lattice that never ends
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.coarse_heading_step_rad = 1e-10;  // billions of headings
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.min_range_m = 40.0;  // beyond max_range_m: no reading could ever count
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
 }
 

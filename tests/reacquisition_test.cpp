@@ -25,8 +25,10 @@ struct TrackRun {
   uint64_t reacquisitions = 0;
 };
 
-// The robot stands in the hall; the tracker starts at `start`.
-TrackRun Track(const geometry::Pose2D& start, double min_explained_share) {
+// The robot stands in the hall; the tracker starts at `start` (given again,
+// as an operator would, at the first scan from `given_again_at` s on).
+TrackRun Track(const geometry::Pose2D& start, double min_explained_share,
+               double given_again_at = -1.0) {
   const testing::OfficeScene office(4.71238898038469);
   TrackerOptions options = LoadSessionOptions(kParams).tracker;
   options.min_explained_share = min_explained_share;
@@ -34,12 +36,16 @@ TrackRun Track(const geometry::Pose2D& start, double min_explained_share) {
   std::mt19937 rng(5);
   for (int k = 0; k <= 50; ++k) EXPECT_FALSE(tracker.AddOdometry(0.1 * k, {0, 0, 0}));
   // Given with a sigma of 0.3 m: the search reaches 3 sigma + 0.5 m around it.
-  EXPECT_FALSE(
-      tracker.SetInitialPose(0.0, start, Eigen::Vector3d(0.09, 0.09, 0.0025).asDiagonal()));
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(0.09, 0.09, 0.0025).asDiagonal();
+  EXPECT_FALSE(tracker.SetInitialPose(0.0, start, covariance));
   TrackRun run;
   for (int k = 1; k <= 40; ++k) {
     const auto synthetic = office.Scan(1081, rng);
     const ScanInput scan = testing::TrackerInput(synthetic, 0.1 * k);
+    if (given_again_at >= 0.0 && scan.stamp >= given_again_at - 1e-9 &&
+        scan.stamp < given_again_at + 0.1 - 1e-9) {
+      EXPECT_FALSE(tracker.SetInitialPose(scan.stamp, start, covariance));
+    }
     const auto out = tracker.ProcessScan(scan, 1.0);
     EXPECT_EQ(out.verdict, PoseTracker::ScanVerdict::kProcessed);
     if (out.reacquired && !run.reacquired) {
@@ -70,6 +76,22 @@ TEST(Reacquisition, AWrongPoseLocksOnAgainWithTheJumpReported) {
   // reason to jump.
   const double after = LoadSessionOptions(kParams).tracker.reacquire_after_s;
   EXPECT_GE(run.reacquired_at, 0.1 + 2 * after - 1e-9);
+}
+
+// A pose given while a search's find waits for the next search to confirm it
+// starts afresh: the find from before it neither hurries nor confirms the next
+// search (the operator's pose is weighed for two searches' time, as at start).
+TEST(Reacquisition, APoseGivenAgainStartsTheSearchesAfresh) {
+  const testing::OfficeScene office(4.71238898038469);
+  const geometry::Pose2D wrong{office.truth.x + 0.8, office.truth.y - 0.4, office.truth.theta};
+  const double after = LoadSessionOptions(kParams).tracker.reacquire_after_s;
+  // Given again after the first search (at 0.1 s + after) and before the second.
+  const double again = 0.1 + 1.5 * after;
+  const TrackRun run = Track(wrong, 0.3, again);
+  ASSERT_TRUE(run.reacquired);
+  EXPECT_GE(run.reacquired_at, again + 2 * after - 1e-9);
+  EXPECT_NEAR(run.last.x, office.truth.x, 0.01);
+  EXPECT_NEAR(run.last.y, office.truth.y, 0.01);
 }
 
 TEST(Reacquisition, WithoutTheWholeScanCheckTheWrongPoseStays) {

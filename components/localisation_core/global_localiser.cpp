@@ -26,11 +26,21 @@ void Check(const GlobalLocaliserOptions& o) {
   RequirePositive(o.rank_truncation_m, "rank_truncation_m");
   RequirePositive(o.distinct_distance_m, "distinct_distance_m");
   RequirePositive(o.distinct_heading_rad, "distinct_heading_rad");
+  // A lattice finer than the field, or a heading step that makes millions of
+  // headings, would take hours and gigabytes instead of a second.
+  if (!(o.coarse_step_m >= o.grid_resolution_m))
+    throw std::invalid_argument(
+        "global localiser option coarse_step_m must be at least grid_resolution_m");
+  if (!(o.coarse_heading_step_rad >= 1e-3 && o.coarse_heading_step_rad <= geometry::kPi))
+    throw std::invalid_argument(
+        "global localiser option coarse_heading_step_rad must lie in [0.001, pi]");
   if (!(o.grid_margin_m >= 0.0) || !(o.min_range_m >= 0.0) || !(o.clearance_m >= 0.0) ||
       !(o.coarse_blur_m >= 0.0) || !(o.see_through_margin_m >= 0.0) || !(o.ambiguity_margin >= 0.0))
     throw std::invalid_argument(
         "global localiser options grid_margin_m, min_range_m, clearance_m, coarse_blur_m, "
         "see_through_margin_m and ambiguity_margin must not be negative");
+  if (!(o.min_range_m < o.max_range_m))
+    throw std::invalid_argument("global localiser option min_range_m must be below max_range_m");
   if (!(o.min_score >= 0.0 && o.min_score <= 1.0))
     throw std::invalid_argument("global localiser option min_score must lie in [0, 1]");
   if (o.max_points < 3 || o.coarse_points < 3 || o.min_points < 3 || o.rank_points < 3 ||
@@ -96,9 +106,10 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   const Eigen::Vector4d bounds = world.Bounds();
   cells_.x0 = bounds[0] - options.grid_margin_m;
   cells_.y0 = bounds[1] - options.grid_margin_m;
-  const double columns = std::ceil((bounds[2] + options.grid_margin_m - cells_.x0) / res);
-  const double rows = std::ceil((bounds[3] + options.grid_margin_m - cells_.y0) / res);
-  if (columns * rows > kMaxCells)
+  // Cells up to and including the one holding the far bound (also with no margin).
+  const double columns = std::floor((bounds[2] + options.grid_margin_m - cells_.x0) / res) + 1;
+  const double rows = std::floor((bounds[3] + options.grid_margin_m - cells_.y0) / res) + 1;
+  if (!(columns * rows <= kMaxCells))
     throw std::invalid_argument(
         "global localiser: the map needs a distance field of more than 50 million cells; "
         "choose a coarser grid_resolution_m");
@@ -148,10 +159,15 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   }
 
   // Coarse candidate positions: a lattice over the map's bounds, clear of walls.
-  for (double y = bounds[1]; y <= bounds[3]; y += options.coarse_step_m) {
-    for (double x = bounds[0]; x <= bounds[2]; x += options.coarse_step_m) {
+  const double step = options.coarse_step_m;
+  const int steps_x = static_cast<int>(std::floor((bounds[2] - bounds[0]) / step));
+  const int steps_y = static_cast<int>(std::floor((bounds[3] - bounds[1]) / step));
+  for (int j = 0; j <= steps_y; ++j) {
+    for (int i = 0; i <= steps_x; ++i) {
+      const double x = bounds[0] + i * step, y = bounds[1] + j * step;
       const int c = static_cast<int>(std::floor((x - cells_.x0) / res));
       const int r = static_cast<int>(std::floor((y - cells_.y0) / res));
+      if (c < 0 || r < 0 || c >= cells_.width || r >= cells_.height) continue;
       if (distance.at<float>(r, c) * res >= options.clearance_m) positions_.emplace_back(x, y);
     }
   }
@@ -273,7 +289,7 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
   const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
   result.points_used = all.size();
   if (all.size() < static_cast<size_t>(options_.min_points)) {
-    result.reason = "only " + std::to_string(points.size()) + " readings within " +
+    result.reason = "only " + std::to_string(all.size()) + " readings within " +
                     std::to_string(options_.min_range_m) + ".." +
                     std::to_string(options_.max_range_m) + " m";
     return result;
@@ -301,9 +317,12 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
   hits.reserve(positions_.size() * 2);
   std::vector<float> scores(static_cast<size_t>(headings));
   const size_t n = coarse.size();
+  // A lattice position half a lattice diagonal outside the window can still
+  // be the one nearest a pose inside it.
+  const double reach =
+      window != nullptr ? window->radius_m + options_.coarse_step_m * std::sqrt(0.5) : 0.0;
   for (size_t k = 0; k < positions_.size(); ++k) {
-    if (window != nullptr &&
-        (positions_[k] - window->centre.Translation()).norm() > window->radius_m) {
+    if (window != nullptr && (positions_[k] - window->centre.Translation()).norm() > reach) {
       continue;
     }
     const float px = static_cast<float>((positions_[k].x() - cells_.x0) / res);
@@ -318,9 +337,10 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
       const float* o = &offsets[static_cast<size_t>(h) * n * 2];
       float sum = 0.0f;
       for (size_t i = 0; i < n; ++i) {
-        const int c = static_cast<int>(px + o[2 * i]);
-        const int r = static_cast<int>(py + o[2 * i + 1]);
-        if (c >= 0 && r >= 0 && c < cells_.width && r < cells_.height)
+        const float fc = px + o[2 * i], fr = py + o[2 * i + 1];
+        if (!(fc >= 0.0f && fr >= 0.0f)) continue;  // off the grid (not truncated onto it)
+        const int c = static_cast<int>(fc), r = static_cast<int>(fr);
+        if (c < cells_.width && r < cells_.height)
           sum += coarse_gain_[static_cast<size_t>(r) * cells_.width + c];
       }
       scores[static_cast<size_t>(h)] = sum;
@@ -366,6 +386,20 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
                       std::abs(geometry::WrapAngle(r.pose.theta - candidate.pose.theta)) < 0.035);
     }
     if (!seen) refined.push_back(candidate);
+  }
+  // The best pose distinct from the best one must be ranked too, however many
+  // near-duplicates of the best outscored it in the refinement: without it a
+  // symmetric twin would never be weighed and the best would look unrivalled.
+  if (!refined.empty()) {
+    const bool rivalled = std::any_of(refined.begin() + 1, refined.end(), [&](const auto& r) {
+      return Distinct(r.pose, refined.front().pose, options_);
+    });
+    if (!rivalled) {
+      const auto twin = std::find_if(converged.begin(), converged.end(), [&](const auto& c) {
+        return Distinct(c.pose, refined.front().pose, options_);
+      });
+      if (twin != converged.end()) refined.push_back(*twin);
+    }
   }
   // Polishing on the sharp field with all points, and ranking.
   for (auto& candidate : refined) {

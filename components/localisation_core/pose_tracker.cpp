@@ -150,7 +150,16 @@ std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometr
   filter_.Reset(pose, covariance);
   corrected_ = false;
   initialised_ = true;
+  // A search before this pose was given must neither hurry nor confirm the next one.
+  low_share_since_ = -1.0;
+  pending_correction_.reset();
   return std::nullopt;
+}
+
+void PoseTracker::ForgetPose() {
+  initialised_ = false;
+  low_share_since_ = -1.0;
+  pending_correction_.reset();
 }
 
 void PoseTracker::Anticipate() {
@@ -309,11 +318,14 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   if (scan.stamp - low_share_since_ < options_.reacquire_after_s) return;
   // Lost: search around the tracked pose, as far as its uncertainty says.
   const Eigen::Matrix3d p = filter_.PoseCovariance();
-  const double sigma_xy = std::sqrt(std::max(p(0, 0), p(1, 1)));
+  // The position's largest standard deviation, along its principal axis.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> position(p.topLeftCorner<2, 2>());
+  const double sigma_xy = std::sqrt(std::max(0.0, position.eigenvalues().maxCoeff()));
   const geometry::Pose2D mount = localiser_.Options().sensor_mount;
   SearchWindow window;
   window.centre = geometry::Compose(filter_.Pose(), mount);
-  window.radius_m = std::clamp(3.0 * sigma_xy + 0.5, 0.5, options_.reacquire_max_radius_m);
+  // At least 0.5 m, at most reacquire_max_radius_m (even when that is smaller).
+  window.radius_m = std::min(std::max(3.0 * sigma_xy + 0.5, 0.5), options_.reacquire_max_radius_m);
   window.heading_rad = std::clamp(3.0 * std::sqrt(p(2, 2)) + 0.2, 0.2, geometry::kPi);
   const GlobalResult found = search_->Locate(check_points_, &window);
   low_share_since_ = scan.stamp;  // search again after another reacquire_after_s

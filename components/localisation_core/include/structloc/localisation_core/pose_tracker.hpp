@@ -129,7 +129,8 @@ class PoseTracker {
   bool HasInitialPose() const { return initialised_; }
   // Drops the pose (the robot was carried away): scans are refused until a new
   // initial pose; odometry and the calibration learnt so far stay.
-  void ForgetPose() { initialised_ = false; }
+  // Also drops what a search before it found (re-acquisition starts afresh).
+  void ForgetPose();
 
   enum class ScanVerdict { kProcessed, kWaitForOdometry, kRejected };
   struct ScanOutcome {
