@@ -375,6 +375,40 @@ TEST(DxfImportCli, WritesALoadableMapAndSaysWhatItDid) {
   EXPECT_GT(std::filesystem::file_size(dir / "w.png"), 1000u);
 }
 
+// What the importer accepts the world file holds and LoadWorldModel reads
+// back: coordinates are judged at the 0.1 mm the file is written with (a line
+// 1.0013 mm long whose ends round to 0.99 mm apart, a circle of 0.04 mm
+// radius), and only a closed arc is a pillar (not a 0.5 deg piece of a curve).
+TEST(DxfImportCli, WhatItImportsLoadsBack) {
+  const TempDir dir;
+  const std::string dxf =
+      dir.Write("edge.dxf", Dxf(Line("W", 0, 0, 4000, 0) + Line("W", 4000, 0, 4000, 3000) +
+                                Line("W", 1000.3, 1000.3, 1001.008, 1001.008) +
+                                Circle("W", 2000, 1500, 0.04) + Arc("W", 0, 0, 300, 10, 10.5)));
+  const auto r = RunCli({"map", "import", "--dxf", dxf, "--layers", "w", "--out", dir / "w.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("shorter than 1 mm"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("radius not positive (at 0.1 mm)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("not a full circle"), std::string::npos) << r.output;
+  const auto world = world_model::LoadWorldModel(dir / "w.xml");
+  EXPECT_EQ(world.Walls().size(), 2u);
+  EXPECT_EQ(world.Cylinders().size(), 0u);
+}
+
+// dxflib allocates for the vertices an LWPOLYLINE announces before reading
+// them: a few hundred bytes announcing 20 million must be refused first.
+TEST(DxfImportCli, AHugeAnnouncedVertexCountIsRefusedWithItsLine) {
+  const TempDir dir;
+  std::string entities = LwPolyline("W", {{{0, 0, 0}, {1000, 0, 0}}}, false);
+  entities.replace(entities.find("90\n2\n"), 6, "90\n20000000\n");
+  const std::string dxf = dir.Write("huge.dxf", Dxf(entities));
+  const auto r = RunCli({"map", "import", "--dxf", dxf, "--layers", "w", "--out", dir / "w.xml"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("huge.dxf:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("announces 20000000 items"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "w.xml"));
+}
+
 TEST(DxfImportCli, BadInputLeavesTheOutputAloneAndNamesTheFile) {
   const TempDir dir;
   const std::string out = dir.Write("w.xml", "previous");

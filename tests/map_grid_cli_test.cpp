@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "cli_runner.hpp"
 #include "structloc/map_formats/grid_map_file.hpp"
@@ -65,6 +67,31 @@ TEST(MapGridCli, BadGridsAreRefusedNamingTheFileAndLeaveTheOutputAlone) {
   result = RunCli({"map", "import", "--grid", dir / "empty.yaml", "--out", out, "--max-gap", "0"});
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_TRUE(Contains(result.output, "max-gap")) << result.output;
+}
+
+// In a "scale" grid the cells between the thresholds are graded 0..99; none
+// of them is occupied (that takes p above occupied_thresh). A room drawn in
+// grey 128 (p 0.498, under the default 0.65) holds no wall in either mode.
+TEST(MapGridCli, GreyBelowTheOccupiedThresholdIsNoWallInScaleModeEither) {
+  TempDir dir;
+  cv::Mat image(60, 80, CV_8U, cv::Scalar(254));
+  cv::rectangle(image, {5, 5}, {74, 54}, cv::Scalar(128), 2);
+  ASSERT_TRUE(cv::imwrite(dir / "grey.pgm", image));
+  for (const std::string mode : {"trinary", "scale"}) {
+    const std::string yaml =
+        dir.Write(mode + ".yaml",
+                  "image: grey.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: " + mode + "\n");
+    const auto result = RunCli({"map", "import", "--grid", yaml, "--out", dir / "w.xml"});
+    EXPECT_NE(result.exit_code, 0) << mode << ": " << result.output;
+    EXPECT_TRUE(Contains(result.output, "no occupied cell")) << mode << ": " << result.output;
+  }
+  // Drawn in black, scale mode finds the room's walls (both faces of each side).
+  cv::rectangle(image, {5, 5}, {74, 54}, cv::Scalar(0), 2);
+  ASSERT_TRUE(cv::imwrite(dir / "grey.pgm", image));
+  const auto result =
+      RunCli({"map", "import", "--grid", dir / "scale.yaml", "--out", dir / "w.xml"});
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(Contains(result.output, "8 walls")) << result.output;
 }
 
 TEST(MapGridCli, ExportRefusesBadResolutionsAndOverwritingItsInput) {

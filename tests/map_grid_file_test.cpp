@@ -107,6 +107,30 @@ TEST(GridMapFile, ValuesFollowMapServer) {
   EXPECT_EQ(thresholds.At(1, 0), OccupancyGrid::kOccupied);
 }
 
+// A binary PGM's white is its maxval, as map_server reads it (OpenCV hands
+// binary PGMs over unscaled): a maxval of 100 or of 1023 is not 255 or 65535.
+TEST(GridMapFile, APgmsMaxvalIsItsWhite) {
+  TempDir dir;
+  const std::string eight = std::string("P5\n3 1\n100\n") + '\x00' + '\x32' + '\x64';
+  dir.Write("m100.pgm", eight);
+  std::string sixteen = "P5\n3 1\n1023\n";
+  for (const int v : {0, 512, 1019}) {
+    sixteen += static_cast<char>(v >> 8);
+    sixteen += static_cast<char>(v & 0xff);
+  }
+  dir.Write("m1023.pgm", sixteen);
+  for (const std::string image : {"m100.pgm", "m1023.pgm"}) {
+    map_formats::GridMapMode mode = map_formats::GridMapMode::kRaw;
+    const OccupancyGrid grid = LoadGridMap(
+        dir.Write(image + ".yaml", "image: " + image + "\nresolution: 1\norigin: [0, 0, 0]\n"), {},
+        &mode);
+    EXPECT_EQ(mode, map_formats::GridMapMode::kTrinary);
+    EXPECT_EQ(grid.At(0, 0), OccupancyGrid::kOccupied) << image;
+    EXPECT_EQ(grid.At(1, 0), OccupancyGrid::kUnknown) << image;  // half grey: p 0.5
+    EXPECT_EQ(grid.At(2, 0), OccupancyGrid::kFree) << image;
+  }
+}
+
 TEST(GridMapFile, ColourImagesAreAveragedAndImagePathsAreRelativeToTheYaml) {
   TempDir dir;
   std::filesystem::create_directory(dir / "maps");

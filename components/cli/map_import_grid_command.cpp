@@ -19,12 +19,13 @@
 namespace structloc::cli {
 namespace {
 
-void DrawPlot(const map_building::OccupancyGrid& grid, const world_model::WorldModel& world,
-              const std::string& title, config::OutputFile& file) {
+void DrawPlot(const map_building::OccupancyGrid& grid, int occupied_min_value,
+              const world_model::WorldModel& world, const std::string& title,
+              config::OutputFile& file) {
   std::vector<Eigen::Vector2d> occupied;
   for (int row = 0; row < grid.height; ++row)
     for (int column = 0; column < grid.width; ++column)
-      if (grid.At(column, row) >= map_building::GridVectoriseOptions{}.occupied_min_value)
+      if (grid.At(column, row) >= occupied_min_value)
         occupied.push_back(grid.CellCentre(column, row));
   Eigen::Vector4d bounds = world.Bounds();
   for (const auto& p : occupied) {
@@ -87,7 +88,16 @@ int MapImportGridCommand(const Invocation& inv) {
     read.ignore_unknown_keys = cli.Has("ignore-unknown-keys");
     const std::string name = cli.GetOr("name", std::filesystem::path(grid_path).stem().string());
 
-    const auto grid = map_formats::LoadGridMap(grid_path, read);
+    map_formats::GridMapMode mode = map_formats::GridMapMode::kTrinary;
+    const auto grid = map_formats::LoadGridMap(grid_path, read, &mode);
+    // Trinary and scale grids come with the YAML's thresholds applied: a value
+    // below 100 is below occupied_thresh (scale's 0..99 only grade the cells
+    // in between). Raw grids hold probabilities in percent, judged by the
+    // vectoriser's map_saver thresholds.
+    if (mode != map_formats::GridMapMode::kRaw) {
+      options.occupied_min_value = map_building::OccupancyGrid::kOccupied;
+      options.free_max_value = map_building::OccupancyGrid::kFree;
+    }
     map_building::GridVectorisation result;
     try {
       result = map_building::VectoriseGrid(grid, options);
@@ -111,7 +121,7 @@ int MapImportGridCommand(const Invocation& inv) {
          << " m";
     world_model::WriteWorldModel(world, {made.str()}, out.Stream());
     if (plot) {
-      DrawPlot(grid, world,
+      DrawPlot(grid, options.occupied_min_value, world,
                name + ": " + std::to_string(world.Walls().size()) + " walls, " +
                    std::to_string(world.Cylinders().size()) + " pillars from " + grid_path,
                *plot);

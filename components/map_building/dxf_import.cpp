@@ -19,6 +19,7 @@
 
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/map_building/collinear_merging.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -156,7 +157,9 @@ class Importer {
   // is an error (usually a wrong unit), a left-out layer's one is not drawn.
   std::optional<Eigen::Vector2d> Metres(const Eigen::Vector2d& p, bool chosen,
                                         const std::string& layer, const std::string& kind) const {
-    const Eigen::Vector2d m = p * report_.unit.metres;
+    // As the world file will hold it, so that the checks below judge that.
+    const Eigen::Vector2d m(world_model::AsWritten(p.x() * report_.unit.metres),
+                            world_model::AsWritten(p.y() * report_.unit.metres));
     const double limit = options_.limits.max_abs_coordinate_m;
     if (std::isfinite(m.x()) && std::isfinite(m.y()) && std::abs(m.x()) <= limit &&
         std::abs(m.y()) <= limit)
@@ -219,14 +222,14 @@ class Importer {
                  double radius) {
     Count* c = Entity(layer, kind);
     const auto m = Metres(centre, c != nullptr, layer, kind);
-    const double r = radius * report_.unit.metres;
+    const double r = world_model::AsWritten(radius * report_.unit.metres);
     if (c == nullptr) {
       if (m && std::isfinite(r) && r > 0.0 && r <= options_.limits.max_radius_m)
         left_out_.circles.push_back({*m, r});
       return;
     }
     if (!(std::isfinite(r) && r > 0.0)) {
-      ++c->skipped["radius not positive"];
+      ++c->skipped["radius not positive (at 0.1 mm)"];
       return;
     }
     if (r > options_.limits.max_radius_m) {
@@ -242,8 +245,7 @@ class Importer {
   void AddArc(const CadDrawing::Arc& a) {
     double sweep = std::fmod(a.end_deg - a.start_deg, 360.0);
     if (sweep <= 0.0) sweep += 360.0;
-    if (std::abs(sweep - 360.0) <= options_.full_circle_tolerance_deg ||
-        sweep <= options_.full_circle_tolerance_deg) {
+    if (std::abs(sweep - 360.0) <= options_.full_circle_tolerance_deg) {
       AddCircle(a.layer, "ARC", a.centre, a.radius);
       return;
     }

@@ -25,7 +25,7 @@ namespace {
 
 using config::ConfigError;
 
-enum class Mode { kTrinary, kScale, kRaw };
+using Mode = GridMapMode;
 
 struct GridYaml {
   std::string image_path;  // resolved against the YAML's folder
@@ -148,9 +148,17 @@ GridYaml ReadYaml(const std::string& path, const GridMapReadOptions& options) {
   return yaml;
 }
 
-// Width and height from a PGM or PNG header, so that a huge image is refused
-// before it is decoded; nullopt for other formats (checked after decoding).
-std::optional<std::array<uint64_t, 2>> ImageSizeFromHeader(const std::string& path) {
+// What a PGM or PNG header says: the size, so that a huge image is refused
+// before it is decoded, and for a PGM its largest grey value (maxval).
+struct ImageHeader {
+  uint64_t width = 0;
+  uint64_t height = 0;
+  uint64_t pgm_maxval = 0;  // 0: not a PGM
+  bool pgm_ascii = false;   // P2 rather than P5
+};
+
+// The header of a PGM or PNG; nullopt for other formats (checked after decoding).
+std::optional<ImageHeader> ReadImageHeader(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::array<unsigned char, 24> head{};
   in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
@@ -161,13 +169,16 @@ std::optional<std::array<uint64_t, 2>> ImageSizeFromHeader(const std::string& pa
       return (uint64_t{head[at]} << 24) | (uint64_t{head[at + 1]} << 16) |
              (uint64_t{head[at + 2]} << 8) | uint64_t{head[at + 3]};
     };
-    return std::array<uint64_t, 2>{be32(16), be32(20)};
+    ImageHeader header;
+    header.width = be32(16);
+    header.height = be32(20);
+    return header;
   }
   if (got >= 2 && head[0] == 'P' && (head[1] == '2' || head[1] == '5')) {
     in.clear();
     in.seekg(2);
-    std::array<uint64_t, 2> size{};
-    for (auto& value : size) {
+    std::array<uint64_t, 3> fields{};  // width, height, maxval
+    for (auto& value : fields) {
       for (int c = in.peek(); c == '#' || std::isspace(c); c = in.peek()) {
         if (c == '#') {
           std::string comment;
@@ -178,7 +189,12 @@ std::optional<std::array<uint64_t, 2>> ImageSizeFromHeader(const std::string& pa
       }
       if (!(in >> value)) return std::nullopt;
     }
-    return size;
+    ImageHeader header;
+    header.width = fields[0];
+    header.height = fields[1];
+    header.pgm_maxval = fields[2];
+    header.pgm_ascii = head[1] == '2';
+    return header;
   }
   return std::nullopt;
 }
@@ -193,10 +209,9 @@ cv::Mat ReadImage(const std::string& yaml_path, const std::string& image_path,
     throw ConfigError(yaml_path + ": the image it names, " + image_path + ", does not exist");
   const std::string too_large = yaml_path + ": the image " + image_path + " is too large: ";
   const std::string limit = " cells (the limit is " + std::to_string(options.max_cells) + ")";
-  if (const auto size = ImageSizeFromHeader(image_path)) {
-    if ((*size)[0] * (*size)[1] > options.max_cells)
-      throw ConfigError(too_large + SizeText((*size)[0], (*size)[1]) + limit);
-  }
+  const auto header = ReadImageHeader(image_path);
+  if (header && header->width * header->height > options.max_cells)
+    throw ConfigError(too_large + SizeText(header->width, header->height) + limit);
   cv::Mat image;
   try {
     image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
@@ -210,13 +225,21 @@ cv::Mat ReadImage(const std::string& yaml_path, const std::string& image_path,
     throw ConfigError(
         too_large + SizeText(static_cast<uint64_t>(image.cols), static_cast<uint64_t>(image.rows)) +
         limit);
-  if (image.depth() == CV_16U) {
-    cv::Mat eight;
-    image.convertTo(eight, CV_8U, 1.0 / 257.0);
-    image = eight;
-  } else if (image.depth() != CV_8U) {
+  if (image.depth() != CV_8U && image.depth() != CV_16U)
     throw ConfigError(yaml_path + ": the image " + image_path +
                       " has neither 8 nor 16 bits per channel");
+  // Grey levels to 0..255 as map_server reads them: white is a PGM's maxval
+  // (OpenCV scales only ASCII PGMs of up to 8 bits itself), a 16-bit PNG's 65535.
+  double full = image.depth() == CV_16U ? 65535.0 : 255.0;
+  if (header && header->pgm_maxval > 0 && !(header->pgm_ascii && image.depth() == CV_8U))
+    full = static_cast<double>(header->pgm_maxval);
+  if (!(full >= 1.0 && full <= 65535.0))
+    throw ConfigError(yaml_path + ": the image " + image_path + " has a maxval of " +
+                      std::to_string(header ? header->pgm_maxval : 0) + " (PGM allows 1..65535)");
+  if (image.depth() != CV_8U || full != 255.0) {
+    cv::Mat eight;
+    image.convertTo(eight, CV_8U, 255.0 / full);
+    image = eight;
   }
   return image;
 }
@@ -249,8 +272,10 @@ std::string NumberText(double value) {
 
 }  // namespace
 
-OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options) {
+OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options,
+                          GridMapMode* mode) {
   const GridYaml yaml = ReadYaml(yaml_path, options);
+  if (mode != nullptr) *mode = yaml.mode;
   const cv::Mat image = ReadImage(yaml_path, yaml.image_path, options);
   OccupancyGrid grid(image.cols, image.rows, yaml.resolution_m, yaml.origin);
   const int channels = image.channels();

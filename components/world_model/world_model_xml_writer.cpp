@@ -1,5 +1,6 @@
 // World model XML writer: the output of the map builders and importers, read
 // back by LoadWorldModel (see world_model_xml.hpp).
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -43,10 +44,14 @@ std::string AttributeSafe(const std::string& text) {
 
 }  // namespace
 
+double AsWritten(double metres) {
+  return std::round(metres * 1e4) / 1e4;
+}
+
 void WriteWorldModel(const WorldModel& world, const std::vector<std::string>& comment_lines,
                      std::ostream& out) {
   std::ostringstream xml;
-  xml << std::fixed << std::setprecision(4);
+  xml << std::fixed << std::setprecision(4);  // AsWritten's 0.1 mm
   xml << "<?xml version=\"1.0\"?>\n";
   if (!comment_lines.empty()) {
     xml << "<!--\n";

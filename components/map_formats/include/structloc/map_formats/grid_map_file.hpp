@@ -16,6 +16,9 @@ namespace structloc::map_formats {
 // The grid type is the map builder's; this file only reads and writes it.
 using map_building::OccupancyGrid;
 
+// A map_server YAML's `mode`: how grey levels became cell values.
+enum class GridMapMode { kTrinary, kScale, kRaw };
+
 // How strictly a map_server YAML is read, and how large a grid may be.
 struct GridMapReadOptions {
   static constexpr size_t kDefaultMaxCells = 100'000'000;  // 10000 x 10000 cells, 100 MB
@@ -44,8 +47,12 @@ struct GridMapReadOptions {
 // as map_saver writes raw maps). Throws config::ConfigError naming the file and
 // what is wrong (unreadable YAML, missing or unknown key, resolution not
 // positive, unknown mode, thresholds outside [0, 1] or free >= occupied,
-// missing or unreadable image, image too large, empty image).
-OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options = {});
+// missing or unreadable image, image too large, empty image). A PGM's grey
+// levels are read against its maxval (white), a 16-bit PNG's against 65535.
+// `mode`, when given, receives the YAML's mode: with "trinary" and "scale"
+// the thresholds are applied already (only 100 is occupied, only 0 free).
+OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options = {},
+                          GridMapMode* mode = nullptr);
 
 // Writes `<yaml_path>` and a PGM image beside it (same stem), trinary mode,
 // negate 0, occupied_thresh 0.65, free_thresh 0.196 (map_saver's defaults), so

@@ -29,4 +29,9 @@ WorldModel ReadWorldModel(const config::XmlFile& file, const tinyxml2::XMLElemen
 void WriteWorldModel(const WorldModel& world, const std::vector<std::string>& comment_lines,
                      std::ostream& out);
 
+// A length or coordinate as WriteWorldModel writes it (rounded to 0.1 mm), so
+// that an importer can check what the file will hold (a wall 1.0001 mm long
+// may be written 0.99 mm long, which LoadWorldModel refuses).
+double AsWritten(double metres);
+
 }  // namespace structloc::world_model
