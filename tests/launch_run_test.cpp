@@ -6,8 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <regex>
 
 #include "dds_test_support.hpp"
@@ -126,6 +130,57 @@ TEST(LaunchEnvironment, ASetEnvGroupPutsItsNodesOnTheDomainItNames) {
             std::string::npos)
       << launch.CapturedOutput();
   launch.Stop(10s);
+}
+
+// The stop reaches what a node started (a wrapper script's program is no
+// orphan), a program without a SIGINT handler ended by the stop's SIGINT has
+// stopped as asked (exit 0), and nodes deaf to SIGINT and SIGTERM are stopped
+// together: SIGTERM after the grace, SIGKILL 2 s later, for all of them at once.
+TEST(LaunchStop, EveryNodeAndWhatItStartedStopsTogether) {
+  const testing::TempDir dir;
+  // The wrapper's program, told apart from every other by its duration.
+  const std::string marker = "sleep 9" + std::to_string(getpid());
+  const std::string wrapper = dir.Write("wrapper.sh", "#!/bin/sh\n/bin/" + marker + "\n");
+  const std::string deaf = dir.Write("deaf.sh", "#!/bin/sh\ntrap '' INT TERM\n/bin/sleep 300\n");
+  ASSERT_EQ(chmod(wrapper.c_str(), 0755), 0);
+  ASSERT_EQ(chmod(deaf.c_str(), 0755), 0);
+  auto orphans = [&] {
+    return std::system(("pgrep -f '^/bin/" + marker + "$' > /dev/null").c_str()) == 0;
+  };
+  const std::string plain = dir.Write(
+      "plain.launch.xml", "<launch><executable cmd='" + wrapper + "' name='wrapper'/>" +
+                              "<executable cmd='/bin/sleep 300' name='sleeper'/></launch>");
+  process::ChildProcess first(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                              {"launch", plain, "--duration", "1"});
+  EXPECT_TRUE(testing::WaitUntil([&] { return orphans(); })) << first.CapturedOutput();
+  const auto code = first.WaitExit(20s);
+  ASSERT_TRUE(code.has_value()) << first.CapturedOutput();
+  EXPECT_EQ(*code, 0) << first.CapturedOutput();
+  EXPECT_NE(first.CapturedOutput().find("sleeper exited with code 130 (stopped by the launch's"),
+            std::string::npos)
+      << first.CapturedOutput();
+  EXPECT_TRUE(testing::WaitUntil([&] { return !orphans(); }, 5s)) << "the wrapper's sleep lives on";
+  if (orphans()) std::system(("pkill -f '^/bin/" + marker + "$'").c_str());
+
+  const std::string deaf_file =
+      dir.Write("deaf.launch.xml",
+                "<launch><executable cmd='" + deaf + "' name='a'/><executable cmd='" + deaf +
+                    "' name='b'/><executable cmd='" + deaf + "' name='c'/></launch>");
+  process::ChildProcess second(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                               {"launch", deaf_file, "--duration", "1"});
+  const auto started = std::chrono::steady_clock::now();
+  const auto deaf_code = second.WaitExit(60s);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  ASSERT_TRUE(deaf_code.has_value()) << second.CapturedOutput();
+  EXPECT_EQ(*deaf_code, 1) << second.CapturedOutput();  // they had to be killed
+  for (const char* node : {"a", "b", "c"})
+    EXPECT_NE(
+        second.CapturedOutput().find(std::string("[launch] ") + node + " exited with code 137"),
+        std::string::npos)
+        << second.CapturedOutput();
+  // 1 s + 5 s grace + 2 s: one after the other it took 12 s.
+  EXPECT_LT(seconds, 11.0) << second.CapturedOutput();
 }
 
 }  // namespace

@@ -28,7 +28,10 @@ namespace {
 [[noreturn]] void ExecChild(const char* path, char* const* argv, char* const* envp, int output_fd,
                             pid_t parent, int error_pipe) {
   int error = 0;
-  if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
+  // A process group of its own, so that a stop reaches what it starts too (a
+  // wrapper script's program would otherwise outlive the stop).
+  if (setpgid(0, 0) != 0) error = errno;
+  if (error == 0 && prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) error = errno;
   // The parent may have died before prctl took effect.
   if (error == 0 && getppid() != parent) _exit(127);
   // The program starts with the stop signals a shell would give it: the
@@ -121,6 +124,9 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
     ExecChild(executable.c_str(), argv.data(), envp.data(), fd, parent, error_pipe[1]);
   }
   const int fork_error = pid_ < 0 ? errno : 0;
+  // Also here, so that the group exists before any signal (the child may not
+  // have run yet); EACCES once it has exec'd is harmless, it did it itself.
+  if (pid_ > 0) setpgid(pid_, pid_);
   close(error_pipe[1]);
   if (fd >= 0) close(fd);
   int exec_error = fork_error;
@@ -142,15 +148,19 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
 
 ChildProcess::~ChildProcess() {
   if (!exit_code_) {
-    kill(pid_, SIGKILL);
+    Signal(SIGKILL);
     waitpid(pid_, nullptr, 0);
   }
+  // What the child started and left behind goes too.
+  if (pid_ > 0) kill(-pid_, SIGKILL);
   if (!log_path_.empty()) std::remove(log_path_.c_str());
   if (pipe_fd_ >= 0) close(pipe_fd_);
 }
 
 void ChildProcess::Signal(int signal_number) const {
-  if (!exit_code_) kill(pid_, signal_number);
+  if (exit_code_ || pid_ <= 0) return;
+  // The child's whole process group; the child alone if it has none yet.
+  if (kill(-pid_, signal_number) != 0) kill(pid_, signal_number);
 }
 
 std::optional<int> ChildProcess::Poll() {

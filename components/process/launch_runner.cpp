@@ -6,6 +6,8 @@
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <thread>
+#include <vector>
 
 #include "structloc/process/child_process.hpp"
 
@@ -111,23 +113,44 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
     }
   }
   std::cout << "[launch] stopping all nodes (" << reason << ")" << std::endl;
-  // As ros2 launch does: SIGINT to every node at once, SIGTERM to one still
-  // running after the grace, SIGKILL if that does not end it either.
-  for (auto& running : nodes) {
-    if (running.child) running.child->Signal(SIGINT);  // none while waiting to respawn
+  // As ros2 launch does: SIGINT to every node at once, SIGTERM to those still
+  // running after the grace, SIGKILL to those still running 2 s later; all
+  // nodes together, their output relayed all the while (a node writing much
+  // as it stops must not block on a full pipe).
+  const double escalation_s[] = {options.stop_grace_s, 2.0, 5.0};
+  const int escalation_signal[] = {SIGINT, SIGTERM, SIGKILL};
+  std::vector<int> stopped_by(nodes.size(), 0);  // the last signal we sent it
+  for (int step = 0; step < 3; ++step) {
+    bool any = false;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      if (!nodes[i].child || nodes[i].child->Poll()) continue;  // none while waiting to respawn
+      nodes[i].child->Signal(escalation_signal[step]);
+      stopped_by[i] = escalation_signal[step];
+      any = true;
+    }
+    if (!any) break;
+    const auto deadline =
+        Clock::now() + std::chrono::milliseconds(static_cast<long>(escalation_s[step] * 1000));
+    for (bool running = true; running && Clock::now() < deadline;) {
+      running = false;
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        if (!nodes[i].child) continue;
+        running = !nodes[i].child->Poll() || running;
+        Relay(description.nodes[i], nodes[i], false);
+      }
+      if (running) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
   }
-  const auto deadline =
-      Clock::now() + std::chrono::milliseconds(static_cast<long>(options.stop_grace_s * 1000));
   for (size_t i = 0; i < nodes.size(); ++i) {
     if (!nodes[i].child) continue;
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    auto exited = nodes[i].child->WaitExit(std::max(left, std::chrono::milliseconds(0)));
-    const int code = exited ? *exited : nodes[i].child->Stop(std::chrono::seconds(2));
     Relay(description.nodes[i], nodes[i], true);
+    const int code = nodes[i].child->Poll().value_or(128 + SIGKILL);
+    // Ended by the SIGINT of this stop (a program without a handler): stopped
+    // as asked, not failed. One that needed SIGTERM or SIGKILL did not stop.
+    const bool asked = code == 128 + SIGINT && stopped_by[i] == SIGINT;
     std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code
-              << std::endl;
-    if (code != 0) result = 1;
+              << (asked ? " (stopped by the launch's signal)" : "") << std::endl;
+    if (code != 0 && !asked) result = 1;
   }
   return result;
 }

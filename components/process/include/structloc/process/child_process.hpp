@@ -1,6 +1,7 @@
-// One child process of ours: started with fork and exec, output either
-// inherited or captured to a temp file, always reaped (SIGKILL in the
-// destructor if it is still running), and sent SIGTERM by the kernel when the
+// One child process of ours: started with fork and exec in a process group of
+// its own (signals reach the processes it starts too), output either
+// inherited or captured to a temp file, always reaped (SIGKILL to its group in
+// the destructor if it is still running), and sent SIGTERM by the kernel when the
 // thread that started it dies (PR_SET_PDEATHSIG), so that neither a launcher
 // killed with SIGKILL nor a failing test leaves processes behind. DDS-free.
 #pragma once
