@@ -119,6 +119,34 @@ TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
       [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
 }
 
+// As ROS 2 launch reads them: $(env NAME) sees a <set_env> in scope, if and
+// unless take true and false in any case, an <include> left out by its
+// condition is not substituted (its file may name a variable only set where it
+// is wanted), and an included file may launch nothing where its conditions say so.
+TEST(LaunchFiles, SetEnvConditionsAndOptionalIncludesReadAsInRos2) {
+  const testing::TempDir temp;
+  const std::string optional = temp.Write("optional.launch.xml", R"xml(<launch>
+  <arg name="enable" default="false"/>
+  <group if="$(var enable)"><executable cmd="/bin/true" name="extra"/></group>
+</launch>)xml");
+  const std::string path = temp.Write("main.launch.xml", R"xml(<launch>
+  <group>
+    <set_env name="STRUCTLOC_LAUNCH_TEST_SET" value="from set_env"/>
+    <executable cmd="/bin/echo $(env STRUCTLOC_LAUNCH_TEST_SET)" name="echo" if="TRUE"/>
+  </group>
+  <executable cmd="/bin/false" name="never" unless="True"/>
+  <include file="$(env STRUCTLOC_LAUNCH_TEST_NEVER_SET)" if="False"/>
+  <include file=")xml" + optional + R"xml("/>
+</launch>)xml");
+  const auto d = process::ReadLaunchFile(path, Context());
+  ASSERT_EQ(d.nodes.size(), 1u);
+  EXPECT_EQ(d.nodes[0].name, "echo");
+  EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"from", "set_env"}));
+  testing::ExpectRejected(
+      "<launch><executable cmd='/bin/true' if='yes'/></launch>", "not true, false, 1 or 0",
+      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+}
+
 TEST(LaunchFiles, ExecutablesRunProgramsFromPathWithTheirArgumentsAndEnvironment) {
   const testing::TempDir temp;
   const std::string path = temp.Write("executable.launch.xml", R"xml(<launch>

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -53,8 +54,11 @@ class ValueBuilder {
   std::string value_;
 };
 
+// `environment`: the <set_env>s in scope, which $(env NAME) sees before the
+// launcher's own environment (as the nodes will).
 std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
                        const std::string& text, const std::map<std::string, std::string>& vars,
+                       const std::vector<std::pair<std::string, std::string>>& environment,
                        const LaunchContext& context, size_t* total_bytes) {
   // std::regex recurses per character: refuse over-long text before matching.
   if (text.size() > context.max_value_bytes) {
@@ -78,7 +82,10 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
       if (name != "structloc") file.Fail(where, "unknown package '" + name + "'");
       out.Append(context.package_share_dir);
     } else if (kind == "env") {
-      const char* value = std::getenv(name.c_str());
+      const auto set = std::find_if(environment.begin(), environment.end(),
+                                    [&](const auto& variable) { return variable.first == name; });
+      const char* value =
+          set != environment.end() ? set->second.c_str() : std::getenv(name.c_str());
       if (value == nullptr) file.Fail(where, "environment variable " + name + " is not set");
       out.Append(value);
     } else {
@@ -151,7 +158,8 @@ class LaunchReader {
                                   name + ":=" + value);
       }
     }
-    if (description_.nodes.empty()) {
+    // An included file may launch nothing where its conditions say so.
+    if (description_.nodes.empty() && includers_.empty()) {
       throw config::ConfigError(file_.Path() + ": launches no <node> or <executable>");
     }
     return std::move(description_);
@@ -208,11 +216,14 @@ class LaunchReader {
   void Include(const tinyxml2::XMLElement& e, const Scope& scope) {
     constexpr size_t kMaxDepth = 8;
     AttributeReader attrs(file_, e);
-    const std::string path = Substitute(e, attrs.String("file"), scope);
+    const std::string file_text = attrs.String("file");
+    // The condition first: an include left out may name a file that only
+    // exists, or a variable only set, where it is wanted.
     const bool active = Condition(e, attrs, scope);
     attrs.Finish();
     config::RequireChildNames(file_, e, {"arg"});
     if (!active) return;
+    const std::string path = Substitute(e, file_text, scope);
     std::vector<std::string> chain = includers_;
     chain.push_back(file_.Path());
     for (const auto& f : chain) {
@@ -417,18 +428,21 @@ class LaunchReader {
     return active;
   }
 
-  // A boolean attribute's value after substitution: true, True, 1, false, False or 0.
+  // A boolean attribute's value after substitution: true or false in any case, 1 or 0.
   bool Boolean(const tinyxml2::XMLElement& e, AttributeReader& attrs, const char* key,
                const std::string& text, const Scope& scope) {
-    const std::string value = Substitute(e, text, scope);
-    if (value == "true" || value == "True" || value == "1") return true;
-    if (value == "false" || value == "False" || value == "0") return false;
+    // Any case, as ROS 2 launch reads it.
+    std::string value = Substitute(e, text, scope);
+    for (auto& c : value) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (value == "true" || value == "1") return true;
+    if (value == "false" || value == "0") return false;
     attrs.Fail(std::string(key) + "=\"" + text + "\" is '" + value + "', not true, false, 1 or 0");
   }
 
   std::string Substitute(const tinyxml2::XMLElement& where, const std::string& text,
                          const Scope& scope) {
-    return process::Substitute(file_, where, text, scope.vars, context_, total_bytes_);
+    return process::Substitute(file_, where, text, scope.vars, scope.environment, context_,
+                               total_bytes_);
   }
 
   // Namespaces nest as ROS 2's do: "robot1" inside "fleet" is "fleet/robot1";
