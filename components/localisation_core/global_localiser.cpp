@@ -21,7 +21,6 @@ void Check(const GlobalLocaliserOptions& o) {
   RequirePositive(o.grid_resolution_m, "grid_resolution_m");
   RequirePositive(o.max_range_m, "max_range_m");
   RequirePositive(o.coarse_step_m, "coarse_step_m");
-  RequirePositive(o.coarse_heading_step_rad, "coarse_heading_step_rad");
   RequirePositive(o.truncation_m, "truncation_m");
   RequirePositive(o.rank_truncation_m, "rank_truncation_m");
   RequirePositive(o.distinct_distance_m, "distinct_distance_m");

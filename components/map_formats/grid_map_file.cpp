@@ -25,8 +25,6 @@ namespace {
 
 using config::ConfigError;
 
-using Mode = GridMapMode;
-
 struct GridYaml {
   std::string image_path;  // resolved against the YAML's folder
   double resolution_m = 0.0;
@@ -34,7 +32,7 @@ struct GridYaml {
   bool negate = false;
   double occupied_thresh = 0.65;
   double free_thresh = 0.196;
-  Mode mode = Mode::kTrinary;
+  GridMapMode mode = GridMapMode::kTrinary;
 };
 
 const std::set<std::string> kKnownKeys = {"image",           "resolution",  "origin", "negate",
@@ -119,11 +117,11 @@ GridYaml ReadYaml(const std::string& path, const GridMapReadOptions& options) {
     } else if (key == "mode") {
       const std::string text = value.IsScalar() ? value.Scalar() : std::string();
       if (text == "trinary") {
-        yaml.mode = Mode::kTrinary;
+        yaml.mode = GridMapMode::kTrinary;
       } else if (text == "scale") {
-        yaml.mode = Mode::kScale;
+        yaml.mode = GridMapMode::kScale;
       } else if (text == "raw") {
-        yaml.mode = Mode::kRaw;
+        yaml.mode = GridMapMode::kRaw;
       } else {
         Fail(path, value, "unknown 'mode' '" + text + "' (trinary, scale or raw)");
       }
@@ -245,7 +243,7 @@ cv::Mat ReadImage(const std::string& yaml_path, const std::string& image_path,
 }
 
 int8_t CellValue(const GridYaml& yaml, int grey, int alpha, const std::string& yaml_path) {
-  if (yaml.mode == Mode::kRaw) {
+  if (yaml.mode == GridMapMode::kRaw) {
     if (grey == 255) return OccupancyGrid::kUnknown;
     if (grey > 100)
       throw ConfigError(yaml_path +
@@ -255,10 +253,10 @@ int8_t CellValue(const GridYaml& yaml, int grey, int alpha, const std::string& y
     return static_cast<int8_t>(grey);
   }
   const double p = yaml.negate ? grey / 255.0 : (255.0 - grey) / 255.0;
-  if (yaml.mode == Mode::kScale && alpha < 255) return OccupancyGrid::kUnknown;
+  if (yaml.mode == GridMapMode::kScale && alpha < 255) return OccupancyGrid::kUnknown;
   if (p > yaml.occupied_thresh) return OccupancyGrid::kOccupied;
   if (p < yaml.free_thresh) return OccupancyGrid::kFree;
-  if (yaml.mode == Mode::kTrinary) return OccupancyGrid::kUnknown;
+  if (yaml.mode == GridMapMode::kTrinary) return OccupancyGrid::kUnknown;
   return static_cast<int8_t>(
       std::lround(99.0 * (p - yaml.free_thresh) / (yaml.occupied_thresh - yaml.free_thresh)));
 }

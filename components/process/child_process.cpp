@@ -147,12 +147,10 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
 }
 
 ChildProcess::~ChildProcess() {
-  if (!exit_code_) {
-    Signal(SIGKILL);
-    waitpid(pid_, nullptr, 0);
-  }
-  // What the child started and left behind goes too.
-  if (pid_ > 0) kill(-pid_, SIGKILL);
+  // The child's group: the child if it still runs, and what it started and
+  // left behind (the child alone if it has no group).
+  if (pid_ > 0 && kill(-pid_, SIGKILL) != 0 && !exit_code_) kill(pid_, SIGKILL);
+  if (!exit_code_) waitpid(pid_, nullptr, 0);
   if (!log_path_.empty()) std::remove(log_path_.c_str());
   if (pipe_fd_ >= 0) close(pipe_fd_);
 }
