@@ -119,6 +119,75 @@ TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
       [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
 }
 
+// ROS 2's <include> is not scoped: the included file sees the variables set
+// so far (the command line's among them), its <arg>s keep a value already set,
+// and what it sets stays set after it unless a <group> scopes it. An argument
+// without a default must be passed by the <include> itself.
+TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
+  const testing::TempDir temp;
+  const std::string child = temp.Write("child.launch.xml", R"xml(<launch>
+  <arg name="robot"/>
+  <arg name="domain" default="0"/>
+  <arg name="speed" default="1"/>
+  <let name="from_child" value="child $(var rate)"/>
+  <node pkg="structloc" exec="structloc_simulator" name="$(var robot)_sim">
+    <param name="domain" value="$(var domain)"/>
+    <param name="speed" value="$(var speed)"/>
+  </node>
+</launch>)xml");
+  const std::string path = temp.Write("parent.launch.xml", R"xml(<launch>
+  <arg name="domain" default="4"/>
+  <let name="rate" value="5"/>
+  <group>
+    <include file=")xml" + child + R"xml("><arg name="robot" value="scoped"/></include>
+  </group>
+  <include file=")xml" + child + R"xml("><arg name="robot" value="open"/></include>
+  <executable cmd="/bin/echo $(var from_child) $(var robot)" name="after"/>
+</launch>)xml");
+  auto context = Context();
+  context.overrides["speed"] = "3";  // declared only in the included file
+  const auto d = process::ReadLaunchFile(path, context);
+  ASSERT_EQ(d.nodes.size(), 3u);
+  EXPECT_EQ(d.nodes[0].name, "scoped_sim");
+  EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"--domain", "4", "--speed", "3"}));
+  EXPECT_EQ(d.nodes[1].name, "open_sim");
+  EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"child", "5", "open"}));
+  EXPECT_EQ(d.arguments.count("speed"), 0u);  // the top file's own arguments
+
+  const std::string needs = temp.Write("needs.launch.xml", R"xml(<launch>
+  <arg name="robot"/><executable cmd="/bin/echo $(var robot)"/></launch>)xml");
+  testing::ExpectRejected(
+      "<launch><let name='robot' value='r1'/><include file='" + needs + "'/></launch>",
+      "the <include> must pass it",
+      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+}
+
+// A node or executable left out by its condition is not substituted further;
+// if and unless together, or a name that is no ROS 2 node name, are errors.
+TEST(LaunchFiles, ConditionsComeFirstAndNodeNamesAreChecked) {
+  const testing::TempDir temp;
+  const std::string path = temp.Write("off.launch.xml", R"xml(<launch>
+  <node pkg="structloc" exec="structloc_simulator" name="$(var unset)" if="false">
+    <param name="x" value="$(env STRUCTLOC_LAUNCH_TEST_NEVER_SET)"/>
+  </node>
+  <executable cmd="$(var unset)" unless="true" respawn="$(var unset)"/>
+  <executable cmd="/bin/true" name="on"/>
+</launch>)xml");
+  const auto d = process::ReadLaunchFile(path, Context());
+  ASSERT_EQ(d.nodes.size(), 1u);
+  EXPECT_EQ(d.nodes[0].name, "on");
+  const auto read = [](const std::string& file) { process::ReadLaunchFile(file, Context()); };
+  testing::ExpectRejected("<launch><executable cmd='/bin/true' if='true' unless='false'/></launch>",
+                          "has both if and unless", read);
+  testing::ExpectRejected(
+      "<launch><node pkg='structloc' exec='structloc_simulator' name='a b'/></launch>",
+      "is not a node name", read);
+  testing::ExpectRejected(
+      "<launch><node pkg='structloc' exec='structloc_simulator' if='false' colour='red'/>"
+      "</launch>",
+      "colour", read);
+}
+
 // As ROS 2 launch reads them: $(env NAME) sees a <set_env> in scope, if and
 // unless take true and false in any case, an <include> left out by its
 // condition is not substituted (its file may name a variable only set where it

@@ -76,7 +76,9 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
     const std::string name = m[2];
     if (kind == "var") {
       auto v = vars.find(name);
-      if (v == vars.end()) file.Fail(where, "$(var " + name + ") names no <arg> declared above");
+      if (v == vars.end()) {
+        file.Fail(where, "$(var " + name + ") names no <arg> or <let> set above");
+      }
       out.Append(v->second);
     } else if (kind == "find-pkg-share") {
       if (name != "structloc") file.Fail(where, "unknown package '" + name + "'");
@@ -112,8 +114,10 @@ void RequireExecutable(const XmlFile& file, const tinyxml2::XMLElement& node,
   }
 }
 
-// What a <group> scopes: the variables (<arg>s and <let>s) and the ROS 2
-// namespace pushed so far.
+// What a <group> scopes: the variables (<arg>s, <let>s, an <include>'s
+// <arg>s and NAME:=VALUE from the command line) and the ROS 2 namespace pushed
+// so far. An <include> is not scoped (as in ROS 2: a file is included as if
+// written in its place), so what an included file sets stays set after it.
 struct Scope {
   std::map<std::string, std::string> vars;
   std::string ros_namespace;
@@ -135,33 +139,47 @@ void SetVariable(std::vector<std::pair<std::string, std::string>>& environment,
 // The state of one file's reading.
 class LaunchReader {
  public:
-  // `includers`: the files that include this one, outermost first.
-  // `total_bytes` counts the substituted bytes of the including file too, so
-  // includes cannot multiply the bound.
-  LaunchReader(const XmlFile& file, const LaunchContext& context,
-               std::vector<std::string> includers = {}, size_t* total_bytes = nullptr)
+  LaunchReader(const XmlFile& file, const LaunchContext& context)
       : file_(file),
         context_(context),
-        includers_(std::move(includers)),
-        total_bytes_(total_bytes != nullptr ? total_bytes : &own_total_bytes_) {}
+        total_bytes_(&own_total_bytes_),
+        used_overrides_(&own_used_overrides_) {}
 
-  // The nodes start in `outer`'s namespace and environment (an <include>'s).
-  LaunchDescription Read(const Scope& outer = {}) {
-    const auto& root = file_.Root("launch");
+  // The file as included by `includer`, which passes it the arguments named
+  // `passed` (already set in the scope it reads in).
+  LaunchReader(const XmlFile& file, const LaunchReader& includer,
+               const std::set<std::string>& passed)
+      : file_(file),
+        context_(includer.context_),
+        includers_(includer.includers_),
+        passed_(&passed),
+        total_bytes_(includer.total_bytes_),
+        used_overrides_(includer.used_overrides_) {
+    includers_.push_back(includer.file_.Path());
+  }
+
+  // The launch file named on the command line: its variables start as the
+  // command line's NAME:=VALUEs, which any file's <arg> may take.
+  LaunchDescription Read() {
     Scope scope;
-    scope.ros_namespace = outer.ros_namespace;
-    scope.environment = outer.environment;
-    Walk(root, scope, true);
+    scope.vars = context_.overrides;
+    Walk(file_.Root("launch"), scope, true);
     for (const auto& [name, value] : context_.overrides) {
-      if (used_overrides_.count(name) == 0) {
+      if (used_overrides_->count(name) == 0) {
         throw config::ConfigError(file_.Path() + ": no <arg name=\"" + name + "\"> to take " +
                                   name + ":=" + value);
       }
     }
-    // An included file may launch nothing where its conditions say so.
-    if (description_.nodes.empty() && includers_.empty()) {
+    if (description_.nodes.empty()) {
       throw config::ConfigError(file_.Path() + ": launches no <node> or <executable>");
     }
+    return std::move(description_);
+  }
+
+  // An included file, read in its includer's scope (and changing it, as in
+  // ROS 2); it may launch nothing where its conditions say so.
+  LaunchDescription ReadIncluded(Scope& scope) {
+    Walk(file_.Root("launch"), scope, true);
     return std::move(description_);
   }
 
@@ -210,10 +228,14 @@ class LaunchReader {
     }
   }
 
-  // <include file="F"> with <arg name value/> children: F's nodes join this
-  // launch in the current namespace and environment; its <arg>s take the
-  // given values (an argument F does not declare is an error).
-  void Include(const tinyxml2::XMLElement& e, const Scope& scope) {
+  // <include file="F"> with <arg name value/> children: F is read as if
+  // written here (ROS 2's <include> is not scoped: F sees the variables set
+  // so far, and what F sets stays set after it; a <group> around the
+  // <include> scopes it). The given values are set first, so F's <arg>s take
+  // them. An argument without a default that the <include> does not pass is
+  // an error (ROS 2's check), and so is one F does not declare (ROS 2 would
+  // set it silently: a misspelt name would be lost).
+  void Include(const tinyxml2::XMLElement& e, Scope& scope) {
     constexpr size_t kMaxDepth = 8;
     AttributeReader attrs(file_, e);
     const std::string file_text = attrs.String("file");
@@ -232,19 +254,30 @@ class LaunchReader {
                           " (includes nest at most " + std::to_string(kMaxDepth) + " deep)");
       }
     }
-    LaunchContext inner = context_;
-    inner.overrides.clear();
+    // All values first, then set: a value may name a variable another one sets.
+    std::map<std::string, std::string> given;
     for (const auto* a = e.FirstChildElement(); a != nullptr; a = a->NextSiblingElement()) {
       AttributeReader arg(file_, *a);
       const std::string name = arg.String("name");
       const std::string value = arg.String("value");
       arg.Finish();
-      inner.overrides[name] = Substitute(*a, value, scope);
+      given[name] = Substitute(*a, value, scope);
+    }
+    std::set<std::string> passed;
+    for (const auto& [name, value] : given) {
+      scope.vars[name] = value;
+      passed.insert(name);
     }
     LaunchDescription description;
     try {
       const auto included = XmlFile::Load(path);
-      description = LaunchReader(included, inner, chain, total_bytes_).Read(scope);
+      description = LaunchReader(included, *this, passed).ReadIncluded(scope);
+      for (const auto& name : passed) {
+        if (description.arguments.count(name) == 0) {
+          throw config::ConfigError(path + ": no <arg name=\"" + name + "\"> to take the value " +
+                                    "the <include> gives it");
+        }
+      }
     } catch (const config::ConfigError& error) {
       file_.Fail(e, std::string("in the included file: ") + error.what());  // both places named
     }
@@ -256,6 +289,9 @@ class LaunchReader {
     }
   }
 
+  // <arg name="N" default="D"/>: as ROS 2 declares a launch argument, N keeps
+  // a value already set (NAME:=VALUE on the command line, an <include>'s
+  // <arg>, or a variable of the including file), else takes the default.
   void Argument(const tinyxml2::XMLElement& e, Scope& scope) {
     AttributeReader attrs(file_, e);
     const std::string name = attrs.String("name");
@@ -265,11 +301,14 @@ class LaunchReader {
     if (description_.arguments.count(name) != 0) {
       file_.Fail(e, "a second <arg name=\"" + name + "\">; each argument is declared once");
     }
-    auto override_it = context_.overrides.find(name);
+    if (context_.overrides.count(name) != 0) used_overrides_->insert(name);
+    if (!fallback && passed_ != nullptr && passed_->count(name) == 0) {
+      file_.Fail(e, "argument '" + name + "' has no default; the <include> must pass it");
+    }
+    auto set = scope.vars.find(name);
     std::string value;
-    if (override_it != context_.overrides.end()) {
-      value = override_it->second;
-      used_overrides_.insert(name);
+    if (set != scope.vars.end()) {
+      value = set->second;
     } else if (fallback) {
       value = Substitute(e, *fallback, scope);
     } else {
@@ -288,10 +327,12 @@ class LaunchReader {
       attrs.Fail("exec must be a plain executable name, not '" + exec + "'");
     }
     node.executable = context_.executables_dir + "/" + exec;
-    node.name = attrs.OptionalString("name").value_or(exec);
-    const std::string ros_namespace = Join(
-        scope.ros_namespace, Substitute(e, attrs.OptionalString("namespace").value_or(""), scope));
+    const auto name = attrs.OptionalString("name");
+    const auto pushed = attrs.OptionalString("namespace");
     if (!ProcessAttributes(e, attrs, scope, node)) return;
+    node.name = name ? NodeName(e, *name, scope) : exec;
+    const std::string ros_namespace =
+        Join(scope.ros_namespace, Substitute(e, pushed.value_or(""), scope));
     if (!ros_namespace.empty()) node.name = ros_namespace + "/" + node.name;
     AddNodeName(e, node.name);
     config::RequireChildNames(file_, e, {"param", "env"});
@@ -342,13 +383,16 @@ class LaunchReader {
   void Executable(const tinyxml2::XMLElement& e, const Scope& scope) {
     AttributeReader attrs(file_, e);
     NodeLaunch node;
-    std::istringstream words(Substitute(e, attrs.String("cmd"), scope));
+    const std::string cmd = attrs.String("cmd");
+    const auto name = attrs.OptionalString("name");
+    if (!ProcessAttributes(e, attrs, scope, node)) return;
+    std::istringstream words(Substitute(e, cmd, scope));
     std::string program;
     words >> program;
     if (program.empty()) attrs.Fail("cmd is empty");
     for (std::string word; words >> word;) node.arguments.push_back(word);
-    node.name = attrs.OptionalString("name").value_or(program.substr(program.rfind('/') + 1));
-    if (!ProcessAttributes(e, attrs, scope, node)) return;
+    node.name = name ? Substitute(e, *name, scope) : program.substr(program.rfind('/') + 1);
+    if (node.name.empty()) attrs.Fail("name is empty");
     AddNodeName(e, node.name);
     config::RequireChildNames(file_, e, {"env"});
     node.environment = scope.environment;
@@ -364,15 +408,24 @@ class LaunchReader {
     description_.nodes.push_back(std::move(node));
   }
 
-  // The attributes <node> and <executable> share: output, respawn,
-  // respawn_delay, if, unless. Returns whether the process is launched.
+  // The attributes <node> and <executable> share: if, unless, output,
+  // respawn, respawn_delay. Returns whether the process is launched; as in
+  // ROS 2, the condition comes first and a process left out is not
+  // substituted any further (its values may name what is only set where it
+  // is wanted). Its attributes and children are still checked for unknown names.
   bool ProcessAttributes(const tinyxml2::XMLElement& e, AttributeReader& attrs, const Scope& scope,
                          NodeLaunch& node) {
+    const bool active = Condition(e, attrs, scope);
     attrs.OptionalString("output");
-    if (const auto respawn = attrs.OptionalString("respawn")) {
-      node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
+    const auto respawn = attrs.OptionalString("respawn");
+    const auto delay = attrs.OptionalString("respawn_delay");
+    attrs.Finish();
+    if (!active) {
+      config::RequireChildNames(file_, e, {"param", "env"});
+      return false;
     }
-    if (const auto delay = attrs.OptionalString("respawn_delay")) {
+    if (respawn) node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
+    if (delay) {
       const std::string text = Substitute(e, *delay, scope);
       char* end = nullptr;
       node.respawn_delay_s = std::strtod(text.c_str(), &end);
@@ -381,9 +434,22 @@ class LaunchReader {
         attrs.Fail("respawn_delay '" + text + "' is not a number of seconds in 0..3600");
       }
     }
-    const bool active = Condition(e, attrs, scope);
-    attrs.Finish();
-    return active;
+    return true;
+  }
+
+  // A node's name after substitution: a ROS 2 node name (letters, digits and
+  // '_', not starting with a digit), as it prefixes the node's output.
+  std::string NodeName(const tinyxml2::XMLElement& e, const std::string& text, const Scope& scope) {
+    const std::string name = Substitute(e, text, scope);
+    bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+    for (const char c : name) {
+      valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+    }
+    if (!valid) {
+      file_.Fail(e, "name '" + name + "' is not a node name (letters, digits and '_', " +
+                        "not starting with a digit)");
+    }
+    return name;
   }
 
   void AddNodeName(const tinyxml2::XMLElement& e, const std::string& name) {
@@ -416,8 +482,12 @@ class LaunchReader {
     return {name, Substitute(e, value, scope)};
   }
 
-  // The element's if= / unless= (ROS 2: true, false, 1 or 0 after substitution).
+  // The element's if= / unless= (ROS 2: true, false, 1 or 0 after
+  // substitution; not both on one element).
   bool Condition(const tinyxml2::XMLElement& e, AttributeReader& attrs, const Scope& scope) {
+    if (attrs.Has("if") && attrs.Has("unless")) {
+      attrs.Fail("has both if and unless; ROS 2 launch takes one of them");
+    }
     bool active = true;
     if (const auto text = attrs.OptionalString("if")) {
       active = Boolean(e, attrs, "if", *text, scope);
@@ -455,11 +525,15 @@ class LaunchReader {
 
   const XmlFile& file_;
   const LaunchContext& context_;
-  std::vector<std::string> includers_;
+  std::vector<std::string> includers_;  // the files that include this one, outermost first
+  const std::set<std::string>* passed_ = nullptr;  // an included file's given arguments
   LaunchDescription description_;
+  // Shared with the included files: the substituted bytes of them all (so
+  // includes cannot multiply the bound) and the NAME:=VALUEs some <arg> took.
   size_t own_total_bytes_ = 0;
   size_t* total_bytes_;
-  std::set<std::string> used_overrides_;
+  std::set<std::string> own_used_overrides_;
+  std::set<std::string>* used_overrides_;
   std::set<std::string> node_names_;
 };
 
