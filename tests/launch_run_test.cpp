@@ -183,5 +183,48 @@ TEST(LaunchStop, EveryNodeAndWhatItStartedStopsTogether) {
   EXPECT_LT(seconds, 11.0) << second.CapturedOutput();
 }
 
+// A node that exits with code 137 by itself is not reported as killed by
+// signal 9; nodes read an empty stdin (a node of its own process group reading
+// the terminal would be stopped); a node that cannot be respawned stops the
+// launch as a node that dies does, its other nodes stopped by the launch's signal.
+TEST(LaunchStop, ExitCodesStdinAndARespawnThatCannotStartAreReportedAndStopTheLaunch) {
+  const testing::TempDir dir;
+  const std::string exits = dir.Write("exits.sh", "#!/bin/sh\nexit 137\n");
+  const std::string reader =
+      dir.Write("reader.sh",
+                "#!/bin/sh\nif read line; then echo got a line; else echo stdin "
+                "empty; fi\nexec /bin/sleep 300\n");
+  const std::string once = dir.Write("once.sh", "#!/bin/sh\nrm -f \"$0\"\nexit 3\n");
+  for (const auto& script : {exits, reader, once}) ASSERT_EQ(chmod(script.c_str(), 0755), 0);
+
+  const std::string exit_file = dir.Write(
+      "exit.launch.xml", "<launch><executable cmd='" + exits + "' name='exits'/>" +
+                             "<executable cmd='/bin/sleep 300' name='sleeper'/></launch>");
+  process::ChildProcess first(std::string(STRUCTLOC_BIN_DIR) + "/structloc", {"launch", exit_file});
+  const auto code = first.WaitExit(20s);
+  ASSERT_TRUE(code.has_value()) << first.CapturedOutput();
+  EXPECT_EQ(*code, 1) << first.CapturedOutput();
+  EXPECT_NE(first.CapturedOutput().find("exits died with exit code 137"), std::string::npos)
+      << first.CapturedOutput();
+
+  const std::string respawn_file =
+      dir.Write("respawn.launch.xml",
+                "<launch><executable cmd='" + reader + "' name='reader'/>" + "<executable cmd='" +
+                    once + "' name='once' respawn='true' respawn_delay='0.2'/></launch>");
+  process::ChildProcess second(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+                               {"launch", respawn_file});
+  const auto respawn_code = second.WaitExit(20s);
+  ASSERT_TRUE(respawn_code.has_value()) << second.CapturedOutput();
+  const std::string output = second.CapturedOutput();
+  EXPECT_EQ(*respawn_code, 1) << output;
+  EXPECT_NE(output.find("[reader] stdin empty"), std::string::npos) << output;
+  EXPECT_NE(output.find("[launch] ERROR: once: cannot start " + once), std::string::npos) << output;
+  EXPECT_NE(output.find("stopping all nodes (once could not be respawned)"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("reader exited with code 130 (stopped by the launch's signal)"),
+            std::string::npos)
+      << output;
+}
+
 }  // namespace
 }  // namespace structloc

@@ -46,6 +46,11 @@ namespace {
                      sigprocmask(SIG_SETMASK, &no_signals, nullptr) != 0)) {
     error = errno;
   }
+  if (error == 0) {
+    const int null_fd = open("/dev/null", O_RDONLY);
+    if (null_fd < 0 || dup2(null_fd, STDIN_FILENO) < 0) error = errno;
+    if (null_fd > STDIN_FILENO) close(null_fd);
+  }
   if (error == 0 && output_fd >= 0) {
     if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
   }
@@ -165,6 +170,7 @@ std::optional<int> ChildProcess::Poll() {
   if (exit_code_) return exit_code_;
   int status = 0;
   if (waitpid(pid_, &status, WNOHANG) == pid_) {
+    ending_signal_ = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
     exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
   return exit_code_;

@@ -17,9 +17,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // "exit code 3", or "signal 9 (Killed)" for a child a signal ended.
-std::string DescribeExit(int code) {
-  if (code > 128 && code < 128 + 65) {
-    return "signal " + std::to_string(code - 128) + " (" + strsignal(code - 128) + ")";
+std::string DescribeExit(const ChildProcess& child, int code) {
+  if (const int signal = child.EndingSignal()) {
+    return "signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
   }
   return "exit code " + std::to_string(code);
 }
@@ -52,16 +52,26 @@ void Relay(const NodeLaunch& node, Running& running, bool flush) {
   std::cout << std::flush;
 }
 
-void Start(const NodeLaunch& node, Running& running) {
+// Starts the node; false (and the reason on stderr) when it cannot be started
+// (its executable removed or no longer executable, no processes left), so
+// that the launch stops the nodes it did start as after any other failure.
+bool Start(const NodeLaunch& node, Running& running) {
   std::cout << "[launch] starting " << node.name << ": ";
   for (const auto& [name, value] : node.environment) std::cout << name << "=" << value << " ";
   std::cout << node.executable;
   for (const auto& a : node.arguments) std::cout << " " << a;
   std::cout << std::endl;
-  running.child = std::make_unique<ChildProcess>(node.executable, node.arguments,
-                                                 ChildProcess::Output::kPipe, node.environment);
   running.restart_at.reset();
+  try {
+    running.child = std::make_unique<ChildProcess>(node.executable, node.arguments,
+                                                   ChildProcess::Output::kPipe, node.environment);
+  } catch (const std::exception& e) {
+    std::cerr << "[launch] ERROR: " << node.name << ": " << e.what() << ": stopping the launch"
+              << std::endl;
+    return false;
+  }
   std::cout << "[launch] " << node.name << " has pid " << running.child->Pid() << std::endl;
+  return true;
 }
 
 }  // namespace
@@ -69,11 +79,17 @@ void Start(const NodeLaunch& node, Running& running) {
 int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
               ShutdownSignal& shutdown) {
   std::vector<Running> nodes(description.nodes.size());
-  for (size_t i = 0; i < nodes.size(); ++i) Start(description.nodes[i], nodes[i]);
   const auto start = Clock::now();
   std::string reason = "stop signal";
   int result = 0;
   bool ended = false;
+  for (size_t i = 0; i < nodes.size() && !ended; ++i) {
+    if (!Start(description.nodes[i], nodes[i])) {
+      reason = description.nodes[i].name + " could not be started";
+      result = 1;
+      ended = true;
+    }
+  }
   while (!ended && !shutdown.WaitFor(std::chrono::milliseconds(50))) {
     const auto now = Clock::now();
     for (size_t i = 0; i < nodes.size() && !ended; ++i) {
@@ -82,7 +98,11 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
       if (running.restart_at) {
         if (now >= *running.restart_at) {
           ++running.respawns;
-          Start(node, running);
+          if (!Start(node, running)) {
+            reason = node.name + " could not be respawned";
+            result = 1;
+            ended = true;
+          }
         }
         continue;
       }
@@ -90,17 +110,19 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
       Relay(node, running, code.has_value());
       if (!code) continue;
       if (node.respawn) {
-        std::cout << "[launch] " << node.name << " ended with " << DescribeExit(*code)
-                  << "; respawning in " << node.respawn_delay_s << " s" << std::endl;
+        std::cout << "[launch] " << node.name << " ended with "
+                  << DescribeExit(*running.child, *code) << "; respawning in "
+                  << node.respawn_delay_s << " s" << std::endl;
         running.child.reset();
         running.restart_at =
             now + std::chrono::microseconds(static_cast<long>(node.respawn_delay_s * 1e6));
         continue;
       }
       // A node that finished its job ends the launch; one that died fails it.
-      reason = node.name + " ended with " + DescribeExit(*code);
+      reason = node.name + " ended with " + DescribeExit(*running.child, *code);
       if (*code != 0) {
-        std::cerr << "[launch] ERROR: " << node.name << " died with " << DescribeExit(*code)
+        std::cerr << "[launch] ERROR: " << node.name << " died with "
+                  << DescribeExit(*running.child, *code)
                   << " and has no respawn=\"true\": stopping the launch" << std::endl;
         result = 1;
       }

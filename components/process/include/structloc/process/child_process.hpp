@@ -1,5 +1,6 @@
 // One child process of ours: started with fork and exec in a process group of
-// its own (signals reach the processes it starts too), output either
+// its own (signals reach the processes it starts too), stdin from /dev/null
+// (a background group reading the terminal would be stopped), output either
 // inherited or captured to a temp file, always reaped (SIGKILL to its group in
 // the destructor if it is still running), and sent SIGTERM by the kernel when the
 // thread that started it dies (PR_SET_PDEATHSIG), so that neither a launcher
@@ -35,6 +36,9 @@ class ChildProcess {
   void Signal(int signal_number) const;
   // Non-blocking check; the exit code once ended (128+signal when killed).
   std::optional<int> Poll();
+  // The signal that ended it; 0 while it runs or when it exited by itself
+  // (an exit code of 137 is not signal 9).
+  int EndingSignal() const { return ending_signal_; }
   std::optional<int> WaitExit(std::chrono::milliseconds timeout);
   // SIGTERM, then SIGKILL after `grace`; returns the exit code.
   int Stop(std::chrono::milliseconds grace);
@@ -49,6 +53,7 @@ class ChildProcess {
   std::string log_path_;
   int pipe_fd_ = -1;  // kPipe: the read end
   std::optional<int> exit_code_;
+  int ending_signal_ = 0;
 };
 
 }  // namespace structloc::process
