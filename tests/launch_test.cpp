@@ -154,6 +154,18 @@ TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
   EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"child", "5", "open"}));
   EXPECT_EQ(d.arguments.count("speed"), 0u);  // the top file's own arguments
 
+  // $(dirname): the folder of the file being read, the included one inside it.
+  const std::string beside = temp.Write("beside.launch.xml", R"xml(<launch>
+  <executable cmd="/bin/echo $(dirname)" name="where"/></launch>)xml");
+  const auto where =
+      process::ReadLaunchFile(temp.Write("where.launch.xml",
+                                         "<launch><include file='$(dirname)/beside.launch.xml'/>"
+                                         "</launch>"),
+                              Context());
+  ASSERT_EQ(where.nodes.size(), 1u);
+  EXPECT_EQ(where.nodes[0].arguments,
+            std::vector<std::string>{std::filesystem::path(beside).parent_path().string()});
+
   const std::string needs = temp.Write("needs.launch.xml", R"xml(<launch>
   <arg name="robot"/><executable cmd="/bin/echo $(var robot)"/></launch>)xml");
   testing::ExpectRejected(

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -80,6 +81,10 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
         file.Fail(where, "$(var " + name + ") names no <arg> or <let> set above");
       }
       out.Append(v->second);
+    } else if (kind == "dirname" && name.empty()) {
+      // As ROS 2's: the folder of the launch file being read (of the included
+      // file inside it), so that files beside it are found from anywhere.
+      out.Append(std::filesystem::absolute(file.Path()).parent_path().string());
     } else if (kind == "find-pkg-share") {
       if (name != "structloc") file.Fail(where, "unknown package '" + name + "'");
       out.Append(context.package_share_dir);

@@ -13,7 +13,7 @@
 //     <executable cmd="fast-discovery-server -i 0 -p 11811" name="discovery_server" if="..."/>
 //   </launch>
 // Substitutions: $(var NAME) (an <arg> or <let> above), $(find-pkg-share
-// structloc), $(env NAME). Each <param name="N" value="V"/> becomes the
+// structloc), $(env NAME), $(dirname) (the folder of the file being read). Each <param name="N" value="V"/> becomes the
 // command-line option "--N V"; a pushed or node namespace becomes
 // "--namespace NS" (nested as ROS 2 nests them) and prefixes the node's name.
 // An <include file="F"> with <arg name value/>s reads F as if written in its
