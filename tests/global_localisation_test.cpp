@@ -189,6 +189,15 @@ TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   options = {};
   options.min_range_m = 40.0;  // beyond max_range_m: no reading could ever count
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.min_score = 0.0;  // every scan found, where the map explains none of it too
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.ambiguity_margin = 0.0;  // never "ambiguous", two equal poses or not
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.coarse_points = options.max_points + 1;
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
 }
 
 TEST(GlobalLocalisation, TooFewReadingsAreNotFound) {

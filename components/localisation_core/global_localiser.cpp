@@ -34,14 +34,22 @@ void Check(const GlobalLocaliserOptions& o) {
     throw std::invalid_argument(
         "global localiser option coarse_heading_step_rad must lie in [0.001, pi]");
   if (!(o.grid_margin_m >= 0.0) || !(o.min_range_m >= 0.0) || !(o.clearance_m >= 0.0) ||
-      !(o.coarse_blur_m >= 0.0) || !(o.see_through_margin_m >= 0.0) || !(o.ambiguity_margin >= 0.0))
+      !(o.coarse_blur_m >= 0.0) || !(o.see_through_margin_m >= 0.0))
     throw std::invalid_argument(
-        "global localiser options grid_margin_m, min_range_m, clearance_m, coarse_blur_m, "
-        "see_through_margin_m and ambiguity_margin must not be negative");
+        "global localiser options grid_margin_m, min_range_m, clearance_m, coarse_blur_m and "
+        "see_through_margin_m must not be negative");
   if (!(o.min_range_m < o.max_range_m))
     throw std::invalid_argument("global localiser option min_range_m must be below max_range_m");
-  if (!(o.min_score >= 0.0 && o.min_score <= 1.0))
-    throw std::invalid_argument("global localiser option min_score must lie in [0, 1]");
+  // Without a least score or margin every scan would be "found", also where
+  // the map explains nothing or two poses explain it equally well.
+  if (!(o.min_score > 0.0 && o.min_score <= 1.0))
+    throw std::invalid_argument("global localiser option min_score must lie in (0, 1]");
+  if (!(o.ambiguity_margin > 0.0 && o.ambiguity_margin < 1.0))
+    throw std::invalid_argument("global localiser option ambiguity_margin must lie in (0, 1)");
+  if (o.coarse_points > o.max_points)
+    throw std::invalid_argument(
+        "global localiser option coarse_points must not exceed max_points (the coarse search "
+        "uses some of the refinement's points)");
   if (o.max_points < 3 || o.coarse_points < 3 || o.min_points < 3 || o.rank_points < 3 ||
       o.coarse_keep < 1 || o.ranked < 2)
     throw std::invalid_argument(
