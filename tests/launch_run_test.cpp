@@ -226,5 +226,22 @@ TEST(LaunchStop, ExitCodesStdinAndARespawnThatCannotStartAreReportedAndStopTheLa
       << output;
 }
 
+// A child's stdin is /dev/null, set after its output: a parent without a
+// stdin gets its capture file as fd 0, which must still receive the output.
+TEST(ChildProcessOutput, IsCapturedWhenTheParentHasNoStdin) {
+  const int saved = dup(STDIN_FILENO);
+  ASSERT_GE(saved, 0);
+  close(STDIN_FILENO);
+  std::string output;
+  {
+    process::ChildProcess echo("/bin/echo", {"hello"});
+    echo.WaitExit(5s);
+    output = echo.CapturedOutput();
+  }
+  dup2(saved, STDIN_FILENO);
+  close(saved);
+  EXPECT_EQ(output, "hello\n");
+}
+
 }  // namespace
 }  // namespace structloc

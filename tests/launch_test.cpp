@@ -151,12 +151,22 @@ TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
   EXPECT_EQ(d.nodes[0].name, "scoped_sim");
   EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"--domain", "4", "--speed", "3"}));
   EXPECT_EQ(d.nodes[1].name, "open_sim");
-  EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"child", "5", "open"}));
+  EXPECT_EQ(d.nodes[2].arguments, (std::vector<std::string>{"child 5", "open"}));
   EXPECT_EQ(d.arguments.count("speed"), 0u);  // the top file's own arguments
 
   // $(dirname): the folder of the file being read, the included one inside it.
   const std::string beside = temp.Write("beside.launch.xml", R"xml(<launch>
   <executable cmd="/bin/echo $(dirname)" name="where"/></launch>)xml");
+  // A folder's spaces and "$(" are its name: the value stays one word.
+  const std::filesystem::path odd = std::filesystem::path(temp / "my maps $(x)");
+  std::filesystem::create_directory(odd);
+  {
+    std::ofstream((odd / "odd.launch.xml").string())
+        << "<launch><executable cmd='/bin/echo $(dirname)/a.xml' name='odd'/></launch>";
+  }
+  const auto in_odd = process::ReadLaunchFile((odd / "odd.launch.xml").string(), Context());
+  ASSERT_EQ(in_odd.nodes.size(), 1u);
+  EXPECT_EQ(in_odd.nodes[0].arguments, std::vector<std::string>{(odd / "a.xml").string()});
   const auto where =
       process::ReadLaunchFile(temp.Write("where.launch.xml",
                                          "<launch><include file='$(dirname)/beside.launch.xml'/>"
@@ -165,6 +175,18 @@ TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
   ASSERT_EQ(where.nodes.size(), 1u);
   EXPECT_EQ(where.nodes[0].arguments,
             std::vector<std::string>{std::filesystem::path(beside).parent_path().string()});
+
+  // An <include>'s values are set one after the other: a value sees those above it.
+  const auto ordered = process::ReadLaunchFile(
+      temp.Write("ordered.launch.xml", "<launch><let name='rate' value='1'/><include file='" +
+                                           child +
+                                           "'><arg name='robot' value='r7'/>"
+                                           "<arg name='speed' value='$(var robot)'/></include>"
+                                           "</launch>"),
+      Context());
+  ASSERT_EQ(ordered.nodes.size(), 1u);
+  EXPECT_EQ(ordered.nodes[0].arguments,
+            (std::vector<std::string>{"--domain", "0", "--speed", "r7"}));
 
   const std::string needs = temp.Write("needs.launch.xml", R"xml(<launch>
   <arg name="robot"/><executable cmd="/bin/echo $(var robot)"/></launch>)xml");
@@ -191,6 +213,16 @@ TEST(LaunchFiles, ConditionsComeFirstAndNodeNamesAreChecked) {
   const auto read = [](const std::string& file) { process::ReadLaunchFile(file, Context()); };
   testing::ExpectRejected("<launch><executable cmd='/bin/true' if='true' unless='false'/></launch>",
                           "has both if and unless", read);
+  testing::ExpectRejected(
+      "<launch><executable cmd='/bin/true' if='false'><param name='p' value='1'/></executable>"
+      "</launch>",
+      "unknown element", read);
+  testing::ExpectRejected(
+      "<launch><executable cmd='/bin/true' if='false'><env nme='X' value='1'/></executable>"
+      "</launch>",
+      "missing attribute name", read);
+  testing::ExpectRejected("<launch><executable cmd='/bin/echo $(dirname x)'/></launch>",
+                          "$(dirname) takes no argument", read);
   testing::ExpectRejected(
       "<launch><node pkg='structloc' exec='structloc_simulator' name='a b'/></launch>",
       "is not a node name", read);
@@ -222,7 +254,8 @@ TEST(LaunchFiles, SetEnvConditionsAndOptionalIncludesReadAsInRos2) {
   const auto d = process::ReadLaunchFile(path, Context());
   ASSERT_EQ(d.nodes.size(), 1u);
   EXPECT_EQ(d.nodes[0].name, "echo");
-  EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"from", "set_env"}));
+  // A substituted value stays one word, as in ROS 2.
+  EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"from set_env"}));
   testing::ExpectRejected(
       "<launch><executable cmd='/bin/true' if='yes'/></launch>", "not true, false, 1 or 0",
       [](const std::string& file) { process::ReadLaunchFile(file, Context()); });

@@ -46,13 +46,14 @@ namespace {
                      sigprocmask(SIG_SETMASK, &no_signals, nullptr) != 0)) {
     error = errno;
   }
+  if (error == 0 && output_fd >= 0) {
+    if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
+  }
+  // After the output: with the parent's stdin closed, the output may be fd 0.
   if (error == 0) {
     const int null_fd = open("/dev/null", O_RDONLY);
     if (null_fd < 0 || dup2(null_fd, STDIN_FILENO) < 0) error = errno;
-    if (null_fd > STDIN_FILENO) close(null_fd);
-  }
-  if (error == 0 && output_fd >= 0) {
-    if (dup2(output_fd, STDOUT_FILENO) < 0 || dup2(output_fd, STDERR_FILENO) < 0) error = errno;
+    if (null_fd > STDERR_FILENO) close(null_fd);
   }
   // Nothing else of the parent's may reach the child: its DDS sockets would
   // stay bound, and its shared-memory ports stay open, as long as the child runs.

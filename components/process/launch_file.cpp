@@ -70,9 +70,16 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
   ValueBuilder out(file, where, context, total_bytes);
   auto begin = std::sregex_iterator(text.begin(), text.end(), pattern);
   size_t last = 0;
+  // Literal text must hold no "$(" that is not a substitution (a value
+  // substituted into it may: a folder may be called "a$(b").
+  const auto literal = [&](const std::string& piece) {
+    if (piece.find("$(") != std::string::npos)
+      file.Fail(where, "malformed substitution in '" + text + "'");
+    out.Append(piece);
+  };
   for (auto it = begin; it != std::sregex_iterator(); ++it) {
     const auto& m = *it;
-    out.Append(text.substr(last, static_cast<size_t>(m.position()) - last));
+    literal(text.substr(last, static_cast<size_t>(m.position()) - last));
     const std::string kind = m[1];
     const std::string name = m[2];
     if (kind == "var") {
@@ -81,7 +88,8 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
         file.Fail(where, "$(var " + name + ") names no <arg> or <let> set above");
       }
       out.Append(v->second);
-    } else if (kind == "dirname" && name.empty()) {
+    } else if (kind == "dirname") {
+      if (!name.empty()) file.Fail(where, "$(dirname) takes no argument");
       // As ROS 2's: the folder of the launch file being read (of the included
       // file inside it), so that files beside it are found from anywhere.
       out.Append(std::filesystem::absolute(file.Path()).parent_path().string());
@@ -100,10 +108,30 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
     }
     last = static_cast<size_t>(m.position() + m.length());
   }
-  out.Append(text.substr(last));
-  if (out.Value().find("$(") != std::string::npos)
-    file.Fail(where, "malformed substitution in '" + text + "'");
+  literal(text.substr(last));
   return out.Value();
+}
+
+// A command's words as ROS 2 splits them: at white space of the text itself,
+// never inside a substitution "$(...)" (whose value stays one word after
+// substitution, spaces and all: a folder called "my maps").
+std::vector<std::string> CommandWords(const std::string& cmd) {
+  std::vector<std::string> words;
+  std::string word;
+  int depth = 0;
+  for (size_t i = 0; i < cmd.size(); ++i) {
+    const char c = cmd[i];
+    if (c == '$' && i + 1 < cmd.size() && cmd[i + 1] == '(') ++depth;
+    if (c == ')' && depth > 0) --depth;
+    if (depth == 0 && std::isspace(static_cast<unsigned char>(c))) {
+      if (!word.empty()) words.push_back(word);
+      word.clear();
+    } else {
+      word += c;
+    }
+  }
+  if (!word.empty()) words.push_back(word);
+  return words;
 }
 
 // The node's executable must be a runnable file in the executables folder.
@@ -259,18 +287,14 @@ class LaunchReader {
                           " (includes nest at most " + std::to_string(kMaxDepth) + " deep)");
       }
     }
-    // All values first, then set: a value may name a variable another one sets.
-    std::map<std::string, std::string> given;
+    // Set one after the other, as ROS 2 does: a value may name one set above it.
+    std::set<std::string> passed;
     for (const auto* a = e.FirstChildElement(); a != nullptr; a = a->NextSiblingElement()) {
       AttributeReader arg(file_, *a);
       const std::string name = arg.String("name");
       const std::string value = arg.String("value");
       arg.Finish();
-      given[name] = Substitute(*a, value, scope);
-    }
-    std::set<std::string> passed;
-    for (const auto& [name, value] : given) {
-      scope.vars[name] = value;
+      scope.vars[name] = Substitute(*a, value, scope);
       passed.insert(name);
     }
     LaunchDescription description;
@@ -382,7 +406,8 @@ class LaunchReader {
 
   // <executable cmd="PROGRAM ARGS..." name="N"> (ROS 2's tag for programs
   // that are not nodes, e.g. Fast DDS's "fast-discovery-server"): the command is split at
-  // spaces after substitution; PROGRAM is an absolute path or found on PATH.
+  // its own spaces, each word then substituted (CommandWords); PROGRAM is an
+  // absolute path or found on PATH.
   // It runs in the environment around it plus its own <env>s, without a
   // namespace (it is not a ROS 2 node).
   void Executable(const tinyxml2::XMLElement& e, const Scope& scope) {
@@ -391,11 +416,12 @@ class LaunchReader {
     const std::string cmd = attrs.String("cmd");
     const auto name = attrs.OptionalString("name");
     if (!ProcessAttributes(e, attrs, scope, node)) return;
-    std::istringstream words(Substitute(e, cmd, scope));
-    std::string program;
-    words >> program;
+    const auto words = CommandWords(cmd);
+    const std::string program = words.empty() ? "" : Substitute(e, words.front(), scope);
     if (program.empty()) attrs.Fail("cmd is empty");
-    for (std::string word; words >> word;) node.arguments.push_back(word);
+    for (size_t i = 1; i < words.size(); ++i) {
+      node.arguments.push_back(Substitute(e, words[i], scope));
+    }
     node.name = name ? Substitute(e, *name, scope) : program.substr(program.rfind('/') + 1);
     if (node.name.empty()) attrs.Fail("name is empty");
     AddNodeName(e, node.name);
@@ -426,7 +452,7 @@ class LaunchReader {
     const auto delay = attrs.OptionalString("respawn_delay");
     attrs.Finish();
     if (!active) {
-      config::RequireChildNames(file_, e, {"param", "env"});
+      CheckChildrenLeftOut(e);
       return false;
     }
     if (respawn) node.respawn = Boolean(e, attrs, "respawn", *respawn, scope);
@@ -440,6 +466,27 @@ class LaunchReader {
       }
     }
     return true;
+  }
+
+  // The <param>s (of a <node>) and <env>s of a process left out: their
+  // names and attributes checked as if it ran, nothing substituted.
+  void CheckChildrenLeftOut(const tinyxml2::XMLElement& e) {
+    const bool node = std::string(e.Name()) == "node";
+    if (node) {
+      config::RequireChildNames(file_, e, {"param", "env"});
+    } else {
+      config::RequireChildNames(file_, e, {"env"});
+    }
+    for (const auto* p = e.FirstChildElement(); p != nullptr; p = p->NextSiblingElement()) {
+      AttributeReader child(file_, *p);
+      if (std::string(p->Name()) == "param" && p->Attribute("from") != nullptr) {
+        child.String("from");
+      } else {
+        child.String("name");
+        child.String("value");
+      }
+      child.Finish();
+    }
   }
 
   // A node's name after substitution: a ROS 2 node name (letters, digits and

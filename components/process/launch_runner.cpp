@@ -170,8 +170,16 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
     // Ended by the SIGINT of this stop (a program without a handler): stopped
     // as asked, not failed. One that needed SIGTERM or SIGKILL did not stop.
     const bool asked = code == 128 + SIGINT && stopped_by[i] == SIGINT;
-    std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code
-              << (asked ? " (stopped by the launch's signal)" : "") << std::endl;
+    std::string how;
+    if (asked) {
+      how = " (stopped by the launch's signal)";
+    } else if (stopped_by[i] == SIGKILL && nodes[i].child->EndingSignal() == SIGKILL) {
+      how = " (killed: it did not stop on SIGINT or SIGTERM)";
+    } else if (const int signal = nodes[i].child->EndingSignal()) {
+      how = " (ended by signal " + std::to_string(signal) + ")";
+    }
+    std::cout << "[launch] " << description.nodes[i].name << " exited with code " << code << how
+              << std::endl;
     if (code != 0 && !asked) result = 1;
   }
   return result;
