@@ -121,6 +121,7 @@ ChildProcess::ChildProcess(const std::string& executable, const std::vector<std:
     const int error = errno;
     if (fd >= 0) close(fd);
     if (pipe_fd_ >= 0) close(pipe_fd_);
+    if (!log_path_.empty()) std::remove(log_path_.c_str());
     throw std::runtime_error("cannot start " + executable + ": " + std::strerror(error));
   }
   const pid_t parent = getpid();

@@ -34,7 +34,8 @@ struct Running {
 };
 
 // Prints what the node wrote since the last call, each line prefixed with
-// "[name] " as ros2 launch does; with `flush`, the unfinished line too.
+// "[name] " as ros2 launch does; with `flush`, or once longer than 64 KiB,
+// the unfinished line too.
 void Relay(const NodeLaunch& node, Running& running, bool flush) {
   if (!running.child) return;
   running.partial_line += running.child->ReadAvailable();
@@ -45,7 +46,9 @@ void Relay(const NodeLaunch& node, Running& running, bool flush) {
               << "\n";
   }
   running.partial_line.erase(0, start);
-  if (flush && !running.partial_line.empty()) {
+  // A node that never ends its line must not make the launcher's memory grow.
+  constexpr size_t kLongestLine = 64 * 1024;
+  if ((flush || running.partial_line.size() > kLongestLine) && !running.partial_line.empty()) {
     std::cout << "[" << node.name << "] " << running.partial_line << "\n";
     running.partial_line.clear();
   }
