@@ -188,6 +188,21 @@ TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
   EXPECT_EQ(ordered.nodes[0].arguments,
             (std::vector<std::string>{"--domain", "0", "--speed", "r7"}));
 
+  // NAME:=VALUE for an argument of a file an <include> or <group> leaves out
+  // is no unknown argument (ROS 2 collects it as conditionally included).
+  const std::string optional =
+      temp.Write("optional.launch.xml",
+                 "<launch><arg name='sim' default='false'/><group if='$(var sim)'>"
+                 "<include file='" +
+                     child +
+                     "'><arg name='robot' value='r'/></include>"
+                     "</group><executable cmd='/bin/true'/></launch>");
+  auto left_out = Context();
+  left_out.overrides["speed"] = "3";
+  EXPECT_EQ(process::ReadLaunchFile(optional, left_out).nodes.size(), 1u);
+  left_out.overrides["sped"] = "3";
+  EXPECT_THROW(process::ReadLaunchFile(optional, left_out), config::ConfigError);
+
   const std::string needs = temp.Write("needs.launch.xml", R"xml(<launch>
   <arg name="robot"/><executable cmd="/bin/echo $(var robot)"/></launch>)xml");
   testing::ExpectRejected(

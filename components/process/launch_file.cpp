@@ -176,7 +176,8 @@ class LaunchReader {
       : file_(file),
         context_(context),
         total_bytes_(&own_total_bytes_),
-        used_overrides_(&own_used_overrides_) {}
+        used_overrides_(&own_used_overrides_),
+        declared_left_out_(&own_declared_left_out_) {}
 
   // The file as included by `includer`, which passes it the arguments named
   // `passed` (already set in the scope it reads in).
@@ -187,7 +188,8 @@ class LaunchReader {
         includers_(includer.includers_),
         passed_(&passed),
         total_bytes_(includer.total_bytes_),
-        used_overrides_(includer.used_overrides_) {
+        used_overrides_(includer.used_overrides_),
+        declared_left_out_(includer.declared_left_out_) {
     includers_.push_back(includer.file_.Path());
   }
 
@@ -198,7 +200,7 @@ class LaunchReader {
     scope.vars = context_.overrides;
     Walk(file_.Root("launch"), scope, true);
     for (const auto& [name, value] : context_.overrides) {
-      if (used_overrides_->count(name) == 0) {
+      if (used_overrides_->count(name) == 0 && declared_left_out_->count(name) == 0) {
         throw config::ConfigError(file_.Path() + ": no <arg name=\"" + name + "\"> to take " +
                                   name + ":=" + value);
       }
@@ -252,7 +254,11 @@ class LaunchReader {
         const bool active = Condition(*e, attrs, scope);
         attrs.Finish();
         Scope inner = scope;  // what the group sets stays in it
-        if (active) Walk(*e, inner, false);
+        if (active) {
+          Walk(*e, inner, false);
+        } else {
+          NoteArgumentsLeftOut(*e, scope);
+        }
       } else if (tag == "executable") {
         Executable(*e, scope);
       } else {
@@ -277,7 +283,10 @@ class LaunchReader {
     const bool active = Condition(e, attrs, scope);
     attrs.Finish();
     config::RequireChildNames(file_, e, {"arg"});
-    if (!active) return;
+    if (!active) {
+      NoteArgumentsLeftOut(e, scope);
+      return;
+    }
     const std::string path = Substitute(e, file_text, scope);
     std::vector<std::string> chain = includers_;
     chain.push_back(file_.Path());
@@ -315,6 +324,33 @@ class LaunchReader {
         file_.Fail(e, "duplicate node name '" + node.name + "' (from " + path + ")");
       }
       description_.nodes.push_back(std::move(node));
+    }
+  }
+
+  // The <arg>s of the files that `e` (an <include> or <group> left out by its
+  // condition) would include, as far as their names can be substituted now:
+  // NAME:=VALUE for one of them is not refused as unknown (ROS 2 collects
+  // such arguments as "conditionally included"). Nothing else is read.
+  void NoteArgumentsLeftOut(const tinyxml2::XMLElement& e, const Scope& scope) {
+    if (std::string(e.Name()) == "group") {
+      for (const auto* c = e.FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+        if (std::string(c->Name()) == "include" || std::string(c->Name()) == "group") {
+          NoteArgumentsLeftOut(*c, scope);
+        }
+      }
+      return;
+    }
+    const char* file = e.Attribute("file");
+    if (file == nullptr) return;
+    try {
+      const auto included = XmlFile::Load(Substitute(e, file, scope));
+      const auto& root = included.Root("launch");
+      for (const auto* a = root.FirstChildElement("arg"); a != nullptr;
+           a = a->NextSiblingElement("arg")) {
+        if (const char* name = a->Attribute("name")) declared_left_out_->insert(name);
+      }
+    } catch (const config::ConfigError&) {
+      // A file or variable that only exists where the include is wanted.
     }
   }
 
@@ -586,6 +622,9 @@ class LaunchReader {
   size_t* total_bytes_;
   std::set<std::string> own_used_overrides_;
   std::set<std::string>* used_overrides_;
+  // And the <arg>s of files an <include> left out would have read.
+  std::set<std::string> own_declared_left_out_;
+  std::set<std::string>* declared_left_out_;
   std::set<std::string> node_names_;
 };
 
