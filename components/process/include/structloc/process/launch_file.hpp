@@ -13,9 +13,10 @@
 //     <executable cmd="fast-discovery-server -i 0 -p 11811" name="discovery_server" if="..."/>
 //   </launch>
 // Substitutions: $(var NAME) (an <arg> or <let> above), $(find-pkg-share
-// structloc), $(env NAME), $(dirname) (the folder of the file being read). Each <param name="N" value="V"/> becomes the
-// command-line option "--N V"; a pushed or node namespace becomes
-// "--namespace NS" (nested as ROS 2 nests them) and prefixes the node's name.
+// structloc), $(env NAME), $(dirname) (the folder of the file being read).
+// Each <param name="N" value="V"/> becomes the command-line option "--N V"; a
+// pushed or node namespace becomes "--namespace NS" (nested as ROS 2 nests
+// them) and prefixes the node's name.
 // An <include file="F"> with <arg name value/>s reads F as if written in its
 // place, as ROS 2 does: F sees the variables set so far (NAME:=VALUE from the
 // command line among them), an <arg> keeps a value already set and takes its
@@ -24,11 +25,13 @@
 // (an environment variable for the nodes after it; <env> inside a <node> is
 // that node's own; ROS_DOMAIN_ID picks the components' default domain); if= /
 // unless= (not both) take true, false, 1 or 0 and come first: a node left out
-// is not substituted. A node's name may use substitutions. An <executable cmd="PROGRAM ARGS"> runs
-// a program that is not a structloc node (PROGRAM an absolute path or on PATH), with the same
-// output/respawn/if/unless attributes and <env> children. Unknown elements and attributes,
-// duplicate <arg> names or node names, executables that do not exist, and substituted values above
-// the size limits are errors (file:line). DDS-free.
+// is not substituted. A node's name may use substitutions. An <executable
+// cmd="PROGRAM ARGS"> runs a program that is not a structloc node (PROGRAM an
+// absolute path or on PATH), its words split as ROS 2 splits them, with the
+// same output/respawn/if/unless attributes and <env> children. Unknown
+// elements and attributes, duplicate <arg> names or node names, executables
+// that do not exist, and substituted values above the size limits are errors
+// (file:line). DDS-free.
 #pragma once
 
 #include <cstddef>
