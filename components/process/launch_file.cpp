@@ -112,6 +112,16 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
   return out.Value();
 }
 
+// Letters, digits and '_', not starting with a digit: an environment
+// variable's name, and a ROS 2 node's.
+bool IsPlainName(const std::string& name) {
+  bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+  for (const char c : name) {
+    valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  }
+  return valid;
+}
+
 // A command's words as ROS 2 splits them: at white space of the text itself,
 // never inside a substitution "$(...)" (whose value stays one word after
 // substitution, spaces and all: a folder called "my maps").
@@ -173,11 +183,7 @@ void SetVariable(std::vector<std::pair<std::string, std::string>>& environment,
 class LaunchReader {
  public:
   LaunchReader(const XmlFile& file, const LaunchContext& context)
-      : file_(file),
-        context_(context),
-        total_bytes_(&own_total_bytes_),
-        used_overrides_(&own_used_overrides_),
-        declared_left_out_(&own_declared_left_out_) {}
+      : file_(file), context_(context), shared_(&own_shared_) {}
 
   // The file as included by `includer`, which passes it the arguments named
   // `passed` (already set in the scope it reads in).
@@ -187,9 +193,7 @@ class LaunchReader {
         context_(includer.context_),
         includers_(includer.includers_),
         passed_(&passed),
-        total_bytes_(includer.total_bytes_),
-        used_overrides_(includer.used_overrides_),
-        declared_left_out_(includer.declared_left_out_) {
+        shared_(includer.shared_) {
     includers_.push_back(includer.file_.Path());
   }
 
@@ -200,7 +204,7 @@ class LaunchReader {
     scope.vars = context_.overrides;
     Walk(file_.Root("launch"), scope, true);
     for (const auto& [name, value] : context_.overrides) {
-      if (used_overrides_->count(name) == 0 && declared_left_out_->count(name) == 0) {
+      if (shared_->declared.count(name) == 0) {
         throw config::ConfigError(file_.Path() + ": no <arg name=\"" + name + "\"> to take " +
                                   name + ":=" + value);
       }
@@ -347,7 +351,7 @@ class LaunchReader {
       const auto& root = included.Root("launch");
       for (const auto* a = root.FirstChildElement("arg"); a != nullptr;
            a = a->NextSiblingElement("arg")) {
-        if (const char* name = a->Attribute("name")) declared_left_out_->insert(name);
+        if (const char* name = a->Attribute("name")) shared_->declared.insert(name);
       }
     } catch (const config::ConfigError&) {
       // A file or variable that only exists where the include is wanted.
@@ -366,7 +370,7 @@ class LaunchReader {
     if (description_.arguments.count(name) != 0) {
       file_.Fail(e, "a second <arg name=\"" + name + "\">; each argument is declared once");
     }
-    if (context_.overrides.count(name) != 0) used_overrides_->insert(name);
+    shared_->declared.insert(name);
     if (!fallback && passed_ != nullptr && passed_->count(name) == 0) {
       file_.Fail(e, "argument '" + name + "' has no default; the <include> must pass it");
     }
@@ -529,11 +533,7 @@ class LaunchReader {
   // '_', not starting with a digit), as it prefixes the node's output.
   std::string NodeName(const tinyxml2::XMLElement& e, const std::string& text, const Scope& scope) {
     const std::string name = Substitute(e, text, scope);
-    bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
-    for (const char c : name) {
-      valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-    }
-    if (!valid) {
+    if (!IsPlainName(name)) {
       file_.Fail(e, "name '" + name + "' is not a node name (letters, digits and '_', " +
                         "not starting with a digit)");
     }
@@ -562,11 +562,7 @@ class LaunchReader {
     const std::string name = attrs.String("name");
     const std::string value = attrs.String("value");
     attrs.Finish();
-    bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
-    for (const char c : name) {
-      valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-    }
-    if (!valid) file_.Fail(e, "'" + name + "' is not an environment variable name");
+    if (!IsPlainName(name)) file_.Fail(e, "'" + name + "' is not an environment variable name");
     return {name, Substitute(e, value, scope)};
   }
 
@@ -600,7 +596,7 @@ class LaunchReader {
   std::string Substitute(const tinyxml2::XMLElement& where, const std::string& text,
                          const Scope& scope) {
     return process::Substitute(file_, where, text, scope.vars, scope.environment, context_,
-                               total_bytes_);
+                               &shared_->total_bytes);
   }
 
   // Namespaces nest as ROS 2's do: "robot1" inside "fleet" is "fleet/robot1";
@@ -616,15 +612,16 @@ class LaunchReader {
   std::vector<std::string> includers_;  // the files that include this one, outermost first
   const std::set<std::string>* passed_ = nullptr;  // an included file's given arguments
   LaunchDescription description_;
-  // Shared with the included files: the substituted bytes of them all (so
-  // includes cannot multiply the bound) and the NAME:=VALUEs some <arg> took.
-  size_t own_total_bytes_ = 0;
-  size_t* total_bytes_;
-  std::set<std::string> own_used_overrides_;
-  std::set<std::string>* used_overrides_;
-  // And the <arg>s of files an <include> left out would have read.
-  std::set<std::string> own_declared_left_out_;
-  std::set<std::string>* declared_left_out_;
+  // What the file named on the command line shares with the files it
+  // includes: the substituted bytes of them all (so includes cannot multiply
+  // the bound), and the <arg> names declared in them, or in the files an
+  // <include> left out would have read (NAME:=VALUE must name one of them).
+  struct Shared {
+    size_t total_bytes = 0;
+    std::set<std::string> declared;
+  };
+  Shared own_shared_;
+  Shared* shared_;
   std::set<std::string> node_names_;
 };
 

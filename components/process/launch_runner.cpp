@@ -86,12 +86,15 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
   std::string reason = "stop signal";
   int result = 0;
   bool ended = false;
+  // A node that cannot be (re)started fails the launch, as one that dies does.
+  const auto start_or_fail = [&](const NodeLaunch& node, Running& running, const char* what) {
+    if (Start(node, running)) return;
+    reason = node.name + " could not be " + what;
+    result = 1;
+    ended = true;
+  };
   for (size_t i = 0; i < nodes.size() && !ended; ++i) {
-    if (!Start(description.nodes[i], nodes[i])) {
-      reason = description.nodes[i].name + " could not be started";
-      result = 1;
-      ended = true;
-    }
+    start_or_fail(description.nodes[i], nodes[i], "started");
   }
   while (!ended && !shutdown.WaitFor(std::chrono::milliseconds(50))) {
     const auto now = Clock::now();
@@ -101,11 +104,7 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
       if (running.restart_at) {
         if (now >= *running.restart_at) {
           ++running.respawns;
-          if (!Start(node, running)) {
-            reason = node.name + " could not be respawned";
-            result = 1;
-            ended = true;
-          }
+          start_or_fail(node, running, "respawned");
         }
         continue;
       }

@@ -64,7 +64,6 @@ int main(int argc, char** argv) {
       node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)};
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
-  std::vector<double> latency_ms;
   std::map<double, double> latency_at;  // by scan stamp
   std::map<double, double> update_ms;   // the localiser's update, by scan stamp
   const auto pose_subscription =
@@ -74,9 +73,8 @@ int main(int argc, char** argv) {
             std::lock_guard<std::mutex> lock(mutex);
             auto it = sent.find(dds_common::FromRosTime(m.header().stamp()));
             if (it != sent.end()) {
-              latency_ms.push_back(
-                  std::chrono::duration<double, std::milli>(now - it->second).count());
-              latency_at[it->first] = latency_ms.back();
+              latency_at[it->first] =
+                  std::chrono::duration<double, std::milli>(now - it->second).count();
             }
           });
   const auto status_subscription =
@@ -106,45 +104,44 @@ int main(int argc, char** argv) {
   loc.Stop(std::chrono::seconds(5));
   const auto stalls_after = structloc::testing::MeasurePlatformStalls(kStallProbeS);
   std::lock_guard<std::mutex> lock(mutex);
-  std::sort(latency_ms.begin(), latency_ms.end());
-  if (latency_ms.empty()) {
+  if (latency_at.empty()) {
     std::printf("no pose received\n");
     return 1;
   }
-  std::printf("%.0f Hz, 1081-beam scans, %.0f s: %zu scans sent, %zu poses received\n", rate, wall,
-              sent.size(), latency_ms.size());
-  auto quantiles = [](std::vector<double> v, const char* what) {
-    if (v.empty()) return;
-    std::sort(v.begin(), v.end());
-    auto q = [&](double f) { return v[std::min(v.size() - 1, static_cast<size_t>(f * v.size()))]; };
-    std::printf("%s: median %.3f ms, p99 %.3f ms, max %.3f ms\n", what, q(0.5), q(0.99), v.back());
-  };
-  std::vector<double> steady;
-  for (const auto& [stamp, ms] : latency_at) {
-    if (stamp - kStampOffsetS >= kStartUpS) steady.push_back(ms);
-  }
-  quantiles(steady, ("scan published -> pose received, steady state (from " +
-                     std::to_string(static_cast<int>(kStartUpS)) + " s on, " +
-                     std::to_string(steady.size()) + " poses)")
-                        .c_str());
-  quantiles(latency_ms, "  the whole run, start-up included");
-  // Where the time goes: the localiser's update, and everything else; with
-  // CSV, every scan's figures (update -1 when its status was not received).
+  // The whole run, the steady state apart, and where the steady state's time
+  // goes (the localiser's update, and everything else); with CSV, every
+  // scan's figures (update -1 when its status was not received).
   std::ofstream csv;
   if (argc > 3) {
     csv.open(argv[3]);
     csv << "stamp_s,latency_ms,update_ms\n" << std::fixed;
   }
-  std::vector<double> update, rest;
+  std::vector<double> whole, steady, update, rest;
   for (const auto& [stamp, ms] : latency_at) {
     const auto u = update_ms.find(stamp);
     if (csv.is_open())
       csv << stamp - kStampOffsetS << "," << ms << "," << (u == update_ms.end() ? -1.0 : u->second)
           << "\n";
-    if (u == update_ms.end() || stamp - kStampOffsetS < kStartUpS) continue;
+    whole.push_back(ms);
+    if (stamp - kStampOffsetS < kStartUpS) continue;
+    steady.push_back(ms);
+    if (u == update_ms.end()) continue;
     update.push_back(u->second);
     rest.push_back(ms - u->second);
   }
+  std::printf("%.0f Hz, 1081-beam scans, %.0f s: %zu scans sent, %zu poses received\n", rate, wall,
+              sent.size(), whole.size());
+  auto quantiles = [](std::vector<double> v, const std::string& what) {
+    if (v.empty()) return;
+    std::sort(v.begin(), v.end());
+    auto q = [&](double f) { return v[std::min(v.size() - 1, static_cast<size_t>(f * v.size()))]; };
+    std::printf("%s: median %.3f ms, p99 %.3f ms, max %.3f ms\n", what.c_str(), q(0.5), q(0.99),
+                v.back());
+  };
+  quantiles(steady, "scan published -> pose received, steady state (from " +
+                        std::to_string(static_cast<int>(kStartUpS)) + " s on, " +
+                        std::to_string(steady.size()) + " poses)");
+  quantiles(whole, "  the whole run, start-up included");
   quantiles(update, "  of the steady state, the localiser's update");
   quantiles(rest, "  of the steady state, transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
