@@ -23,6 +23,11 @@ process::LaunchContext Context() {
   return {STRUCTLOC_SOURCE_DIR, STRUCTLOC_BIN_DIR, {}};
 }
 
+// Reads a launch file with no overrides (what ExpectRejected calls).
+void ReadWithoutOverrides(const std::string& path) {
+  process::ReadLaunchFile(path, Context());
+}
+
 TEST(LaunchFiles, EveryShippedLaunchFileReadsAndNamesBuiltExecutables) {
   int count = 0;
   for (const auto& entry :
@@ -109,14 +114,12 @@ TEST(LaunchFiles, IncludesTakeArgumentsAndTheNamespaceAroundThem) {
   const testing::TempDir temp;
   const std::string self = temp.Write("self.launch.xml", "");
   temp.Write("self.launch.xml", "<launch><include file='" + self + "'/></launch>");
-  testing::ExpectRejected(
-      "<launch><include file='" + self + "'/></launch>", "includes itself",
-      [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
+  testing::ExpectRejected("<launch><include file='" + self + "'/></launch>", "includes itself",
+                          ReadWithoutOverrides);
   const std::string robot = std::string(STRUCTLOC_SOURCE_DIR) + "/launch_xml/robot.launch.xml";
   testing::ExpectRejected(
       "<launch><include file='" + robot + "'><arg name='colour' value='red'/></include></launch>",
-      "no <arg name=\"colour\">",
-      [](const std::string& path) { process::ReadLaunchFile(path, Context()); });
+      "no <arg name=\"colour\">", ReadWithoutOverrides);
 }
 
 // ROS 2's <include> is not scoped: the included file sees the variables set
@@ -207,8 +210,7 @@ TEST(LaunchFiles, IncludesSeeAndSetVariablesAsInRos2) {
   <arg name="robot"/><executable cmd="/bin/echo $(var robot)"/></launch>)xml");
   testing::ExpectRejected(
       "<launch><let name='robot' value='r1'/><include file='" + needs + "'/></launch>",
-      "the <include> must pass it",
-      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+      "the <include> must pass it", ReadWithoutOverrides);
 }
 
 // A node or executable left out by its condition is not substituted further;
@@ -225,26 +227,25 @@ TEST(LaunchFiles, ConditionsComeFirstAndNodeNamesAreChecked) {
   const auto d = process::ReadLaunchFile(path, Context());
   ASSERT_EQ(d.nodes.size(), 1u);
   EXPECT_EQ(d.nodes[0].name, "on");
-  const auto read = [](const std::string& file) { process::ReadLaunchFile(file, Context()); };
   testing::ExpectRejected("<launch><executable cmd='/bin/true' if='true' unless='false'/></launch>",
-                          "has both if and unless", read);
+                          "has both if and unless", ReadWithoutOverrides);
   testing::ExpectRejected(
       "<launch><executable cmd='/bin/true' if='false'><param name='p' value='1'/></executable>"
       "</launch>",
-      "unknown element", read);
+      "unknown element", ReadWithoutOverrides);
   testing::ExpectRejected(
       "<launch><executable cmd='/bin/true' if='false'><env nme='X' value='1'/></executable>"
       "</launch>",
-      "missing attribute name", read);
+      "missing attribute name", ReadWithoutOverrides);
   testing::ExpectRejected("<launch><executable cmd='/bin/echo $(dirname x)'/></launch>",
-                          "$(dirname) takes no argument", read);
+                          "$(dirname) takes no argument", ReadWithoutOverrides);
   testing::ExpectRejected(
       "<launch><node pkg='structloc' exec='structloc_simulator' name='a b'/></launch>",
-      "is not a node name", read);
+      "is not a node name", ReadWithoutOverrides);
   testing::ExpectRejected(
       "<launch><node pkg='structloc' exec='structloc_simulator' if='false' colour='red'/>"
       "</launch>",
-      "colour", read);
+      "colour", ReadWithoutOverrides);
 }
 
 // As ROS 2 launch reads them: $(env NAME) sees a <set_env> in scope, if and
@@ -271,9 +272,8 @@ TEST(LaunchFiles, SetEnvConditionsAndOptionalIncludesReadAsInRos2) {
   EXPECT_EQ(d.nodes[0].name, "echo");
   // A substituted value stays one word, as in ROS 2.
   EXPECT_EQ(d.nodes[0].arguments, (std::vector<std::string>{"from set_env"}));
-  testing::ExpectRejected(
-      "<launch><executable cmd='/bin/true' if='yes'/></launch>", "not true, false, 1 or 0",
-      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+  testing::ExpectRejected("<launch><executable cmd='/bin/true' if='yes'/></launch>",
+                          "not true, false, 1 or 0", ReadWithoutOverrides);
 }
 
 TEST(LaunchFiles, ExecutablesRunProgramsFromPathWithTheirArgumentsAndEnvironment) {
@@ -302,13 +302,12 @@ TEST(LaunchFiles, ExecutablesRunProgramsFromPathWithTheirArgumentsAndEnvironment
   ASSERT_EQ(other.nodes.size(), 1u);
   EXPECT_EQ(other.nodes[0].name, "true");
   EXPECT_EQ(other.nodes[0].executable, "/bin/true");
-  testing::ExpectRejected(
-      "<launch><executable cmd='no_such_program_here --x'/></launch>",
-      "cmd 'no_such_program_here' is not an executable on PATH",
-      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+  testing::ExpectRejected("<launch><executable cmd='no_such_program_here --x'/></launch>",
+                          "cmd 'no_such_program_here' is not an executable on PATH",
+                          ReadWithoutOverrides);
   testing::ExpectRejected(
       "<launch><executable cmd='/bin/true'><param name='a' value='1'/></executable></launch>",
-      "unknown element", [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+      "unknown element", ReadWithoutOverrides);
 }
 
 TEST(LaunchFiles, ParamFilesGiveEachNodeItsEntriesAndTheirOwnErrorsNameTheLine) {
@@ -341,8 +340,7 @@ other:
   testing::ExpectRejected(
       "<launch><node pkg='structloc' exec='structloc_localisation' name='loc'><param from='" +
           broken + "'/></node></launch>",
-      broken + ":3: parameter 'a' must be a plain value",
-      [](const std::string& file) { process::ReadLaunchFile(file, Context()); });
+      broken + ":3: parameter 'a' must be a plain value", ReadWithoutOverrides);
 }
 
 struct BrokenLaunch {
