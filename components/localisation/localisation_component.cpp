@@ -106,7 +106,10 @@ LocalisationComponent::~LocalisationComponent() {
 }
 
 void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& scan, double now) {
-  const auto attempt = global_->Try(scan);
+  // The scans of the last metres count with this one (the caller made sure
+  // the odometry reaches its stamp).
+  const auto odometry = session_.OdometryAt(scan.geometry.stamp);
+  const auto attempt = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
   const auto& r = attempt.result;
   std::cout << std::fixed << std::setprecision(3)
             << "localisation: global localisation at t=" << scan.geometry.stamp << ": "
@@ -124,6 +127,7 @@ void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& sc
   if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
   std::cout << std::endl;
   if (!attempt.found) return;
+  global_->ForgetRecentScans();
   session_.SetInitialPose(*attempt.found, "global localisation", now);
   const auto& p = attempt.found->pose;
   std::cout << "localisation: initial pose set from global localisation: robot at (" << p.x << ", "
@@ -192,6 +196,7 @@ void LocalisationComponent::Worker() {
         session_.ForgetPose();
         pose_hint_check_.reset();
         given_pose_source_.clear();
+        global_->ForgetRecentScans();  // the robot may have been carried away
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
       }

@@ -66,6 +66,13 @@ std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, 
   return out;
 }
 
+// The same for readings and the places they were seen from (none: all from
+// the laser's origin); which of them were the newest scan's is not kept.
+Readings Spread(const Readings& readings, int most) {
+  return {Spread(readings.points, most),
+          readings.seen_from.empty() ? readings.seen_from : Spread(readings.seen_from, most), 0};
+}
+
 bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
               const GlobalLocaliserOptions& o) {
   return std::hypot(a.x - b.x, a.y - b.y) > o.distinct_distance_m ||
@@ -193,13 +200,15 @@ double GlobalLocaliser::Gain(const std::vector<float>& gain, double x, double y)
   return (1 - fy) * bottom + fy * top;
 }
 
-std::vector<Eigen::Vector2d> GlobalLocaliser::UsablePoints(
-    const std::vector<Eigen::Vector2d>& points) const {
-  std::vector<Eigen::Vector2d> usable;
-  for (const auto& p : points) {
-    const double r = p.norm();
-    if (std::isfinite(r) && r >= options_.min_range_m && r <= options_.max_range_m)
-      usable.push_back(p);
+Readings GlobalLocaliser::UsableReadings(const Readings& readings) const {
+  Readings usable;
+  for (size_t i = 0; i < readings.points.size(); ++i) {
+    const Eigen::Vector2d& from =
+        readings.seen_from.empty() ? Eigen::Vector2d::Zero() : readings.seen_from[i];
+    const double r = (readings.points[i] - from).norm();
+    if (!std::isfinite(r) || r < options_.min_range_m || r > options_.max_range_m) continue;
+    usable.points.push_back(readings.points[i]);
+    if (!readings.seen_from.empty()) usable.seen_from.push_back(from);
   }
   return Spread(usable, options_.rank_points);
 }
@@ -229,13 +238,15 @@ bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vect
 }
 
 double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
+                                  const std::vector<Eigen::Vector2d>& seen_from,
                                   const geometry::Pose2D& pose) const {
   if (points.empty()) return 0.0;
-  const Eigen::Vector2d origin = pose.Translation();
   double sum = 0.0;
-  for (const auto& p : points) {
-    const Eigen::Vector2d q = pose.Apply(p);
-    const double range = p.norm();
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d origin =
+        seen_from.empty() ? pose.Translation() : pose.Apply(seen_from[i]);
+    const Eigen::Vector2d q = pose.Apply(points[i]);
+    const double range = (q - origin).norm();
     if (range > options_.see_through_margin_m) {
       const Eigen::Vector2d short_end =
           origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
@@ -248,7 +259,12 @@ double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
 
 double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
                               const geometry::Pose2D& laser_pose) const {
-  return RankScore(UsablePoints(points), laser_pose);
+  return Score(Readings{points, {}, 0}, laser_pose);
+}
+
+double GlobalLocaliser::Score(const Readings& readings, const geometry::Pose2D& laser_pose) const {
+  const Readings usable = UsableReadings(readings);
+  return RankScore(usable.points, usable.seen_from, laser_pose);
 }
 
 // A window's poses: the refinement may climb a coarse step beyond its edge,
@@ -289,10 +305,15 @@ geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
   return pose;
 }
 
-GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_points,
+GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& points,
                                      const SearchWindow* window) const {
+  return Locate(Readings{points, {}, 0}, window);
+}
+
+GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindow* window) const {
   GlobalResult result;
-  const std::vector<Eigen::Vector2d> all = UsablePoints(scan_points);
+  const Readings usable = UsableReadings(readings);
+  const std::vector<Eigen::Vector2d>& all = usable.points;
   const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
   result.points_used = all.size();
   if (all.size() < static_cast<size_t>(options_.min_points)) {
@@ -413,7 +434,7 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
     candidate.pose = Refine(rank_gain_, all, candidate.pose, 0.05, 0.01);
     candidate.score = window != nullptr && !InWindow(candidate.pose, *window)
                           ? 0.0
-                          : RankScore(all, candidate.pose);
+                          : RankScore(all, usable.seen_from, candidate.pose);
   }
   std::sort(refined.begin(), refined.end(), by_score);
   if (refined.empty()) {
@@ -421,12 +442,27 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
                     " no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
     return result;
   }
+  // With earlier scans, how much of the newest scan alone each pose explains.
+  const bool earlier =
+      readings.newest_points > 0 && readings.newest_points < readings.points.size();
+  std::vector<double> newest_share(refined.size(), 0.0);
+  if (earlier) {
+    const auto end = readings.points.begin() + static_cast<std::ptrdiff_t>(readings.newest_points);
+    const Readings newest = UsableReadings(Readings{{readings.points.begin(), end}, {}, 0});
+    for (size_t i = 0; i < refined.size(); ++i)
+      newest_share[i] = RankScore(newest.points, {}, refined[i].pose);
+  }
+  const auto rivals = [&](size_t i) {
+    const double margin = options_.ambiguity_margin;
+    return refined[i].score > refined.front().score - margin &&
+           (!earlier || newest_share[i] > newest_share.front() - margin);
+  };
   result.best = refined.front();
-  for (size_t i = 1; i < refined.size(); ++i) {
-    if (Distinct(refined[i].pose, refined.front().pose, options_)) {
-      result.runner_up = refined[i];
-      break;
-    }
+  bool ambiguous = false;
+  for (size_t i = 1; i < refined.size() && !ambiguous; ++i) {
+    if (!Distinct(refined[i].pose, refined.front().pose, options_)) continue;
+    ambiguous = rivals(i);
+    if (!result.runner_up || ambiguous) result.runner_up = refined[i];
   }
   if (result.best->score < options_.min_score) {
     result.decision = GlobalDecision::kNotFound;
@@ -434,10 +470,11 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& scan_po
                     std::to_string(static_cast<int>(100 * result.best->score)) +
                     " % of the scan (at least " +
                     std::to_string(static_cast<int>(100 * options_.min_score)) + " % needed)";
-  } else if (result.runner_up &&
-             result.runner_up->score > result.best->score - options_.ambiguity_margin) {
+  } else if (ambiguous) {
     result.decision = GlobalDecision::kAmbiguous;
-    result.reason = "a distinct pose explains the scan nearly as well";
+    result.reason = earlier
+                        ? "a distinct pose explains the scan and the ones before it nearly as well"
+                        : "a distinct pose explains the scan nearly as well";
   } else {
     result.decision = GlobalDecision::kFound;
   }

@@ -6,11 +6,28 @@
 namespace structloc::localisation_core {
 
 GlobalStart::GlobalStart(const world_model::WorldModel& world, const geometry::Pose2D& sensor_mount,
-                         const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options)
-    : search_(world, options), mount_(sensor_mount), covariance_(covariance) {}
+                         const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options,
+                         const RecentScansOptions& recent)
+    : search_(world, options), mount_(sensor_mount), covariance_(covariance), recent_(recent) {}
+
+namespace {
+
+std::vector<Eigen::Vector2d> LaserPoints(const SessionScan& scan) {
+  const auto& g = scan.geometry;
+  const double max_range = g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY;
+  return ScanPointsInLaserFrame(scan.ranges, g.angle_min, g.angle_increment, g.range_min,
+                                max_range);
+}
+
+}  // namespace
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
   return Locate(scan, nullptr);
+}
+
+GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::Pose2D& odometry) {
+  recent_.Add(LaserPoints(scan), geometry::Compose(odometry, mount_));
+  return Decide(scan, search_.Locate(recent_.InNewestFrame()));
 }
 
 GlobalStart::Attempt GlobalStart::TryNear(const SessionScan& scan,
@@ -45,16 +62,16 @@ std::optional<InitialPoseInput> GlobalStart::NearestOfTie(const SessionScan& sca
 
 GlobalStart::Attempt GlobalStart::Locate(const SessionScan& scan,
                                          const SearchWindow* window) const {
-  const auto& g = scan.geometry;
-  const double max_range = g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY;
+  return Decide(scan, search_.Locate(LaserPoints(scan), window));
+}
+
+GlobalStart::Attempt GlobalStart::Decide(const SessionScan& scan, GlobalResult result) const {
   Attempt attempt;
-  attempt.result = search_.Locate(
-      ScanPointsInLaserFrame(scan.ranges, g.angle_min, g.angle_increment, g.range_min, max_range),
-      window);
+  attempt.result = std::move(result);
   if (attempt.result.decision == GlobalDecision::kFound) {
     attempt.found = InitialPoseInput{
-        g.stamp, geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount_)),
-        covariance_};
+        scan.geometry.stamp,
+        geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount_)), covariance_};
   }
   return attempt;
 }

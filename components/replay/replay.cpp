@@ -14,6 +14,7 @@
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/prefilter.hpp"
+#include "structloc/localisation_core/recent_scans.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/rendering/map_canvas.hpp"
@@ -170,7 +171,11 @@ class Replayer {
     const auto points = localisation_core::ScanPointsInLaserFrame(
         r.ranges, r.start_angle, r.angular_resolution, 0.0, max_range);
     const auto t0 = std::chrono::steady_clock::now();
-    GlobalAttempt attempt{global_scans_, r.line, r.stamp, global_->Locate(points), 0.0};
+    // With the log's odometry, the scans of the last metres count with this one.
+    if (r.robot_pose) recent_.Add(points, geometry::Compose(*r.robot_pose, SensorMount(&r)));
+    GlobalAttempt attempt{
+        global_scans_, r.line, r.stamp,
+        r.robot_pose ? global_->Locate(recent_.InNewestFrame()) : global_->Locate(points), 0.0};
     attempt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report_.global_attempts.push_back(attempt);
     if (attempt.result.decision == localisation_core::GlobalDecision::kFound) {
@@ -394,6 +399,7 @@ class Replayer {
   std::unique_ptr<TrackingSession> session_;      // from the first (located) laser line on
   std::optional<geometry::Pose2D> initial_pose_;  // given, or found by global_
   std::unique_ptr<localisation_core::GlobalLocaliser> global_;  // without an initial pose
+  localisation_core::RecentScans recent_;                       // of the global localisation
   size_t global_scans_ = 0;                                     // scans it has tried
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;

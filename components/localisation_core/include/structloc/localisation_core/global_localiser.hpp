@@ -9,7 +9,9 @@
 // would pass through a wall explain nothing). The best pose is "found" only
 // when it explains enough points and no distinct runner-up explains nearly as
 // many; two equally good poses (a symmetric corridor) give "ambiguous" rather
-// than a guess. DDS-free, deterministic (no randomness).
+// than a guess. The scan may come with the ones taken just before it, placed
+// by odometry (Readings, RecentScans). DDS-free, deterministic (no
+// randomness).
 #pragma once
 
 #include <Eigen/Core>
@@ -73,6 +75,22 @@ struct SearchWindow {
   double heading_rad = geometry::kPi;
 };
 
+// Readings for the search: points in the frame of the laser pose sought, the
+// i-th seen from seen_from[i] in that frame. With seen_from empty every point
+// was seen from the laser itself (one scan). Earlier scans, moved into this
+// frame by odometry, bring the places they were taken from: each of their
+// beams is then checked for passing through walls from there. The first
+// newest_points points are the scan being located (0: all of them): a distinct
+// pose makes the answer "ambiguous" only if it explains nearly as much of all
+// the readings and of that scan alone, so that neither the earlier scans
+// (a corridor that repeats) nor the newest (a room like others) can hide
+// what the other tells apart.
+struct Readings {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector2d> seen_from;
+  size_t newest_points = 0;
+};
+
 struct GlobalResult {
   GlobalDecision decision = GlobalDecision::kNotFound;
   std::optional<GlobalCandidate> best;
@@ -99,14 +117,17 @@ class GlobalLocaliser {
   // edge by more than a coarse step is dropped).
   GlobalResult Locate(const std::vector<Eigen::Vector2d>& points,
                       const SearchWindow* window = nullptr) const;
+  // The same for readings of several scans (see Readings).
+  GlobalResult Locate(const Readings& readings, const SearchWindow* window = nullptr) const;
 
   // Share of `points` explained at `laser_pose` (as used for ranking).
   double Score(const std::vector<Eigen::Vector2d>& points,
                const geometry::Pose2D& laser_pose) const;
+  double Score(const Readings& readings, const geometry::Pose2D& laser_pose) const;
   // The same for points already within the options' range limits (no copy).
   double ExplainedShare(const std::vector<Eigen::Vector2d>& usable_points,
                         const geometry::Pose2D& laser_pose) const {
-    return RankScore(usable_points, laser_pose);
+    return RankScore(usable_points, {}, laser_pose);
   }
 
   size_t CandidatePositions() const { return positions_.size(); }
@@ -120,10 +141,13 @@ class GlobalLocaliser {
     double y0 = 0.0;
   };
 
-  std::vector<Eigen::Vector2d> UsablePoints(const std::vector<Eigen::Vector2d>& points) const;
+  Readings UsableReadings(const Readings& readings) const;
   double FineScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
                    const geometry::Pose2D& pose) const;
-  double RankScore(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& pose) const;
+  // seen_from empty: every point seen from the pose itself.
+  double RankScore(const std::vector<Eigen::Vector2d>& points,
+                   const std::vector<Eigen::Vector2d>& seen_from,
+                   const geometry::Pose2D& pose) const;
   bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   bool InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const;
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame

@@ -2,7 +2,9 @@
 // a request to relocalise): each incoming scan goes to the global localiser
 // until one gives a "found" pose, never an ambiguous or unfound one; that pose
 // (the laser's, turned into the robot's with the sensor mount) becomes the
-// initial pose at the scan's stamp. TryNear searches only around a pose the
+// initial pose at the scan's stamp. With the robot's odometry, each scan is
+// searched together with those taken on the last metres (RecentScans). TryNear
+// searches only around a pose the
 // robot is believed to be near (a pose hint: PoseHintCheck). The
 // localisation component runs it; DDS-free.
 #pragma once
@@ -10,6 +12,7 @@
 #include <optional>
 
 #include "structloc/localisation_core/global_localiser.hpp"
+#include "structloc/localisation_core/recent_scans.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/session_scan.hpp"
 
@@ -19,13 +22,19 @@ class GlobalStart {
  public:
   // `covariance`: of a pose found (the tracker's initial covariance).
   GlobalStart(const world_model::WorldModel& world, const geometry::Pose2D& sensor_mount,
-              const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options = {});
+              const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options = {},
+              const RecentScansOptions& recent = {});
 
   struct Attempt {
     GlobalResult result;                    // laser poses
     std::optional<InitialPoseInput> found;  // the robot's initial pose, when found
   };
   Attempt Try(const SessionScan& scan) const;
+  // The same together with the scans given here before, placed by the
+  // robot's odometric pose at each (`odometry`, at this scan's stamp).
+  Attempt Try(const SessionScan& scan, const geometry::Pose2D& odometry);
+  // Forgets those scans: the robot was carried away, or has a pose.
+  void ForgetRecentScans() { recent_.Clear(); }
   // The same, over robot positions within `radius_m` of `robot_pose` and
   // headings within `heading_rad` of its heading.
   Attempt TryNear(const SessionScan& scan, const geometry::Pose2D& robot_pose, double radius_m,
@@ -39,10 +48,12 @@ class GlobalStart {
 
  private:
   Attempt Locate(const SessionScan& scan, const SearchWindow* window) const;
+  Attempt Decide(const SessionScan& scan, GlobalResult result) const;
 
   GlobalLocaliser search_;
   geometry::Pose2D mount_;
   Eigen::Matrix3d covariance_;
+  RecentScans recent_;
 };
 
 }  // namespace structloc::localisation_core

@@ -11,7 +11,9 @@
 //
 // Without an initial pose the robot is first located globally: the first
 // scans are tried one after the other against the whole map
-// (localisation_core::GlobalLocaliser) until one gives a "found" pose, which
+// (localisation_core::GlobalLocaliser), each with the scans of the last
+// metres placed by the log's odometry (localisation_core::RecentScans), until
+// one gives a "found" pose, which
 // then starts the tracking exactly as --initial-pose would; if none of the
 // first global_attempts scans does, the run is an error.
 #pragma once
