@@ -11,7 +11,7 @@
 // people, doors and clutter the map does not. The issue asks for at least
 // 90 % right (within 0.2 m and 5 deg), the rest "ambiguous" or "not found",
 // none confidently wrong; the test holds none wrong, at least 95 % right on
-// Freiburg (measured: 100 %) and the issue's 90 % on Intel (94.5 %).
+// Freiburg (measured: 100 %) and the issue's 90 % on Intel (92 %).
 // Label shared_data.
 #include <gtest/gtest.h>
 

@@ -54,8 +54,10 @@ TEST(GlobalLocalisationReplay, TracksWithoutAnInitialPoseAsWellAsWithOne) {
   ASSERT_EQ(found.result.decision, localisation_core::GlobalDecision::kFound);
   std::printf("%s", replay::FormatGlobalAttempts(global.global_attempts).c_str());
   // The corridor repeats every 6 m (doors at the same places): the first
-  // scans fit two places equally and are "ambiguous" until the robot sees more.
-  EXPECT_LE(global.global_attempts.size(), 30u);
+  // scans fit two places equally and are "ambiguous" until the robot sees
+  // more (found at scan 29 with the scans before it, 23 with single scans;
+  // 40 scans are some 3 m of driving).
+  EXPECT_LE(global.global_attempts.size(), 40u);
   EXPECT_EQ(global.scans_lost, 0u);
   ASSERT_GT(global.estimate.size(), 500u);
 

@@ -95,6 +95,9 @@ TEST(LocalisationGlobalStart, LocatesTheRobotWithoutAPoseAndAgainWhenAsked) {
   EXPECT_NE(started.find("no initial pose: locating the robot globally"), std::string::npos)
       << started;
   EXPECT_NE(started.find("global localisation at t="), std::string::npos) << started;
+  // The robot drives from the start: later attempts search with the scans
+  // before them, placed by odometry.
+  EXPECT_NE(started.find("scans before it"), std::string::npos) << started;
   EXPECT_NE(started.find("initial pose set from global localisation"), std::string::npos)
       << started;
   // Tracking from the first pose found on, after a second to settle.

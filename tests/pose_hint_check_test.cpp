@@ -136,8 +136,10 @@ TEST(PoseHintCheck, ThePredictionBreaksATieAsATrackersPriorWould) {
   const geometry::Pose2D mount = office.options.sensor_mount;
   GlobalResult tie;
   tie.decision = GlobalDecision::kAmbiguous;
-  tie.best = GlobalCandidate{geometry::Compose(geometry::Pose2D{5.0, 6.5, 0.0}, mount), 0.8};
-  tie.runner_up = GlobalCandidate{geometry::Compose(geometry::Pose2D{7.0, 6.5, 0.0}, mount), 0.78};
+  tie.best =
+      GlobalCandidate{geometry::Compose(geometry::Pose2D{5.0, 6.5, 0.0}, mount), 0.8, std::nullopt};
+  tie.runner_up = GlobalCandidate{geometry::Compose(geometry::Pose2D{7.0, 6.5, 0.0}, mount), 0.78,
+                                  std::nullopt};
   SessionScan scan;
   scan.geometry.stamp = 4.0;
   const auto near_runner_up = search.NearestOfTie(scan, tie, {6.9, 6.45, 0.05}, 0.3, 0.1);

@@ -4,7 +4,8 @@
 // room whose half-turned twin fits one scan of a 180 deg laser as well, the
 // scans taken on the way there (through a door from a corridor), placed by
 // odometry with a scale error and heading drift, make the search find the
-// robot.
+// robot; not from the earlier scans alone, and not from readings that do not
+// fit together.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -74,10 +75,16 @@ TEST(RecentScans, KeepsScansApartAndWithinTheCountAndPath) {
 
 TEST(RecentScans, LeavesOutNonFiniteScansAndRefusesBadOptions) {
   RecentScans recent;
-  recent.Add(SeenFrom({0, 0, 0}), {NAN, 0, 0});
+  EXPECT_FALSE(recent.Add(SeenFrom({0, 0, 0}), {NAN, 0, 0}));
   EXPECT_EQ(recent.Scans(), 0u);
-  recent.Add({{1.0, 0.0}, {INFINITY, 0.0}}, {0, 0, 0});
+  EXPECT_TRUE(recent.Add({{1.0, 0.0}, {INFINITY, 0.0}}, {0, 0, 0}));
   EXPECT_EQ(recent.InNewestFrame().points.size(), 1u);
+  EXPECT_EQ(recent.InNewestFrame().newest_points, 1u);
+  // A non-finite pose breaks the chain of odometry: everything is forgotten.
+  EXPECT_TRUE(recent.Add(SeenFrom({1, 0, 0}), {1, 0, 0}));
+  EXPECT_EQ(recent.Scans(), 2u);
+  EXPECT_FALSE(recent.Add(SeenFrom({2, 0, 0}), {2, 0, INFINITY}));
+  EXPECT_EQ(recent.Scans(), 0u);
   const auto refused = [](auto change, const char* option) {
     RecentScansOptions options;
     change(options);
@@ -156,6 +163,25 @@ TEST(RecentScans, ScansOnTheWayThereTellARoomFromItsTwin) {
   }
   EXPECT_EQ(recent.Scans(), 10u);  // the options' most
   const auto together = localiser.Locate(recent.InNewestFrame());
+  // The newest scan needs readings of its own: with too few, no answer from
+  // the earlier scans alone.
+  Readings newest_blind = recent.InNewestFrame();
+  newest_blind.points.erase(newest_blind.points.begin() + 3,
+                            newest_blind.points.begin() + *newest_blind.newest_points);
+  newest_blind.seen_from.erase(newest_blind.seen_from.begin() + 3,
+                               newest_blind.seen_from.begin() + *newest_blind.newest_points);
+  newest_blind.newest_points = 3;
+  const auto blind = localiser.Locate(newest_blind);
+  EXPECT_EQ(blind.decision, GlobalDecision::kNotFound);
+  EXPECT_NE(blind.reason.find("newest scan"), std::string::npos) << blind.reason;
+  // Readings that do not fit together are refused.
+  Readings broken = recent.InNewestFrame();
+  broken.seen_from.pop_back();
+  EXPECT_THROW(localiser.Locate(broken), std::invalid_argument);
+  broken = recent.InNewestFrame();
+  broken.newest_points = broken.points.size() + 1;
+  EXPECT_THROW(localiser.Locate(broken), std::invalid_argument);
+
   ASSERT_EQ(together.decision, GlobalDecision::kFound)
       << together.reason << ": best " << together.best->score << " at " << together.best->pose.x
       << " " << together.best->pose.y << " " << together.best->pose.theta << ", runner-up "

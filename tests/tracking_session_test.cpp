@@ -216,6 +216,21 @@ TEST_F(SessionTest, OfflineOdometryIsInterpolatedAtAScansTime) {
   EXPECT_NEAR(mid->y, 1.0, 1e-12);
   EXPECT_NEAR(mid->theta, 0.1, 1e-12);
   EXPECT_NEAR(session.OdometryAt(5.0)->x, 1.0, 1e-12);  // the newest beyond it
+  // Only between the first and the newest sample is the pose interpolated.
+  EXPECT_FALSE(session.OdometryCovers(0.5));
+  EXPECT_TRUE(session.OdometryCovers(1.5));
+  EXPECT_TRUE(session.OdometryCovers(2.0));
+  EXPECT_FALSE(session.OdometryCovers(5.0));
+}
+
+TEST_F(SessionTest, LiveOdometryCoversOnlyStampsUpToItsNewestSample) {
+  TrackingSession session(&office.world, office.options, options, Scheduling::kNewestWins);
+  EXPECT_FALSE(session.OdometryCovers(1.0));
+  session.AddOdometry(1.0, {0, 0, 0}, 1.0);
+  session.AddOdometry(2.0, {1, 0, 0}, 2.0);
+  EXPECT_FALSE(session.OdometryCovers(0.9));
+  EXPECT_TRUE(session.OdometryCovers(1.5));
+  EXPECT_FALSE(session.OdometryCovers(2.1));  // OdometryAt would hold the newest sample
 }
 
 TEST_F(SessionTest, WithoutAMapScansAreCheckedAndHandedBackWithTheirOdometry) {

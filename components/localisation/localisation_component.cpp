@@ -106,18 +106,23 @@ LocalisationComponent::~LocalisationComponent() {
 }
 
 void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& scan, double now) {
-  // The scans of the last metres count with this one (the caller made sure
-  // the odometry reaches its stamp).
-  const auto odometry = session_.OdometryAt(scan.geometry.stamp);
+  // The scans of the last metres count with this one when odometry on both
+  // sides of its stamp places it (not the newest sample held beyond it).
+  const double t = scan.geometry.stamp;
+  const auto odometry =
+      session_.OdometryCovers(t) ? session_.OdometryAt(t) : std::optional<geometry::Pose2D>();
   const auto attempt = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
   const auto& r = attempt.result;
-  std::cout << std::fixed << std::setprecision(3)
-            << "localisation: global localisation at t=" << scan.geometry.stamp << ": "
-            << localisation_core::ToString(r.decision);
+  std::cout << std::fixed << std::setprecision(3) << "localisation: global localisation at t=" << t;
+  if (odometry && global_->RecentScanCount() > 1)
+    std::cout << " with " << global_->RecentScanCount() - 1 << " scans before it";
+  std::cout << ": " << localisation_core::ToString(r.decision);
   if (r.best) {
     std::cout << ", best laser pose (" << r.best->pose.x << ", " << r.best->pose.y << ", "
               << r.best->pose.theta << ") explains " << static_cast<int>(100 * r.best->score)
               << " %";
+    if (r.best->newest_score)
+      std::cout << " (" << static_cast<int>(100 * *r.best->newest_score) << " % of this scan)";
   }
   if (r.runner_up) {
     std::cout << ", runner-up (" << r.runner_up->pose.x << ", " << r.runner_up->pose.y << ", "

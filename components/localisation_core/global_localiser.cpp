@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 namespace structloc::localisation_core {
@@ -70,7 +71,8 @@ std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, 
 // the laser's origin); which of them were the newest scan's is not kept.
 Readings Spread(const Readings& readings, int most) {
   return {Spread(readings.points, most),
-          readings.seen_from.empty() ? readings.seen_from : Spread(readings.seen_from, most), 0};
+          readings.seen_from.empty() ? readings.seen_from : Spread(readings.seen_from, most),
+          std::nullopt};
 }
 
 bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
@@ -201,6 +203,14 @@ double GlobalLocaliser::Gain(const std::vector<float>& gain, double x, double y)
 }
 
 Readings GlobalLocaliser::UsableReadings(const Readings& readings) const {
+  if (!readings.seen_from.empty() && readings.seen_from.size() != readings.points.size())
+    throw std::invalid_argument("global localiser: readings have " +
+                                std::to_string(readings.points.size()) + " points but " +
+                                std::to_string(readings.seen_from.size()) + " places seen from");
+  if (readings.newest_points && *readings.newest_points > readings.points.size())
+    throw std::invalid_argument("global localiser: readings' newest scan has more points (" +
+                                std::to_string(*readings.newest_points) + ") than all (" +
+                                std::to_string(readings.points.size()) + ")");
   Readings usable;
   for (size_t i = 0; i < readings.points.size(); ++i) {
     const Eigen::Vector2d& from =
@@ -259,7 +269,7 @@ double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
 
 double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
                               const geometry::Pose2D& laser_pose) const {
-  return Score(Readings{points, {}, 0}, laser_pose);
+  return Score(Readings{points, {}, std::nullopt}, laser_pose);
 }
 
 double GlobalLocaliser::Score(const Readings& readings, const geometry::Pose2D& laser_pose) const {
@@ -307,7 +317,7 @@ geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
 
 GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& points,
                                      const SearchWindow* window) const {
-  return Locate(Readings{points, {}, 0}, window);
+  return Locate(Readings{points, {}, std::nullopt}, window);
 }
 
 GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindow* window) const {
@@ -321,6 +331,19 @@ GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindo
                     std::to_string(options_.min_range_m) + ".." +
                     std::to_string(options_.max_range_m) + " m";
     return result;
+  }
+  // With earlier scans, the newest scan's own readings: it must have enough.
+  const bool earlier = readings.newest_points && *readings.newest_points < readings.points.size();
+  Readings newest;
+  if (earlier) {
+    const auto end = readings.points.begin() + static_cast<std::ptrdiff_t>(*readings.newest_points);
+    newest = UsableReadings(Readings{{readings.points.begin(), end}, {}, std::nullopt});
+    if (newest.points.size() < static_cast<size_t>(options_.min_points)) {
+      result.reason = "the newest scan has only " + std::to_string(newest.points.size()) +
+                      " readings within " + std::to_string(options_.min_range_m) + ".." +
+                      std::to_string(options_.max_range_m) + " m";
+      return result;
+    }
   }
   const std::vector<Eigen::Vector2d> coarse = Spread(points, options_.coarse_points);
 
@@ -402,7 +425,7 @@ GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindo
     const geometry::Pose2D pose = Refine(fine_gain_, points, start, 0.5 * options_.coarse_step_m,
                                          0.5 * options_.coarse_heading_step_rad);
     if (window != nullptr && !InWindow(pose, *window)) continue;  // climbed out of it
-    converged.push_back({pose, FineScore(fine_gain_, points, pose)});
+    converged.push_back({pose, FineScore(fine_gain_, points, pose), std::nullopt});
   }
   std::sort(converged.begin(), converged.end(), by_score);
   std::vector<GlobalCandidate> refined;
@@ -442,34 +465,35 @@ GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindo
                     " no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
     return result;
   }
-  // With earlier scans, how much of the newest scan alone each pose explains.
-  const bool earlier =
-      readings.newest_points > 0 && readings.newest_points < readings.points.size();
-  std::vector<double> newest_share(refined.size(), 0.0);
-  if (earlier) {
-    const auto end = readings.points.begin() + static_cast<std::ptrdiff_t>(readings.newest_points);
-    const Readings newest = UsableReadings(Readings{{readings.points.begin(), end}, {}, 0});
-    for (size_t i = 0; i < refined.size(); ++i)
-      newest_share[i] = RankScore(newest.points, {}, refined[i].pose);
-  }
-  const auto rivals = [&](size_t i) {
-    const double margin = options_.ambiguity_margin;
-    return refined[i].score > refined.front().score - margin &&
-           (!earlier || newest_share[i] > newest_share.front() - margin);
+  // With earlier scans, how much of the newest scan alone a pose explains
+  // (asked only of the best and of the poses close to it on all readings).
+  auto newest_share = [&](GlobalCandidate& c) {
+    if (!c.newest_score) c.newest_score = RankScore(newest.points, {}, c.pose);
+    return *c.newest_score;
   };
-  result.best = refined.front();
+  const double margin = options_.ambiguity_margin;
+  if (earlier) newest_share(refined.front());
   bool ambiguous = false;
+  std::optional<size_t> rival;
   for (size_t i = 1; i < refined.size() && !ambiguous; ++i) {
     if (!Distinct(refined[i].pose, refined.front().pose, options_)) continue;
-    ambiguous = rivals(i);
-    if (!result.runner_up || ambiguous) result.runner_up = refined[i];
+    ambiguous = refined[i].score > refined.front().score - margin &&
+                (!earlier || newest_share(refined[i]) > *refined.front().newest_score - margin);
+    if (!rival || ambiguous) rival = i;
   }
+  result.best = refined.front();
+  if (rival) result.runner_up = refined[*rival];
+  const auto too_little = [&](double share, const char* of) {
+    return "the best pose explains only " + std::to_string(static_cast<int>(100 * share)) +
+           " % of " + of + " (at least " +
+           std::to_string(static_cast<int>(100 * options_.min_score)) + " % needed)";
+  };
   if (result.best->score < options_.min_score) {
     result.decision = GlobalDecision::kNotFound;
-    result.reason = "the best pose explains only " +
-                    std::to_string(static_cast<int>(100 * result.best->score)) +
-                    " % of the scan (at least " +
-                    std::to_string(static_cast<int>(100 * options_.min_score)) + " % needed)";
+    result.reason = too_little(result.best->score, earlier ? "the readings" : "the scan");
+  } else if (earlier && *result.best->newest_score < options_.min_score) {
+    result.decision = GlobalDecision::kNotFound;
+    result.reason = too_little(*result.best->newest_score, "the newest scan alone");
   } else if (ambiguous) {
     result.decision = GlobalDecision::kAmbiguous;
     result.reason = earlier

@@ -26,7 +26,9 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
 }
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::Pose2D& odometry) {
-  recent_.Add(LaserPoints(scan), geometry::Compose(odometry, mount_));
+  const auto points = LaserPoints(scan);
+  if (!recent_.Add(points, geometry::Compose(odometry, mount_)))
+    return Decide(scan, search_.Locate(points));
   return Decide(scan, search_.Locate(recent_.InNewestFrame()));
 }
 

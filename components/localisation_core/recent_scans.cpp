@@ -33,9 +33,12 @@ bool RecentScans::FarApart(const geometry::Pose2D& a, const geometry::Pose2D& b)
          std::abs(geometry::WrapAngle(a.theta - b.theta)) >= options_.min_turn_rad;
 }
 
-void RecentScans::Add(const std::vector<Eigen::Vector2d>& points,
+bool RecentScans::Add(const std::vector<Eigen::Vector2d>& points,
                       const geometry::Pose2D& laser_odometry) {
-  if (!Finite(laser_odometry)) return;
+  if (!Finite(laser_odometry)) {
+    Clear();
+    return false;
+  }
   Scan scan{{}, laser_odometry};
   scan.points.reserve(points.size());
   for (const auto& p : points)
@@ -58,6 +61,7 @@ void RecentScans::Add(const std::vector<Eigen::Vector2d>& points,
       break;
     }
   }
+  return true;
 }
 
 // Walking back from the newest: a kept scan too close to the one taken after
@@ -73,7 +77,7 @@ std::vector<const RecentScans::Scan*> RecentScans::Combined() const {
 
 Readings RecentScans::InNewestFrame() const {
   Readings readings;
-  readings.newest_points = has_newest_ ? newest_.points.size() : 0;
+  if (has_newest_) readings.newest_points = newest_.points.size();
   for (const Scan* scan : Combined()) {
     const geometry::Pose2D relative = geometry::Between(newest_.pose, scan->pose);
     for (const auto& p : scan->points) {

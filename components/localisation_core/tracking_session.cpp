@@ -123,6 +123,13 @@ bool TrackingSession::OdometryReaches(double t) const {
   return !odometry_log_.empty() && t >= odometry_log_.front().stamp;
 }
 
+bool TrackingSession::OdometryCovers(double t) const {
+  if (scheduling_ == Scheduling::kNewestWins) {
+    return OdometryReaches(t) && t <= tracker_->Odometry().Newest();
+  }
+  return OdometryReaches(t) && t <= odometry_log_.back().stamp;
+}
+
 std::optional<geometry::Pose2D> TrackingSession::OdometryAt(double t) const {
   if (scheduling_ == Scheduling::kNewestWins) {
     if (!tracker_ || tracker_->Odometry().Empty()) return std::nullopt;

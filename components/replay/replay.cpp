@@ -172,10 +172,12 @@ class Replayer {
         r.ranges, r.start_angle, r.angular_resolution, 0.0, max_range);
     const auto t0 = std::chrono::steady_clock::now();
     // With the log's odometry, the scans of the last metres count with this one.
-    if (r.robot_pose) recent_.Add(points, geometry::Compose(*r.robot_pose, SensorMount(&r)));
+    const bool together =
+        r.robot_pose && recent_.Add(points, geometry::Compose(*r.robot_pose, SensorMount(&r)));
     GlobalAttempt attempt{
         global_scans_, r.line, r.stamp,
-        r.robot_pose ? global_->Locate(recent_.InNewestFrame()) : global_->Locate(points), 0.0};
+        together ? global_->Locate(recent_.InNewestFrame()) : global_->Locate(points), 0.0};
+    attempt.scans_together = together ? recent_.Scans() : 1;
     attempt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report_.global_attempts.push_back(attempt);
     if (attempt.result.decision == localisation_core::GlobalDecision::kFound) {
@@ -427,10 +429,12 @@ std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts) {
     out << std::setprecision(2) << "(" << c.pose.x << " m, " << c.pose.y << " m, "
         << std::setprecision(1) << c.pose.theta * 180.0 / geometry::kPi << " deg) explaining "
         << std::setprecision(0) << 100.0 * c.score << " %";
+    if (c.newest_score) out << " (" << 100.0 * *c.newest_score << " % of the newest scan alone)";
   };
   for (const auto& a : attempts) {
-    out << "global localisation, scan " << a.scan << " (line " << a.line
-        << "): " << localisation_core::ToString(a.result.decision);
+    out << "global localisation, scan " << a.scan << " (line " << a.line << ")";
+    if (a.scans_together > 1) out << " with " << a.scans_together - 1 << " before it";
+    out << ": " << localisation_core::ToString(a.result.decision);
     if (a.result.best) {
       out << ", laser at ";
       pose(*a.result.best);

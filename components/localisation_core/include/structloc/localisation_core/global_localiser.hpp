@@ -63,7 +63,10 @@ const char* ToString(GlobalDecision decision);
 
 struct GlobalCandidate {
   geometry::Pose2D pose;  // laser pose in the map frame
-  double score = 0.0;     // share of the scan's points explained, 0..1
+  double score = 0.0;     // share of the readings explained, 0..1
+  // With earlier scans (Readings::newest_points): the share of the newest
+  // scan alone explained.
+  std::optional<double> newest_score;
 };
 
 // Where a local search looks: laser positions within radius_m of the centre,
@@ -79,22 +82,26 @@ struct SearchWindow {
 // i-th seen from seen_from[i] in that frame. With seen_from empty every point
 // was seen from the laser itself (one scan). Earlier scans, moved into this
 // frame by odometry, bring the places they were taken from: each of their
-// beams is then checked for passing through walls from there. The first
-// newest_points points are the scan being located (0: all of them): a distinct
-// pose makes the answer "ambiguous" only if it explains nearly as much of all
-// the readings and of that scan alone, so that neither the earlier scans
-// (a corridor that repeats) nor the newest (a room like others) can hide
-// what the other tells apart.
+// beams is then checked for passing through walls from there.
+// newest_points: the first this many points are the scan being located, the
+// rest earlier scans' (none: all points are that scan's). With earlier scans
+// the newest must be confirmed on its own: its best pose must explain
+// min_score of it too, and a distinct pose makes the answer "ambiguous" only
+// if it explains nearly as much of all the readings and of the newest scan
+// alone, so that neither the earlier scans (a corridor that repeats) nor the
+// newest (a room like others) can hide what the other tells apart.
 struct Readings {
   std::vector<Eigen::Vector2d> points;
   std::vector<Eigen::Vector2d> seen_from;
-  size_t newest_points = 0;
+  std::optional<size_t> newest_points;
 };
 
 struct GlobalResult {
   GlobalDecision decision = GlobalDecision::kNotFound;
   std::optional<GlobalCandidate> best;
-  std::optional<GlobalCandidate> runner_up;  // best pose distinct from `best`
+  // The distinct pose that made the answer "ambiguous", else the best pose
+  // distinct from `best`.
+  std::optional<GlobalCandidate> runner_up;
   size_t points_used = 0;
   std::string reason;  // why not found or ambiguous, for the user
 };
@@ -117,7 +124,8 @@ class GlobalLocaliser {
   // edge by more than a coarse step is dropped).
   GlobalResult Locate(const std::vector<Eigen::Vector2d>& points,
                       const SearchWindow* window = nullptr) const;
-  // The same for readings of several scans (see Readings).
+  // The same for readings of several scans (see Readings). Throws
+  // std::invalid_argument when seen_from or newest_points do not fit points.
   GlobalResult Locate(const Readings& readings, const SearchWindow* window = nullptr) const;
 
   // Share of `points` explained at `laser_pose` (as used for ranking).

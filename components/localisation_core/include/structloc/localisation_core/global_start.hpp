@@ -3,10 +3,9 @@
 // until one gives a "found" pose, never an ambiguous or unfound one; that pose
 // (the laser's, turned into the robot's with the sensor mount) becomes the
 // initial pose at the scan's stamp. With the robot's odometry, each scan is
-// searched together with those taken on the last metres (RecentScans). TryNear
-// searches only around a pose the
-// robot is believed to be near (a pose hint: PoseHintCheck). The
-// localisation component runs it; DDS-free.
+// searched together with those taken on the last metres (RecentScans).
+// TryNear searches only around a pose the robot is believed to be near (a
+// pose hint: PoseHintCheck). The localisation component runs it; DDS-free.
 #pragma once
 
 #include <optional>
@@ -31,8 +30,11 @@ class GlobalStart {
   };
   Attempt Try(const SessionScan& scan) const;
   // The same together with the scans given here before, placed by the
-  // robot's odometric pose at each (`odometry`, at this scan's stamp).
+  // robot's odometric pose at each (`odometry`, at this scan's stamp); the
+  // scan alone when that pose is not finite.
   Attempt Try(const SessionScan& scan, const geometry::Pose2D& odometry);
+  // How many scans the last Try(scan, odometry) searched together.
+  size_t RecentScanCount() const { return recent_.Scans(); }
   // Forgets those scans: the robot was carried away, or has a pose.
   void ForgetRecentScans() { recent_.Clear(); }
   // The same, over robot positions within `radius_m` of `robot_pose` and

@@ -31,8 +31,9 @@ class RecentScans {
   explicit RecentScans(const RecentScansOptions& options = {});
 
   // A scan's points (laser frame) and the laser's odometric pose when it was
-  // taken. Non-finite points or poses are not kept.
-  void Add(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& laser_odometry);
+  // taken; non-finite points are left out. False, and every scan forgotten,
+  // when the pose is not finite (the chain of odometry is broken).
+  bool Add(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& laser_odometry);
   // The newest scan's points and those of the kept scans before it, in the
   // newest laser's frame; empty before the first Add.
   Readings InNewestFrame() const;

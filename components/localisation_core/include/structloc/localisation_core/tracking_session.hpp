@@ -108,6 +108,9 @@ class TrackingSession {
   // scans can be older than its first odometry (its readers match one by one),
   // and a pose found in such a scan must not be tied to later odometry.
   bool OdometryReaches(double t) const;
+  // Whether odometry from `t` or before and from `t` or after has arrived, so
+  // that OdometryAt(t) interpolates rather than holds the newest sample.
+  bool OdometryCovers(double t) const;
 
   // The correction to save when saving is due at `now` (then counted as saved).
   std::optional<SessionState> StateToSave(double now);

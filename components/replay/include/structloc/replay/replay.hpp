@@ -13,9 +13,9 @@
 // scans are tried one after the other against the whole map
 // (localisation_core::GlobalLocaliser), each with the scans of the last
 // metres placed by the log's odometry (localisation_core::RecentScans), until
-// one gives a "found" pose, which
-// then starts the tracking exactly as --initial-pose would; if none of the
-// first global_attempts scans does, the run is an error.
+// one gives a "found" pose, which then starts the tracking exactly as
+// --initial-pose would; if none of the first global_attempts scans does, the
+// run is an error.
 #pragma once
 
 #include <functional>
@@ -57,6 +57,7 @@ struct GlobalAttempt {
   double stamp = 0.0;
   localisation_core::GlobalResult result;  // laser poses
   double seconds = 0.0;
+  size_t scans_together = 1;  // this scan and the earlier ones searched with it
 };
 
 struct ReplayReport {
