@@ -149,6 +149,9 @@ class GlobalLocaliser {
     double y0 = 0.0;
   };
 
+  // Every step-th of the points (and their places seen from), at most `most`.
+  static std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, int most);
+  static Readings Spread(const Readings& readings, int most);
   Readings UsableReadings(const Readings& readings) const;
   double FineScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
                    const geometry::Pose2D& pose) const;
