@@ -114,8 +114,7 @@ void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& sc
   const auto attempt = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
   const auto& r = attempt.result;
   std::cout << std::fixed << std::setprecision(3) << "localisation: global localisation at t=" << t;
-  if (odometry && global_->RecentScanCount() > 1)
-    std::cout << " with " << global_->RecentScanCount() - 1 << " scans before it";
+  if (r.scans > 1) std::cout << " with " << r.scans - 1 << " scans before it";
   std::cout << ": " << localisation_core::ToString(r.decision);
   if (r.best) {
     std::cout << ", best laser pose (" << r.best->pose.x << ", " << r.best->pose.y << ", "

@@ -74,6 +74,12 @@ const char* ToString(GlobalDecision decision) {
   return "?";
 }
 
+Readings OneScan(std::vector<Eigen::Vector2d> points) {
+  Readings readings;
+  readings.points = std::move(points);
+  return readings;
+}
+
 std::vector<Eigen::Vector2d> ScanPointsInLaserFrame(const std::vector<float>& ranges,
                                                     double angle_min, double angle_increment,
                                                     double min_range_m, double max_range_m) {
@@ -175,9 +181,10 @@ std::vector<Eigen::Vector2d> GlobalLocaliser::Spread(const std::vector<Eigen::Ve
 // The same for readings and the places they were seen from (none: all from
 // the laser's origin); which of them were the newest scan's is not kept.
 Readings GlobalLocaliser::Spread(const Readings& readings, int most) {
-  return {Spread(readings.points, most),
-          readings.seen_from.empty() ? readings.seen_from : Spread(readings.seen_from, most),
-          std::nullopt};
+  Readings spread = OneScan(Spread(readings.points, most));
+  if (!readings.seen_from.empty()) spread.seen_from = Spread(readings.seen_from, most);
+  spread.scans = readings.scans;
+  return spread;
 }
 
 double GlobalLocaliser::Gain(const std::vector<float>& gain, double x, double y) const {
@@ -260,7 +267,7 @@ double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
 
 double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
                               const geometry::Pose2D& laser_pose) const {
-  return Score(Readings{points, {}, std::nullopt}, laser_pose);
+  return Score(OneScan(points), laser_pose);
 }
 
 double GlobalLocaliser::Score(const Readings& readings, const geometry::Pose2D& laser_pose) const {

@@ -28,11 +28,12 @@ struct CoarseHit {
 
 GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& points,
                                      const SearchWindow* window) const {
-  return Locate(Readings{points, {}, std::nullopt}, window);
+  return Locate(OneScan(points), window);
 }
 
 GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindow* window) const {
   GlobalResult result;
+  result.scans = readings.scans;
   const Readings usable = UsableReadings(readings);
   const std::vector<Eigen::Vector2d>& all = usable.points;
   const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
@@ -48,7 +49,7 @@ GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindo
   Readings newest;
   if (earlier) {
     const auto end = readings.points.begin() + static_cast<std::ptrdiff_t>(*readings.newest_points);
-    newest = UsableReadings(Readings{{readings.points.begin(), end}, {}, std::nullopt});
+    newest = UsableReadings(OneScan({readings.points.begin(), end}));
     if (newest.points.size() < static_cast<size_t>(options_.min_points)) {
       result.reason = "the newest scan has only " + std::to_string(newest.points.size()) +
                       " readings within " + std::to_string(options_.min_range_m) + ".." +

@@ -26,10 +26,8 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
 }
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::Pose2D& odometry) {
-  const auto points = LaserPoints(scan);
-  if (!recent_.Add(points, geometry::Compose(odometry, mount_)))
-    return Decide(scan, search_.Locate(points));
-  return Decide(scan, search_.Locate(recent_.InNewestFrame()));
+  return Decide(scan, search_.Locate(recent_.WithScan(LaserPoints(scan),
+                                                      geometry::Compose(odometry, mount_))));
 }
 
 GlobalStart::Attempt GlobalStart::TryNear(const SessionScan& scan,

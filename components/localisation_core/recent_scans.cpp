@@ -78,7 +78,9 @@ std::vector<const RecentScans::Scan*> RecentScans::Combined() const {
 Readings RecentScans::InNewestFrame() const {
   Readings readings;
   if (has_newest_) readings.newest_points = newest_.points.size();
-  for (const Scan* scan : Combined()) {
+  const auto combined = Combined();
+  readings.scans = combined.size();
+  for (const Scan* scan : combined) {
     const geometry::Pose2D relative = geometry::Between(newest_.pose, scan->pose);
     for (const auto& p : scan->points) {
       readings.points.push_back(relative.Apply(p));
@@ -86,6 +88,11 @@ Readings RecentScans::InNewestFrame() const {
     }
   }
   return readings;
+}
+
+Readings RecentScans::WithScan(const std::vector<Eigen::Vector2d>& points,
+                               const geometry::Pose2D& laser_odometry) {
+  return Add(points, laser_odometry) ? InNewestFrame() : OneScan(points);
 }
 
 size_t RecentScans::Scans() const {

@@ -172,12 +172,12 @@ class Replayer {
         r.ranges, r.start_angle, r.angular_resolution, 0.0, max_range);
     const auto t0 = std::chrono::steady_clock::now();
     // With the log's odometry, the scans of the last metres count with this one.
-    const bool together =
-        r.robot_pose && recent_.Add(points, geometry::Compose(*r.robot_pose, SensorMount(&r)));
-    GlobalAttempt attempt{
-        global_scans_, r.line, r.stamp,
-        together ? global_->Locate(recent_.InNewestFrame()) : global_->Locate(points), 0.0};
-    attempt.scans_together = together ? recent_.Scans() : 1;
+    GlobalAttempt attempt{global_scans_, r.line, r.stamp,
+                          r.robot_pose
+                              ? global_->Locate(recent_.WithScan(
+                                    points, geometry::Compose(*r.robot_pose, SensorMount(&r))))
+                              : global_->Locate(points),
+                          0.0};
     attempt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report_.global_attempts.push_back(attempt);
     if (attempt.result.decision == localisation_core::GlobalDecision::kFound) {
@@ -433,7 +433,7 @@ std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts) {
   };
   for (const auto& a : attempts) {
     out << "global localisation, scan " << a.scan << " (line " << a.line << ")";
-    if (a.scans_together > 1) out << " with " << a.scans_together - 1 << " before it";
+    if (a.result.scans > 1) out << " with " << a.result.scans - 1 << " before it";
     out << ": " << localisation_core::ToString(a.result.decision);
     if (a.result.best) {
       out << ", laser at ";

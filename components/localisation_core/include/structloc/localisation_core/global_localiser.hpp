@@ -94,7 +94,11 @@ struct Readings {
   std::vector<Eigen::Vector2d> points;
   std::vector<Eigen::Vector2d> seen_from;
   std::optional<size_t> newest_points;
+  size_t scans = 1;  // how many scans the points come from
 };
+
+// The readings of one scan, every point seen from the laser.
+Readings OneScan(std::vector<Eigen::Vector2d> points);
 
 struct GlobalResult {
   GlobalDecision decision = GlobalDecision::kNotFound;
@@ -102,6 +106,7 @@ struct GlobalResult {
   // The distinct pose that made the answer "ambiguous", else the best pose
   // distinct from `best`.
   std::optional<GlobalCandidate> runner_up;
+  size_t scans = 1;  // scans searched together: the newest and those before it
   size_t points_used = 0;
   std::string reason;  // why not found or ambiguous, for the user
 };

@@ -33,8 +33,6 @@ class GlobalStart {
   // robot's odometric pose at each (`odometry`, at this scan's stamp); the
   // scan alone when that pose is not finite.
   Attempt Try(const SessionScan& scan, const geometry::Pose2D& odometry);
-  // How many scans the last Try(scan, odometry) searched together.
-  size_t RecentScanCount() const { return recent_.Scans(); }
   // Forgets those scans: the robot was carried away, or has a pose.
   void ForgetRecentScans() { recent_.Clear(); }
   // The same, over robot positions within `radius_m` of `robot_pose` and

@@ -37,6 +37,10 @@ class RecentScans {
   // The newest scan's points and those of the kept scans before it, in the
   // newest laser's frame; empty before the first Add.
   Readings InNewestFrame() const;
+  // Adds the scan and gives the readings to search for it: InNewestFrame(),
+  // or the scan alone when its pose is not finite.
+  Readings WithScan(const std::vector<Eigen::Vector2d>& points,
+                    const geometry::Pose2D& laser_odometry);
   // How many scans InNewestFrame() combines.
   size_t Scans() const;
   void Clear();

@@ -57,7 +57,6 @@ struct GlobalAttempt {
   double stamp = 0.0;
   localisation_core::GlobalResult result;  // laser poses
   double seconds = 0.0;
-  size_t scans_together = 1;  // this scan and the earlier ones searched with it
 };
 
 struct ReplayReport {
