@@ -178,6 +178,29 @@ TEST_F(OfficeTour, RayCastGridMarksWallsOccupiedAndTheCorridorFree) {
                std::invalid_argument);
 }
 
+// The whole recording's evidence decides, not its last passes: the grid of
+// the tour's scans is the same read backwards. (With the log-odds clamped at
+// +-4, as they were, the cells two passes disagree on took the later pass's
+// verdict: on Freiburg 079 the walls imported from that grid lay 18 mm RMS off
+// the readings, from the unclamped grid 13 mm.)
+TEST_F(OfficeTour, RayCastGridIsTheSameWhicheverOrderTheScansComeIn) {
+  const auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  std::vector<PosedScan> backwards(log.scans.rbegin(), log.scans.rend());
+  const auto forwards_grid = RayCastGrid(log.scans, {});
+  const auto backwards_grid = RayCastGrid(backwards, {});
+  ASSERT_EQ(forwards_grid.cells.size(), backwards_grid.cells.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < forwards_grid.cells.size(); ++i)
+    differing += forwards_grid.cells[i] != backwards_grid.cells[i];
+  EXPECT_EQ(differing, 0u);
+  for (const auto& [low, high] : {std::pair{0.0, 4.0}, std::pair{-4.0, 0.0}}) {
+    LogOddsGridOptions clamped;
+    clamped.min_log_odds = low;
+    clamped.max_log_odds = high;
+    EXPECT_THROW(RayCastGrid(log.scans, clamped), std::invalid_argument) << low << " " << high;
+  }
+}
+
 TEST(ScanSegments, AnLShapedScanGivesTwoSegmentsThatStopAtTheCorner) {
   std::vector<Eigen::Vector2d> points;
   for (int i = 0; i < 40; ++i) points.emplace_back(2.0, -1.0 + 0.05 * i);  // x = 2, y -1..0.95

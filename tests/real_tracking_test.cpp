@@ -34,9 +34,11 @@ struct Recording {
   const char* map_part;   // --scans of the part the split map is built from
   const char* test_part;  // --scans of the part localised on
   bool restamp;           // key scans without motion times (Intel)
-  // RMSE bar with perfect odometry on the maps imported from grids: the
-  // issue's 30 mm where it is met; on Freiburg the measured 34-43 mm (README).
-  double grid_perfect_rmse_m;
+  // RMSE bar with perfect odometry on the map imported from the grid of the
+  // part (map_part): the 30 mm where it is met; on Freiburg the
+  // measured 37 mm and a little room (README). The grid of the whole recording
+  // is held to 30 mm on both.
+  double part_grid_perfect_rmse_m;
 };
 
 void PrintTo(const Recording& r, std::ostream* out) {
@@ -44,7 +46,7 @@ void PrintTo(const Recording& r, std::ostream* out) {
 }
 
 const Recording kFreiburg{"freiburg_079", "freiburg-079-corrected.log.gz", "719:", "0:719", false,
-                          0.045};
+                          0.040};
 const Recording kIntel{"intel", "intel-corrected.log.gz", "182:", "0:182", true, 0.030};
 
 std::string SharedData(const std::string& name) {
@@ -148,7 +150,7 @@ TEST_P(RealTracking, MeetsTheBarsOnTheShippedMap) {
 
 // Maps from another part of the recording, built and ray-cast from it. Every
 // bar holds on the built map; on the grid's map the bars with the systematic
-// errors, and with perfect odometry grid_perfect_rmse_m.
+// errors, and with perfect odometry part_grid_perfect_rmse_m.
 TEST_P(RealTracking, MeetsTheBarsOnMapsOfAnotherPart) {
   const auto& r = GetParam();
   ASSERT_TRUE(std::filesystem::exists(SharedData(r.log))) << kMissing << SharedData(r.log);
@@ -169,7 +171,7 @@ TEST_P(RealTracking, MeetsTheBarsOnMapsOfAnotherPart) {
     ExpectBars(std::string(r.name) + ", built map, " + odometry + " odometry", built, e,
                perturbed ? 0.050 : 0.030);
     ExpectBars(std::string(r.name) + ", grid map, " + odometry + " odometry", imported, e,
-               perturbed ? 0.050 : r.grid_perfect_rmse_m);
+               perturbed ? 0.050 : r.part_grid_perfect_rmse_m);
   }
 }
 
@@ -186,7 +188,7 @@ TEST_P(RealTracking, MeetsTheBarsOnTheMapOfTheWholeRecordingsGrid) {
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
   ExpectBars(std::string(r.name) + ", whole recording's grid map, perfect odometry", imported,
-             Synthesise(temp, r, "", false), r.grid_perfect_rmse_m);
+             Synthesise(temp, r, "", false), 0.030);
   ExpectBars(std::string(r.name) + ", whole recording's grid map, perturbed odometry", imported,
              Synthesise(temp, r, "", true), 0.050);
 }

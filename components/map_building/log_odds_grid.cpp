@@ -43,10 +43,11 @@ map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
   if (!(options.resolution_m > 0.0) || !(options.hit_log_odds > 0.0) ||
       !(options.miss_log_odds < 0.0) || !(options.free_probability > 0.0) ||
       !(options.occupied_probability > options.free_probability) ||
-      !(options.occupied_probability < 1.0))
+      !(options.occupied_probability < 1.0) || !(options.min_log_odds < 0.0) ||
+      !(options.max_log_odds > 0.0))
     throw std::invalid_argument(
-        "log-odds grid: resolution and hit must be > 0, miss < 0, and 0 < free_probability < "
-        "occupied_probability < 1");
+        "log-odds grid: resolution and hit must be > 0, miss < 0, 0 < free_probability < "
+        "occupied_probability < 1, and min_log_odds < 0 < max_log_odds");
   Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
   for (const auto& scan : scans) {
     lo = lo.cwiseMin(scan.laser_pose.Translation());
