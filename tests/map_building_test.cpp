@@ -12,6 +12,7 @@
 #include "structloc/map_building/log_odds_grid.hpp"
 #include "structloc/map_building/map_builder.hpp"
 #include "structloc/map_building/map_check.hpp"
+#include "structloc/map_building/scan_pose_fit.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
@@ -198,6 +199,45 @@ TEST_F(OfficeTour, RayCastGridIsTheSameWhicheverOrderTheScansComeIn) {
     clamped.min_log_odds = low;
     clamped.max_log_odds = high;
     EXPECT_THROW(RayCastGrid(log.scans, clamped), std::invalid_argument) << low << " " << high;
+  }
+}
+
+// The scans' recorded poses agree with the floor they were cast from, but a
+// few are recorded off (as a SLAM tool's poses can be): fitting each scan alone
+// to the map from its recorded pose finds the pose it was taken at, so the
+// offset is minus the error; the others stay within millimetres.
+TEST_F(OfficeTour, EachScanFittedToTheMapFindsHowFarItsRecordedPoseIsOff) {
+  auto log = ReadPosedScans(WriteTourLog(dir, scene, 0.01), {});
+  const std::vector<std::pair<size_t, Pose2D>> errors = {
+      {10, {0.05, -0.03, 0.035}}, {80, {-0.04, 0.06, -0.026}}, {150, {0.0, 0.0, 0.045}}};
+  for (const auto& [scan, error] : errors) {
+    Pose2D& pose = log.scans[scan].laser_pose;
+    pose = {pose.x + error.x, pose.y + error.y, geometry::WrapAngle(pose.theta + error.theta)};
+  }
+  const auto fits = FitScanPoses(world, log.scans, {});
+  ASSERT_EQ(fits.size(), log.scans.size());
+  double worst_true = 0.0;
+  for (size_t i = 0; i < fits.size(); ++i) {
+    ASSERT_TRUE(fits[i].fitted) << "scan " << i;
+    EXPECT_EQ(fits[i].index, log.scans[i].index);
+    const auto error =
+        std::find_if(errors.begin(), errors.end(), [i](const auto& e) { return e.first == i; });
+    const Pose2D expected = error == errors.end()
+                                ? Pose2D{}
+                                : Pose2D{-error->second.x, -error->second.y, -error->second.theta};
+    const double off = (fits[i].offset.Translation() - expected.Translation()).norm();
+    if (error == errors.end()) worst_true = std::max(worst_true, off);
+    EXPECT_LT(off, 0.005) << "scan " << i;
+    EXPECT_LT(std::abs(fits[i].offset.theta - expected.theta), 0.002) << "scan " << i;
+  }
+  std::cout << "scans recorded at their true pose fit within " << 1000.0 * worst_true << " mm\n";
+  ScanPoseFitOptions bad;
+  bad.near_m = 0.0;
+  try {
+    FitScanPoses(world, log.scans, bad);
+    FAIL() << "near_m 0 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("near_m"), std::string::npos) << e.what();
   }
 }
 

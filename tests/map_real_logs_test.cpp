@@ -4,9 +4,13 @@
 // imported from that map's exported grid, and the map imported from a grid
 // ray-cast from the log independently of the builder. The bars are issue 11's:
 // the median distance of the readings near a wall at most 15 mm for the built
-// map and 20 mm for the maps from grids.
+// map and 20 mm for the maps from grids. And `map check --fit-poses` on the
+// shipped maps: each scan fitted alone to the map lies a median 2 cm or less
+// from its corrected pose (the agreement the README's localisation figures are
+// read against), one CSV row per scan.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -73,6 +77,34 @@ TEST_P(CorrectedLog, BuiltAndGridMapsAgreeWithTheRecording) {
   EXPECT_LE(from_log.median_mm, 15.0);
   EXPECT_LE(from_export.median_mm, 20.0);
   EXPECT_LE(from_ray_cast.median_mm, 20.0);
+}
+
+TEST_P(CorrectedLog, ScansFittedAloneToTheShippedMapLieNearTheirCorrectedPoses) {
+  std::string name = GetParam();
+  name = name.substr(0, name.find("-corrected"));
+  for (char& c : name) c = c == '-' ? '_' : c;
+  const std::string csv = dir / "fits.csv";
+  const auto run =
+      testing::RunCli({"map", "check", "--map", testing::SourcePath("maps/real/" + name + ".xml"),
+                       "--log", log, "--fit-poses-out", csv});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string median = "offset from the recorded pose: position median ";
+  const size_t at = run.output.find(median);
+  ASSERT_NE(at, std::string::npos) << run.output;
+  const double median_mm = std::stod(run.output.substr(at + median.size()));
+  std::cout << GetParam() << ": scans fitted alone lie a median " << median_mm
+            << " mm from their corrected poses\n";
+  EXPECT_LE(median_mm, 25.0);
+  std::ifstream in(csv);
+  std::string line;
+  size_t rows = 0;
+  std::getline(in, line);
+  EXPECT_EQ(line, "scan,fitted,readings,dx_m,dy_m,dtheta_rad");
+  while (std::getline(in, line)) ++rows;
+  EXPECT_GT(rows, 900u);
+  EXPECT_NE(run.output.find(" " + std::to_string(rows) + " scans,"), std::string::npos)
+      << rows << " rows\n"
+      << run.output;
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, CorrectedLog,

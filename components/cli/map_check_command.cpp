@@ -2,8 +2,12 @@
 // agrees with a recording whose scan poses are corrected: the distance of the
 // readings that hit each wall, how often each is seen, walls never seen, and the
 // share of readings no wall explains, so that a user can trust or fix a map. The
-// picture marks the disagreeing walls.
+// picture marks the disagreeing walls. With --fit-poses, also how far each
+// scan's recorded pose lies from the pose at which the map explains it best
+// (where a reference trajectory and the map disagree).
 #include <algorithm>
+#include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <numeric>
@@ -13,6 +17,7 @@
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/map_building/map_check.hpp"
+#include "structloc/map_building/scan_pose_fit.hpp"
 #include "structloc/rendering/map_canvas.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 
@@ -70,6 +75,59 @@ std::vector<cv::Scalar> WallColours(const map_building::MapCheckReport& report,
   return colours;
 }
 
+double Percentile(std::vector<double> values, double share) {
+  if (values.empty()) return 0.0;
+  const size_t at = std::min(values.size() - 1, static_cast<size_t>(share * values.size()));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(at), values.end());
+  return values[at];
+}
+
+// The summary of the scans' best-fit offsets, the ten farthest, and the CSV.
+void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
+                    const std::string& csv_path) {
+  std::vector<double> shifts, turns;
+  std::vector<size_t> fitted;
+  for (size_t i = 0; i < fits.size(); ++i) {
+    if (!fits[i].fitted) continue;
+    fitted.push_back(i);
+    shifts.push_back(fits[i].offset.Translation().norm());
+    turns.push_back(std::abs(fits[i].offset.theta));
+  }
+  std::cout << "  scan poses fitted to the map alone: " << fitted.size() << " of " << fits.size()
+            << " scans (the others have too few readings near the map)\n";
+  if (!fitted.empty()) {
+    std::cout << "    offset from the recorded pose: position median "
+              << 1000.0 * Percentile(shifts, 0.5) << " mm, 90 % below "
+              << 1000.0 * Percentile(shifts, 0.9) << " mm, max "
+              << 1000.0 * *std::max_element(shifts.begin(), shifts.end()) << " mm; heading median "
+              << Percentile(turns, 0.5) * 180.0 / geometry::kPi << " deg, 90 % below "
+              << Percentile(turns, 0.9) * 180.0 / geometry::kPi << " deg, max "
+              << *std::max_element(turns.begin(), turns.end()) * 180.0 / geometry::kPi
+              << " deg\n    farthest (scan: x, y mm, heading deg):";
+    std::vector<size_t> order(fitted.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return shifts[a] > shifts[b]; });
+    for (size_t k = 0; k < std::min<size_t>(10, order.size()); ++k) {
+      const auto& f = fits[fitted[order[k]]];
+      std::cout << (k % 3 == 0 ? "\n     " : "") << " " << f.index << ": " << std::showpos
+                << 1000.0 * f.offset.x << ", " << 1000.0 * f.offset.y << ", "
+                << f.offset.theta * 180.0 / geometry::kPi << std::noshowpos << ";";
+    }
+    std::cout << "\n";
+  }
+  if (csv_path.empty()) return;
+  std::ofstream csv(csv_path);
+  if (!csv) throw std::runtime_error("cannot write " + csv_path);
+  csv << "scan,fitted,readings,dx_m,dy_m,dtheta_rad\n" << std::setprecision(6);
+  for (const auto& f : fits) {
+    csv << f.index << "," << (f.fitted ? 1 : 0) << "," << f.readings << "," << f.offset.x << ","
+        << f.offset.y << "," << f.offset.theta << "\n";
+  }
+  if (!csv) throw std::runtime_error("cannot write " + csv_path);
+  std::cout << "  pose fits: " << csv_path << "\n";
+}
+
 }  // namespace
 
 int MapCheckCommand(const Invocation& inv) {
@@ -84,6 +142,12 @@ int MapCheckCommand(const Invocation& inv) {
       {"near", true, "a reading this close to a wall or pillar hits it, m (default 0.1)"},
       {"max-median", true, "walls whose readings lie farther (median) disagree, m (default 0.03)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
+      {"fit-poses", false,
+       "also fit each scan alone to the map from its recorded pose and report how far the best "
+       "fit lies (where the recorded poses and the map disagree)"},
+      {"fit-poses-out", true,
+       "CSV of each scan's fit (scan, fitted, readings, dx_m, dy_m, "
+       "dtheta_rad); implies --fit-poses"},
   };
   return RunMapAction(inv, "check", specs, [&](const config::CommandLine& cli) {
     const std::string map_path = cli.Required("map");
@@ -114,6 +178,12 @@ int MapCheckCommand(const Invocation& inv) {
               << report.walls_rarely_seen << " rarely seen (fewer than " << options.min_readings
               << " readings), " << report.walls_never_seen << " never seen\n";
     PrintDisagreeing(world, report);
+    if (cli.Has("fit-poses") || cli.Has("fit-poses-out")) {
+      map_building::ScanPoseFitOptions fit_options;
+      fit_options.near_m = options.near_m;
+      ReportPoseFits(map_building::FitScanPoses(world, log.scans, fit_options),
+                     cli.GetOr("fit-poses-out", ""));
+    }
     if (!plot_path.empty()) {
       MapPicture picture;
       picture.title = "map check: " + map_path;
