@@ -5,9 +5,10 @@
 // ray-cast from the log independently of the builder. The bars are issue 11's:
 // the median distance of the readings near a wall at most 15 mm for the built
 // map and 20 mm for the maps from grids. And `map check --fit-poses` on the
-// shipped maps: each scan fitted alone to the map lies a median 2 cm or less
-// from its corrected pose (the agreement the README's localisation figures are
-// read against), one CSV row per scan.
+// shipped maps: each scan fitted alone to the map lies a median 5-25 mm from its
+// corrected pose (21.3 mm on Freiburg 079, 15.9 on Intel: the agreement the
+// README's localisation figures are read against; a fit that never moved
+// would give 0), one CSV row per scan.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -95,11 +96,12 @@ TEST_P(CorrectedLog, ScansFittedAloneToTheShippedMapLieNearTheirCorrectedPoses) 
   std::cout << GetParam() << ": scans fitted alone lie a median " << median_mm
             << " mm from their corrected poses\n";
   EXPECT_LE(median_mm, 25.0);
+  EXPECT_GE(median_mm, 5.0);
   std::ifstream in(csv);
   std::string line;
   size_t rows = 0;
   std::getline(in, line);
-  EXPECT_EQ(line, "scan,fitted,readings,dx_m,dy_m,dtheta_rad");
+  EXPECT_EQ(line, "scan,fitted,converged,iterations,readings,dx_m,dy_m,dtheta_rad");
   while (std::getline(in, line)) ++rows;
   EXPECT_GT(rows, 900u);
   EXPECT_NE(run.output.find(" " + std::to_string(rows) + " scans,"), std::string::npos)

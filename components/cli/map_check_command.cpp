@@ -75,54 +75,38 @@ std::vector<cv::Scalar> WallColours(const map_building::MapCheckReport& report,
   return colours;
 }
 
-double Percentile(std::vector<double> values, double share) {
-  if (values.empty()) return 0.0;
-  const size_t at = std::min(values.size() - 1, static_cast<size_t>(share * values.size()));
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(at), values.end());
-  return values[at];
-}
-
 // The summary of the scans' best-fit offsets, the ten farthest, and the CSV.
 void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
                     const std::string& csv_path) {
-  std::vector<double> shifts, turns;
-  std::vector<size_t> fitted;
-  for (size_t i = 0; i < fits.size(); ++i) {
-    if (!fits[i].fitted) continue;
-    fitted.push_back(i);
-    shifts.push_back(fits[i].offset.Translation().norm());
-    turns.push_back(std::abs(fits[i].offset.theta));
-  }
-  std::cout << "  scan poses fitted to the map alone: " << fitted.size() << " of " << fits.size()
-            << " scans (the others have too few readings near the map)\n";
-  if (!fitted.empty()) {
-    std::cout << "    offset from the recorded pose: position median "
-              << 1000.0 * Percentile(shifts, 0.5) << " mm, 90 % below "
-              << 1000.0 * Percentile(shifts, 0.9) << " mm, max "
-              << 1000.0 * *std::max_element(shifts.begin(), shifts.end()) << " mm; heading median "
-              << Percentile(turns, 0.5) * 180.0 / geometry::kPi << " deg, 90 % below "
-              << Percentile(turns, 0.9) * 180.0 / geometry::kPi << " deg, max "
-              << *std::max_element(turns.begin(), turns.end()) * 180.0 / geometry::kPi
-              << " deg\n    farthest (scan: x, y mm, heading deg):";
-    std::vector<size_t> order(fitted.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return shifts[a] > shifts[b]; });
-    for (size_t k = 0; k < std::min<size_t>(10, order.size()); ++k) {
-      const auto& f = fits[fitted[order[k]]];
+  const auto summary = map_building::SummarisePoseFits(fits, 10);
+  constexpr double kDeg = 180.0 / geometry::kPi;
+  std::cout << std::fixed << "  scan poses fitted to the map alone: " << summary.converged << " of "
+            << summary.scans << " scans (" << summary.scans - summary.fitted
+            << " with too few readings near the map, " << summary.fitted - summary.converged
+            << " not converged)\n";
+  if (summary.converged > 0) {
+    std::cout << std::setprecision(1) << "    offset from the recorded pose: position median "
+              << 1000.0 * summary.median_shift_m << " mm, 90 % below "
+              << 1000.0 * summary.p90_shift_m << " mm, max " << 1000.0 * summary.max_shift_m
+              << " mm;" << std::setprecision(2) << " heading median "
+              << kDeg * summary.median_turn_rad << " deg, 90 % below "
+              << kDeg * summary.p90_turn_rad << " deg, max " << kDeg * summary.max_turn_rad
+              << " deg\n    farthest in position (scan: x, y mm, heading deg):";
+    for (size_t k = 0; k < summary.farthest.size(); ++k) {
+      const auto& f = fits[summary.farthest[k]];
       std::cout << (k % 3 == 0 ? "\n     " : "") << " " << f.index << ": " << std::showpos
-                << 1000.0 * f.offset.x << ", " << 1000.0 * f.offset.y << ", "
-                << f.offset.theta * 180.0 / geometry::kPi << std::noshowpos << ";";
+                << std::setprecision(1) << 1000.0 * f.offset.x << ", " << 1000.0 * f.offset.y
+                << ", " << std::setprecision(2) << kDeg * f.offset.theta << std::noshowpos << ";";
     }
     std::cout << "\n";
   }
   if (csv_path.empty()) return;
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  csv << "scan,fitted,readings,dx_m,dy_m,dtheta_rad\n" << std::setprecision(6);
+  csv << "scan,fitted,converged,iterations,readings,dx_m,dy_m,dtheta_rad\n" << std::setprecision(6);
   for (const auto& f : fits) {
-    csv << f.index << "," << (f.fitted ? 1 : 0) << "," << f.readings << "," << f.offset.x << ","
-        << f.offset.y << "," << f.offset.theta << "\n";
+    csv << f.index << "," << f.fitted << "," << f.converged << "," << f.iterations << ","
+        << f.readings << "," << f.offset.x << "," << f.offset.y << "," << f.offset.theta << "\n";
   }
   if (!csv) throw std::runtime_error("cannot write " + csv_path);
   std::cout << "  pose fits: " << csv_path << "\n";
@@ -143,8 +127,9 @@ int MapCheckCommand(const Invocation& inv) {
       {"max-median", true, "walls whose readings lie farther (median) disagree, m (default 0.03)"},
       {"max-range", true, "readings farther than this are left out, m (default 20)"},
       {"fit-poses", false,
-       "also fit each scan alone to the map from its recorded pose and report how far the best "
-       "fit lies (where the recorded poses and the map disagree)"},
+       "also fit each scan alone to the map from its recorded pose (readings within --near, at "
+       "least 30, up to 30 Gauss-Newton steps) and report how far the best fit lies (where the "
+       "recorded poses and the map disagree)"},
       {"fit-poses-out", true,
        "CSV of each scan's fit (scan, fitted, readings, dx_m, dy_m, "
        "dtheta_rad); implies --fit-poses"},

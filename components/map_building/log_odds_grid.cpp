@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace structloc::map_building {
 namespace {
@@ -32,6 +33,24 @@ void TraceCells(int x0, int y0, int x1, int y1, Pass pass, End end) {
   end(x1, y1);
 }
 
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("log-odds grid option " + what);
+}
+
+void CheckOptions(const LogOddsGridOptions& o) {
+  Require(o.resolution_m > 0.0 && std::isfinite(o.resolution_m),
+          "resolution_m must be positive and finite");
+  Require(o.hit_log_odds > 0.0 && std::isfinite(o.hit_log_odds),
+          "hit_log_odds must be positive and finite");
+  Require(o.miss_log_odds < 0.0 && std::isfinite(o.miss_log_odds),
+          "miss_log_odds must be negative and finite");
+  Require(o.min_log_odds < 0.0, "min_log_odds must be negative (-inf: no clamp)");
+  Require(o.max_log_odds > 0.0, "max_log_odds must be positive (+inf: no clamp)");
+  Require(o.free_probability > 0.0 && o.free_probability < o.occupied_probability &&
+              o.occupied_probability < 1.0,
+          "free_probability and occupied_probability must satisfy 0 < free < occupied < 1");
+}
+
 double LogOdds(double p) {
   return std::log(p / (1.0 - p));
 }
@@ -40,14 +59,7 @@ double LogOdds(double p) {
 
 map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
                                         const LogOddsGridOptions& options) {
-  if (!(options.resolution_m > 0.0) || !(options.hit_log_odds > 0.0) ||
-      !(options.miss_log_odds < 0.0) || !(options.free_probability > 0.0) ||
-      !(options.occupied_probability > options.free_probability) ||
-      !(options.occupied_probability < 1.0) || !(options.min_log_odds < 0.0) ||
-      !(options.max_log_odds > 0.0))
-    throw std::invalid_argument(
-        "log-odds grid: resolution and hit must be > 0, miss < 0, 0 < free_probability < "
-        "occupied_probability < 1, and min_log_odds < 0 < max_log_odds");
+  CheckOptions(options);
   Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
   for (const auto& scan : scans) {
     lo = lo.cwiseMin(scan.laser_pose.Translation());
@@ -72,15 +84,18 @@ map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
   }
   map_building::OccupancyGrid grid(static_cast<int>(columns), static_cast<int>(rows),
                                    options.resolution_m, {lo.x(), lo.y(), 0.0});
-  std::vector<float> log_odds(grid.cells.size(), 0.0f);
-  const auto cell = [&](int x, int y) -> float& {
+  // In double: with the default +0.85 / -0.4 every value a cell can reach is a
+  // multiple of 0.05, more than 0.01 from both thresholds, and the rounding of
+  // millions of updates stays far below that: the scans' order cannot flip a
+  // cell (in float it could, once the sums grow past a few hundred).
+  std::vector<double> log_odds(grid.cells.size(), 0.0);
+  const auto cell = [&](int x, int y) -> double& {
     return log_odds[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
                     static_cast<size_t>(x)];
   };
   const auto add = [&](int x, int y, double delta) {
-    float& l = cell(x, y);
-    l = static_cast<float>(
-        std::clamp(static_cast<double>(l) + delta, options.min_log_odds, options.max_log_odds));
+    double& l = cell(x, y);
+    l = std::clamp(l + delta, options.min_log_odds, options.max_log_odds);
   };
   std::vector<uint8_t> seen(grid.cells.size(), 0);
   for (const auto& scan : scans) {

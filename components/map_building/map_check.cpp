@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "structloc/map_building/nearest_wall.hpp"
+#include "structloc/map_building/quantile.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -19,13 +20,6 @@ double Median(std::vector<double> values) {
   const auto mid = values.begin() + static_cast<long>(values.size() / 2);
   std::nth_element(values.begin(), mid, values.end());
   return *mid;
-}
-
-double Quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const auto at = values.begin() + static_cast<long>(q * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
 }
 
 SurfaceAgreement Summarise(Hits& hits, const MapCheckOptions& options) {

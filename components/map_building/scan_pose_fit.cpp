@@ -2,11 +2,14 @@
 #include "structloc/map_building/scan_pose_fit.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 #include "structloc/map_building/nearest_wall.hpp"
+#include "structloc/map_building/quantile.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -15,49 +18,67 @@ void Require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("scan pose fit option " + what);
 }
 
-// The signed distance of `p` from the surface `s` is nearest to (the wall's
-// infinite line, or the pillar's circle) and its gradient with respect to p.
+// The signed distance of `p` from the surface `s` it was paired with, as the
+// pairing measured it (a wall segment: its line between the ends, the nearer
+// end beyond them; a pillar: its circle), and the gradient with respect to p.
 double SurfaceResidual(const world_model::WorldModel& world, const NearestSurface& s,
                        const Eigen::Vector2d& p, Eigen::Vector2d* gradient) {
   if (s.kind == NearestSurface::Kind::kWall) {
     const auto& wall = world.Walls()[s.index];
-    const Eigen::Vector2d along = (wall.b - wall.a).normalized();
+    const Eigen::Vector2d span = wall.b - wall.a;
+    const double t = span.dot(p - wall.a) / span.squaredNorm();
+    if (t < 0.0 || t > 1.0) {
+      const Eigen::Vector2d out = p - (t < 0.0 ? wall.a : wall.b);
+      const double n = out.norm();
+      *gradient = n > 1e-12 ? Eigen::Vector2d(out / n) : Eigen::Vector2d::Zero();
+      return n;
+    }
+    const Eigen::Vector2d along = span.normalized();
     *gradient = Eigen::Vector2d(-along.y(), along.x());
     return gradient->dot(p - wall.a);
   }
   const auto& pillar = world.Cylinders()[s.index];
   const Eigen::Vector2d out = p - pillar.centre;
   const double n = out.norm();
-  *gradient = n > 1e-9 ? Eigen::Vector2d(out / n) : Eigen::Vector2d(1.0, 0.0);
+  *gradient = n > 1e-12 ? Eigen::Vector2d(out / n) : Eigen::Vector2d::Zero();
   return n - pillar.radius;
+}
+
+// Readings of `scan` near the map at `pose`.
+size_t ReadingsNear(const NearestWallIndex& index, const PosedScan& scan,
+                    const geometry::Pose2D& pose) {
+  size_t near = 0;
+  for (const auto& q : scan.points)
+    near += index.Nearest(pose.Apply(q)).kind != NearestSurface::Kind::kNone;
+  return near;
 }
 
 }  // namespace
 
 std::vector<ScanPoseFit> FitScanPoses(const world_model::WorldModel& world,
                                       const std::vector<PosedScan>& scans,
-                                      const ScanPoseFitOptions& o) {
-  Require(o.near_m > 0.0, "near_m must be positive");
-  Require(o.max_iterations > 0, "max_iterations must be positive");
-  Require(o.min_readings >= 3, "min_readings must be at least 3");
-  Require(o.prior_sigma_m > 0.0 && o.prior_sigma_rad > 0.0,
-          "prior_sigma_m and prior_sigma_rad must be positive");
-  const NearestWallIndex index(world, o.near_m);
-  const Eigen::Vector3d prior_information(1.0 / (o.prior_sigma_m * o.prior_sigma_m),
-                                          1.0 / (o.prior_sigma_m * o.prior_sigma_m),
-                                          1.0 / (o.prior_sigma_rad * o.prior_sigma_rad));
+                                      const ScanPoseFitOptions& options) {
+  Require(options.near_m > 0.0, "near_m must be positive");
+  Require(options.max_iterations > 0, "max_iterations must be positive");
+  Require(options.min_readings >= 3, "min_readings must be at least 3");
+  Require(options.prior_sigma_m > 0.0, "prior_sigma_m must be positive");
+  Require(options.prior_sigma_rad > 0.0, "prior_sigma_rad must be positive");
+  const NearestWallIndex index(world, options.near_m);
+  const double xy = 1.0 / (options.prior_sigma_m * options.prior_sigma_m);
+  const Eigen::Vector3d prior_information(
+      xy, xy, 1.0 / (options.prior_sigma_rad * options.prior_sigma_rad));
   std::vector<ScanPoseFit> fits;
   fits.reserve(scans.size());
   for (const auto& scan : scans) {
     ScanPoseFit fit;
     fit.index = scan.index;
     geometry::Pose2D pose = scan.laser_pose;
-    for (int iteration = 0; iteration < o.max_iterations; ++iteration) {
+    for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
       Eigen::Matrix3d h = prior_information.asDiagonal();
       const Eigen::Vector3d offset(pose.x - scan.laser_pose.x, pose.y - scan.laser_pose.y,
                                    geometry::WrapAngle(pose.theta - scan.laser_pose.theta));
       Eigen::Vector3d g = prior_information.cwiseProduct(offset);
-      size_t used = 0;
+      size_t paired = 0;
       for (const auto& q : scan.points) {
         const Eigen::Vector2d p = pose.Apply(q);
         const NearestSurface surface = index.Nearest(p);
@@ -69,19 +90,23 @@ std::vector<ScanPoseFit> FitScanPoses(const world_model::WorldModel& world,
         const Eigen::Vector3d j(n.x(), n.y(), n.x() * -lever.y() + n.y() * lever.x());
         h += j * j.transpose();
         g += j * r;
-        ++used;
+        ++paired;
       }
-      fit.readings = used;
-      if (used < o.min_readings) break;
+      if (paired < options.min_readings) break;
       const Eigen::Vector3d step = -h.ldlt().solve(g);
       if (!step.allFinite()) break;
       pose.x += step.x();
       pose.y += step.y();
       pose.theta = geometry::WrapAngle(pose.theta + step.z());
-      fit.fitted = true;
-      if (step.head<2>().norm() < 1e-5 && std::abs(step.z()) < 1e-5) break;
+      fit.iterations = iteration + 1;
+      if (step.head<2>().norm() < 1e-5 && std::abs(step.z()) < 1e-5) {
+        fit.converged = true;
+        break;
+      }
     }
-    fit.fitted = fit.fitted && fit.readings >= o.min_readings;
+    fit.readings = ReadingsNear(index, scan, pose);
+    fit.fitted = fit.iterations > 0 && fit.readings >= options.min_readings;
+    fit.converged = fit.converged && fit.fitted;
     if (fit.fitted) {
       fit.offset = {pose.x - scan.laser_pose.x, pose.y - scan.laser_pose.y,
                     geometry::WrapAngle(pose.theta - scan.laser_pose.theta)};
@@ -89,6 +114,35 @@ std::vector<ScanPoseFit> FitScanPoses(const world_model::WorldModel& world,
     fits.push_back(fit);
   }
   return fits;
+}
+
+ScanPoseFitSummary SummarisePoseFits(const std::vector<ScanPoseFit>& fits, size_t farthest) {
+  ScanPoseFitSummary summary;
+  summary.scans = fits.size();
+  std::vector<double> shifts_m, turns_rad;
+  std::vector<size_t> converged;
+  for (size_t i = 0; i < fits.size(); ++i) {
+    summary.fitted += fits[i].fitted;
+    if (!fits[i].converged) continue;
+    converged.push_back(i);
+    shifts_m.push_back(fits[i].offset.Translation().norm());
+    turns_rad.push_back(std::abs(fits[i].offset.theta));
+  }
+  summary.converged = converged.size();
+  if (converged.empty()) return summary;
+  summary.median_shift_m = Quantile(shifts_m, 0.5);
+  summary.p90_shift_m = Quantile(shifts_m, 0.9);
+  summary.max_shift_m = *std::max_element(shifts_m.begin(), shifts_m.end());
+  summary.median_turn_rad = Quantile(turns_rad, 0.5);
+  summary.p90_turn_rad = Quantile(turns_rad, 0.9);
+  summary.max_turn_rad = *std::max_element(turns_rad.begin(), turns_rad.end());
+  std::vector<size_t> order(converged.size());
+  std::iota(order.begin(), order.end(), 0);
+  const size_t shown = std::min(farthest, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<long>(shown), order.end(),
+                    [&](size_t a, size_t b) { return shifts_m[a] > shifts_m[b]; });
+  for (size_t k = 0; k < shown; ++k) summary.farthest.push_back(converged[order[k]]);
+  return summary;
 }
 
 }  // namespace structloc::map_building

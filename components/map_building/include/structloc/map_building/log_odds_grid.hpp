@@ -24,8 +24,9 @@ struct LogOddsGridOptions {
   double resolution_m = 0.05;
   double hit_log_odds = 0.85;   // ln(0.7 / 0.3): a beam ends in the cell
   double miss_log_odds = -0.4;  // ln(0.4 / 0.6): a beam passes through the cell
-  // Clamps (none by default): with them a cell can change its mind, as a map
-  // of a changing scene needs, and the newest passes outvote the older ones.
+  // Clamps (none by default, and `map grid` sets none): with them a cell can
+  // change its mind, as a map of a changing scene needs, and the newest
+  // passes outvote the older ones.
   double min_log_odds = -std::numeric_limits<double>::infinity();
   double max_log_odds = std::numeric_limits<double>::infinity();
   double occupied_probability = 0.65;  // map_saver's thresholds

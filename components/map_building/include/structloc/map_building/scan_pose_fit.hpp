@@ -5,7 +5,10 @@
 // recorded poses (SLAM-corrected logs) cannot come closer to them than the map
 // and the poses agree; scans whose best fit lies centimetres or degrees away
 // mark where the reference and the map disagree, whichever of them is wrong.
-// Used by `structloc map check --fit-poses`. DDS-free.
+// Only readings within near_m of a surface take part, so a recorded pose off by
+// much more than that finds a nearer, wrong fit: the offsets are meant for
+// disagreements of centimetres and a few degrees. Used by `structloc map check
+// --fit-poses`. DDS-free.
 #pragma once
 
 #include <vector>
@@ -28,7 +31,9 @@ struct ScanPoseFitOptions {
 
 struct ScanPoseFit {
   size_t index = 0;         // the scan's number in the log
-  bool fitted = false;      // enough readings near the map
+  bool fitted = false;      // at least min_readings near the map at the fitted pose
+  bool converged = false;   // the last step was below 0.01 mm and 0.01 mrad
+  int iterations = 0;       // steps taken
   size_t readings = 0;      // near the map at the fitted pose
   geometry::Pose2D offset;  // fitted laser pose minus recorded: x, y (map frame), theta
 };
@@ -37,5 +42,15 @@ struct ScanPoseFit {
 std::vector<ScanPoseFit> FitScanPoses(const world_model::WorldModel& world,
                                       const std::vector<PosedScan>& scans,
                                       const ScanPoseFitOptions& options);
+
+// The offsets of the fits that converged: median, 90 % (Quantile) and max of
+// the position offset's length and of the heading offset's magnitude.
+struct ScanPoseFitSummary {
+  size_t scans = 0, fitted = 0, converged = 0;
+  double median_shift_m = 0, p90_shift_m = 0, max_shift_m = 0;
+  double median_turn_rad = 0, p90_turn_rad = 0, max_turn_rad = 0;
+  std::vector<size_t> farthest;  // indices into the fits, farthest in position first
+};
+ScanPoseFitSummary SummarisePoseFits(const std::vector<ScanPoseFit>& fits, size_t farthest);
 
 }  // namespace structloc::map_building
