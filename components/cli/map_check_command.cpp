@@ -6,7 +6,6 @@
 // scan's recorded pose lies from the pose at which the map explains it best
 // (where a reference trajectory and the map disagree).
 #include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -75,6 +74,10 @@ std::vector<cv::Scalar> WallColours(const map_building::MapCheckReport& report,
   return colours;
 }
 
+// The columns of --fit-poses-out, one row per scan.
+constexpr const char* kPoseFitColumns =
+    "scan,fitted,converged,iterations,readings,dx_m,dy_m,dtheta_rad";
+
 // The summary of the scans' best-fit offsets, the ten farthest, and the CSV.
 void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
                     const std::string& csv_path) {
@@ -103,7 +106,7 @@ void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
   if (csv_path.empty()) return;
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  csv << "scan,fitted,converged,iterations,readings,dx_m,dy_m,dtheta_rad\n" << std::setprecision(6);
+  csv << kPoseFitColumns << "\n" << std::setprecision(6);
   for (const auto& f : fits) {
     csv << f.index << "," << f.fitted << "," << f.converged << "," << f.iterations << ","
         << f.readings << "," << f.offset.x << "," << f.offset.y << "," << f.offset.theta << "\n";
@@ -131,8 +134,7 @@ int MapCheckCommand(const Invocation& inv) {
        "least 30, up to 30 Gauss-Newton steps) and report how far the best fit lies (where the "
        "recorded poses and the map disagree)"},
       {"fit-poses-out", true,
-       "CSV of each scan's fit (scan, fitted, readings, dx_m, dy_m, "
-       "dtheta_rad); implies --fit-poses"},
+       std::string("CSV of each scan's fit (") + kPoseFitColumns + "); implies --fit-poses"},
   };
   return RunMapAction(inv, "check", specs, [&](const config::CommandLine& cli) {
     const std::string map_path = cli.Required("map");

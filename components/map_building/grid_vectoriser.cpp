@@ -10,31 +10,34 @@
 #include <stdexcept>
 #include <string>
 
+#include "structloc/map_building/option_check.hpp"
+
 namespace structloc::map_building {
 namespace {
 
 using map_building::OccupancyGrid;
 
-void Require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("grid import option " + what);
-}
+// Bad options are refused as "grid import option ...".
+constexpr const char* kOptions = "grid import";
 
 void CheckOptions(const GridVectoriseOptions& o) {
-  Require(o.free_max_value >= 0 && o.free_max_value < o.occupied_min_value &&
-              o.occupied_min_value <= 100,
-          "free_max_value and occupied_min_value must satisfy 0 <= free < occupied <= 100");
-  Require(o.min_wall_length_m > 0.0, "min_wall_length_m must be positive");
-  Require(o.max_gap_m > 0.0, "max_gap_m must be positive");
-  Require(o.min_wall_blob_size_m >= 0.0, "min_wall_blob_size_m must not be negative");
-  Require(o.proposal_capture_cells > 0.0 && o.capture_cells > 0.0,
-          "proposal_capture_cells and capture_cells must be positive");
-  Require(o.same_line_angle_rad > 0.0, "same_line_angle_rad must be positive");
-  Require(o.hough_votes >= 2, "hough_votes must be at least 2");
-  Require(o.min_pillar_radius_m > 0.0 && o.min_pillar_radius_m <= o.max_pillar_radius_m,
-          "min_pillar_radius_m must be positive and at most max_pillar_radius_m");
-  Require(o.max_pillar_rms_cells > 0.0, "max_pillar_rms_cells must be positive");
-  Require(o.min_pillar_roundness > 0.0 && o.min_pillar_roundness <= 1.0,
-          "min_pillar_roundness must lie in (0, 1]");
+  RequireOption(o.free_max_value >= 0 && o.free_max_value < o.occupied_min_value &&
+                    o.occupied_min_value <= 100,
+                kOptions,
+                "free_max_value and occupied_min_value must satisfy 0 <= free < occupied <= 100");
+  RequireOption(o.min_wall_length_m > 0.0, kOptions, "min_wall_length_m must be positive");
+  RequireOption(o.max_gap_m > 0.0, kOptions, "max_gap_m must be positive");
+  RequireOption(o.min_wall_blob_size_m >= 0.0, kOptions,
+                "min_wall_blob_size_m must not be negative");
+  RequireOption(o.proposal_capture_cells > 0.0 && o.capture_cells > 0.0, kOptions,
+                "proposal_capture_cells and capture_cells must be positive");
+  RequireOption(o.same_line_angle_rad > 0.0, kOptions, "same_line_angle_rad must be positive");
+  RequireOption(o.hough_votes >= 2, kOptions, "hough_votes must be at least 2");
+  RequireOption(o.min_pillar_radius_m > 0.0 && o.min_pillar_radius_m <= o.max_pillar_radius_m,
+                kOptions, "min_pillar_radius_m must be positive and at most max_pillar_radius_m");
+  RequireOption(o.max_pillar_rms_cells > 0.0, kOptions, "max_pillar_rms_cells must be positive");
+  RequireOption(o.min_pillar_roundness > 0.0 && o.min_pillar_roundness <= 1.0, kOptions,
+                "min_pillar_roundness must lie in (0, 1]");
 }
 
 // A cell this near a fitted line counts as lying on it (a wall two cells

@@ -6,7 +6,8 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
-#include <string>
+
+#include "structloc/map_building/option_check.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -33,22 +34,22 @@ void TraceCells(int x0, int y0, int x1, int y1, Pass pass, End end) {
   end(x1, y1);
 }
 
-void Require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("log-odds grid option " + what);
-}
+// Bad options are refused as "log-odds grid option ...".
+constexpr const char* kOptions = "log-odds grid";
 
 void CheckOptions(const LogOddsGridOptions& o) {
-  Require(o.resolution_m > 0.0 && std::isfinite(o.resolution_m),
-          "resolution_m must be positive and finite");
-  Require(o.hit_log_odds > 0.0 && std::isfinite(o.hit_log_odds),
-          "hit_log_odds must be positive and finite");
-  Require(o.miss_log_odds < 0.0 && std::isfinite(o.miss_log_odds),
-          "miss_log_odds must be negative and finite");
-  Require(o.min_log_odds < 0.0, "min_log_odds must be negative (-inf: no clamp)");
-  Require(o.max_log_odds > 0.0, "max_log_odds must be positive (+inf: no clamp)");
-  Require(o.free_probability > 0.0 && o.free_probability < o.occupied_probability &&
-              o.occupied_probability < 1.0,
-          "free_probability and occupied_probability must satisfy 0 < free < occupied < 1");
+  RequireOption(o.resolution_m > 0.0 && std::isfinite(o.resolution_m), kOptions,
+                "resolution_m must be positive and finite");
+  RequireOption(o.hit_log_odds > 0.0 && std::isfinite(o.hit_log_odds), kOptions,
+                "hit_log_odds must be positive and finite");
+  RequireOption(o.miss_log_odds < 0.0 && std::isfinite(o.miss_log_odds), kOptions,
+                "miss_log_odds must be negative and finite");
+  RequireOption(o.min_log_odds < 0.0, kOptions, "min_log_odds must be negative (-inf: no clamp)");
+  RequireOption(o.max_log_odds > 0.0, kOptions, "max_log_odds must be positive (+inf: no clamp)");
+  RequireOption(o.free_probability > 0.0 && o.free_probability < o.occupied_probability &&
+                    o.occupied_probability < 1.0,
+                kOptions,
+                "free_probability and occupied_probability must satisfy 0 < free < occupied < 1");
 }
 
 double LogOdds(double p) {
