@@ -181,6 +181,36 @@ TEST(GridImport, FurnitureSizedBlobsAreLeftOutAndCounted) {
   EXPECT_EQ(result.pillars.size(), plain.pillars.size());
 }
 
+// A wall seen by few scans, as a ray-cast grid has it: 2 m of cells in
+// pieces of one to three cells with one- and two-cell gaps, no piece near the
+// 1 m of a wall blob. Judged with its neighbours it is one wall on its line;
+// judged alone (max_join_gap_m 0) every piece is left out. An isolated pair
+// of cells stays a speck either way.
+TEST(GridImport, DottedWallIsJoinedAcrossItsGaps) {
+  OccupancyGrid grid(60, 30, 0.05, {0, 0, 0}, OccupancyGrid::kFree);
+  const int pieces[][2] = {{5, 7},   {9, 9},   {12, 14}, {16, 17}, {20, 22}, {24, 24},
+                           {27, 29}, {31, 33}, {36, 37}, {39, 41}, {43, 44}};
+  for (const auto& piece : pieces)
+    for (int c = piece[0]; c <= piece[1]; ++c) grid.At(c, 12) = OccupancyGrid::kOccupied;
+  grid.At(30, 25) = grid.At(31, 25) = OccupancyGrid::kOccupied;  // a speck, 13 cells away
+
+  GridVectoriseOptions alone;
+  alone.max_join_gap_m = 0.0;
+  const auto pieces_alone = map_building::VectoriseGrid(grid, alone);
+  EXPECT_TRUE(pieces_alone.walls.empty());
+  EXPECT_EQ(pieces_alone.face_cells, 0u);
+
+  const auto result = map_building::VectoriseGrid(grid, {});
+  ASSERT_EQ(result.walls.size(), 1u);
+  const FittedWall& wall = result.walls.front();
+  const double y = grid.CellCentre(0, 12).y();
+  EXPECT_NEAR(wall.a.y(), y, 1e-9);
+  EXPECT_NEAR(wall.b.y(), y, 1e-9);
+  EXPECT_NEAR(wall.Length(), grid.CellCentre(44, 12).x() - grid.CellCentre(5, 12).x(), 1e-9);
+  EXPECT_EQ(result.specks_left_out, 1u);
+  EXPECT_EQ(result.blobs_left_out, 0u);
+}
+
 // A 3-cell (15 cm) thick wall as SLAM draws them, with a 1 m door: its two
 // faces become two walls, each through its face cells' centres, each split at
 // the door and sharing one line on both sides of it.

@@ -66,6 +66,11 @@ int MapImportGridCommand(const Invocation& inv) {
        "blobs of occupied cells smaller than this (bounding box) are furniture, not walls, m "
        "(default " +
            number(defaults.min_wall_blob_size_m) + ")"},
+      {"join-gap", true,
+       "blobs this close (m of empty cells between them) are judged together against "
+       "--min-wall-blob: a wall seen by few scans is dotted in a ray-cast grid; 0 judges each "
+       "alone (default " +
+           number(defaults.max_join_gap_m) + ")"},
       {"max-pillar-radius", true,
        "largest pillar radius, m (default " + number(defaults.max_pillar_radius_m) + ")"},
       {"ignore-unknown-keys", false,
@@ -82,6 +87,7 @@ int MapImportGridCommand(const Invocation& inv) {
     options.max_gap_m = cli.NumberIn("max-gap", defaults.max_gap_m, 1e-3, 1e3);
     options.min_wall_blob_size_m =
         cli.NumberIn("min-wall-blob", defaults.min_wall_blob_size_m, 0.0, 1e3);
+    options.max_join_gap_m = cli.NumberIn("join-gap", defaults.max_join_gap_m, 0.0, 1.0);
     options.max_pillar_radius_m = cli.NumberIn("max-pillar-radius", defaults.max_pillar_radius_m,
                                                defaults.min_pillar_radius_m, 1e3);
     map_formats::GridMapReadOptions read;
@@ -117,8 +123,8 @@ int MapImportGridCommand(const Invocation& inv) {
     made << "made by structloc map import --grid " << grid_path << " (" << grid.width << " x "
          << grid.height << " cells of " << grid.resolution_m << " m), min wall length "
          << options.min_wall_length_m << " m, max gap " << options.max_gap_m << " m, min wall blob "
-         << options.min_wall_blob_size_m << " m, max pillar radius " << options.max_pillar_radius_m
-         << " m";
+         << options.min_wall_blob_size_m << " m, join gap " << options.max_join_gap_m
+         << " m, max pillar radius " << options.max_pillar_radius_m << " m";
     world_model::WriteWorldModel(world, {made.str()}, out.Stream());
     if (plot) {
       DrawPlot(grid, options.occupied_min_value, world,
@@ -138,8 +144,10 @@ int MapImportGridCommand(const Invocation& inv) {
               << " corners (" << result.corners_joined << " wall ends joined), "
               << world.Cylinders().size() << " pillars\n"
               << "  left out: " << result.blobs_left_out
-              << " blobs too small for a wall and not round (furniture), " << result.specks_left_out
-              << " specks of at most " << options.max_speck_cells << " cells (noise)\n"
+              << " blobs too small for a wall, alone or with the blobs near them, and not round "
+                 "(furniture), "
+              << result.specks_left_out << " specks of at most " << options.max_speck_cells
+              << " cells (noise)\n"
               << "  wrote " << out_path;
     if (plot_path) std::cout << " and " << *plot_path;
     std::cout << "\n";

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <iterator>
 #include <opencv2/imgproc.hpp>
@@ -29,6 +30,8 @@ void CheckOptions(const GridVectoriseOptions& o) {
   RequireOption(o.max_gap_m > 0.0, kOptions, "max_gap_m must be positive");
   RequireOption(o.min_wall_blob_size_m >= 0.0, kOptions,
                 "min_wall_blob_size_m must not be negative");
+  RequireOption(o.max_join_gap_m >= 0.0 && o.max_join_gap_m <= 1.0, kOptions,
+                "max_join_gap_m must lie in [0, 1] m");
   RequireOption(o.proposal_capture_cells > 0.0 && o.capture_cells > 0.0, kOptions,
                 "proposal_capture_cells and capture_cells must be positive");
   RequireOption(o.same_line_angle_rad > 0.0, kOptions, "same_line_angle_rad must be positive");
@@ -149,6 +152,51 @@ struct Blob {
   size_t cells;
 };
 
+// What a blob is judged by: the extent (long side, cells) and the cell count
+// of its group, the blobs whose cells lie at most gap_cells empty cells apart.
+// A wall seen by few scans comes out of a ray-cast grid dotted, in blobs of a
+// few cells each, none of them as long as the wall; joined, they are.
+struct BlobGroup {
+  int long_side = 0;
+  size_t cells = 0;
+};
+std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels, int count,
+                                     int gap_cells) {
+  cv::Mat joined = mask, group_labels;
+  // A (gap + 1)-square kernel anchored at its corner stretches each cell by
+  // gap cells towards the first column and row: cells up to gap empty cells
+  // apart, along either axis or diagonally, then touch.
+  if (gap_cells > 0)
+    cv::dilate(mask, joined, cv::Mat::ones(gap_cells + 1, gap_cells + 1, CV_8UC1), {0, 0});
+  const int groups = cv::connectedComponents(joined, group_labels, 8, CV_32S);
+  struct Extent {
+    int left = INT_MAX, right = INT_MIN, bottom = INT_MAX, top = INT_MIN;
+    size_t cells = 0;
+  };
+  std::vector<Extent> extents(static_cast<size_t>(groups));
+  std::vector<int> group_of(static_cast<size_t>(count), 0);
+  for (int r = 0; r < labels.rows; ++r) {
+    for (int c = 0; c < labels.cols; ++c) {
+      const int label = labels.at<int>(r, c);
+      if (label == 0) continue;
+      const int g = group_labels.at<int>(r, c);
+      group_of[static_cast<size_t>(label)] = g;
+      auto& e = extents[static_cast<size_t>(g)];
+      e.left = std::min(e.left, c);
+      e.right = std::max(e.right, c);
+      e.bottom = std::min(e.bottom, r);
+      e.top = std::max(e.top, r);
+      ++e.cells;
+    }
+  }
+  std::vector<BlobGroup> of_blob(static_cast<size_t>(count));
+  for (int i = 1; i < count; ++i) {
+    const auto& e = extents[static_cast<size_t>(group_of[static_cast<size_t>(i)])];
+    of_blob[static_cast<size_t>(i)] = {std::max(e.right - e.left, e.top - e.bottom) + 1, e.cells};
+  }
+  return of_blob;
+}
+
 }  // namespace
 
 FittedCircle FitCircle(const std::vector<Eigen::Vector2d>& points) {
@@ -251,12 +299,15 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   }
 
   // Classify the blobs: specks, pillars, walls, and the rest left out.
+  const auto groups = GroupsOfBlobs(
+      mask, labels, count, static_cast<int>(std::floor(options.max_join_gap_m / res + 1e-9)));
   std::vector<bool> is_wall(static_cast<size_t>(count), false);
   for (int i = 1; i < count; ++i) {
     const Blob& blob = blobs[static_cast<size_t>(i)];
+    const BlobGroup& group = groups[static_cast<size_t>(i)];
     const double long_side = std::max(blob.width, blob.height) * res;
     const double short_side = std::min(blob.width, blob.height) * res;
-    if (blob.cells <= options.max_speck_cells) {
+    if (group.cells <= options.max_speck_cells) {
       ++out.specks_left_out;
       continue;
     }
@@ -271,7 +322,7 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
         continue;
       }
     }
-    if (long_side >= options.min_wall_blob_size_m) {
+    if (group.long_side * res >= options.min_wall_blob_size_m) {
       is_wall[static_cast<size_t>(i)] = true;
       ++out.wall_blobs;
     } else {
