@@ -67,6 +67,13 @@ TEST(MapGridCli, BadGridsAreRefusedNamingTheFileAndLeaveTheOutputAlone) {
   result = RunCli({"map", "import", "--grid", dir / "empty.yaml", "--out", out, "--max-gap", "0"});
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_TRUE(Contains(result.output, "max-gap")) << result.output;
+  for (const char* gap : {"-0.1", "1.5", "nan"}) {
+    result =
+        RunCli({"map", "import", "--grid", dir / "empty.yaml", "--out", out, "--join-gap", gap});
+    EXPECT_EQ(result.exit_code, 2) << gap << ": " << result.output;
+    EXPECT_TRUE(Contains(result.output, "join-gap")) << result.output;
+  }
+  EXPECT_EQ(testing::ReadFile(out), "precious");
 }
 
 // In a "scale" grid the cells between the thresholds are graded 0..99; none

@@ -183,32 +183,67 @@ TEST(GridImport, FurnitureSizedBlobsAreLeftOutAndCounted) {
 
 // A wall seen by few scans, as a ray-cast grid has it: 2 m of cells in
 // pieces of one to three cells with one- and two-cell gaps, no piece near the
-// 1 m of a wall blob. Judged with its neighbours it is one wall on its line;
-// judged alone (max_join_gap_m 0) every piece is left out. An isolated pair
-// of cells stays a speck either way.
-TEST(GridImport, DottedWallIsJoinedAcrossItsGaps) {
-  OccupancyGrid grid(60, 30, 0.05, {0, 0, 0}, OccupancyGrid::kFree);
+// 1 m of a wall blob; then, after a three-cell gap (more than the default
+// 0.1 m join), a piece of three cells. Judged with its neighbours the wall is
+// one wall on its line, along a row, a column or a diagonal, and the piece
+// beyond stays out; judged alone (max_join_gap_m 0) every piece is left out.
+// An isolated pair of cells stays a speck either way.
+enum class Heading { kAlongRow, kAlongColumn, kDiagonal };
+
+OccupancyGrid DottedWall(Heading heading) {
+  OccupancyGrid grid(70, 70, 0.05, {0, 0, 0}, OccupancyGrid::kFree);
   const int pieces[][2] = {{5, 7},   {9, 9},   {12, 14}, {16, 17}, {20, 22}, {24, 24},
-                           {27, 29}, {31, 33}, {36, 37}, {39, 41}, {43, 44}};
-  for (const auto& piece : pieces)
-    for (int c = piece[0]; c <= piece[1]; ++c) grid.At(c, 12) = OccupancyGrid::kOccupied;
-  grid.At(30, 25) = grid.At(31, 25) = OccupancyGrid::kOccupied;  // a speck, 13 cells away
+                           {27, 29}, {31, 33}, {36, 37}, {39, 41}, {43, 44}, {48, 50}};
+  for (const auto& piece : pieces) {
+    for (int i = piece[0]; i <= piece[1]; ++i) {
+      const int c = heading == Heading::kAlongColumn ? 12 : i;
+      const int r = heading == Heading::kAlongRow ? 12 : i;
+      grid.At(c, heading == Heading::kDiagonal ? i + 8 : r) = OccupancyGrid::kOccupied;
+    }
+  }
+  grid.At(60, 3) = grid.At(61, 3) = OccupancyGrid::kOccupied;  // a speck, far from the wall
+  return grid;
+}
 
-  GridVectoriseOptions alone;
-  alone.max_join_gap_m = 0.0;
-  const auto pieces_alone = map_building::VectoriseGrid(grid, alone);
-  EXPECT_TRUE(pieces_alone.walls.empty());
-  EXPECT_EQ(pieces_alone.face_cells, 0u);
+TEST(GridImport, DottedWallIsJoinedAcrossItsGaps) {
+  for (const Heading heading : {Heading::kAlongRow, Heading::kAlongColumn, Heading::kDiagonal}) {
+    SCOPED_TRACE(static_cast<int>(heading));
+    const OccupancyGrid grid = DottedWall(heading);
+    GridVectoriseOptions alone;
+    alone.max_join_gap_m = 0.0;
+    const auto pieces_alone = map_building::VectoriseGrid(grid, alone);
+    EXPECT_TRUE(pieces_alone.walls.empty());
+    EXPECT_EQ(pieces_alone.face_cells, 0u);
+    EXPECT_EQ(pieces_alone.specks_left_out, 6u);  // the pieces of 1-2 cells, and the speck
+    EXPECT_EQ(pieces_alone.blobs_left_out, 7u);   // the pieces of 3 cells
 
+    const auto result = map_building::VectoriseGrid(grid, {});
+    ASSERT_EQ(result.walls.size(), 1u);
+    const FittedWall& wall = result.walls.front();
+    const auto cell = [&](int i) {
+      return heading == Heading::kAlongRow      ? grid.CellCentre(i, 12)
+             : heading == Heading::kAlongColumn ? grid.CellCentre(12, i)
+                                                : grid.CellCentre(i, i + 8);
+    };
+    EXPECT_NEAR(DistanceToLine(wall, cell(5)), 0.0, 1e-6);
+    EXPECT_NEAR(DistanceToLine(wall, cell(44)), 0.0, 1e-6);
+    EXPECT_NEAR(wall.Length(), (cell(44) - cell(5)).norm(), 1e-6);
+    EXPECT_EQ(result.specks_left_out, 1u);
+    EXPECT_EQ(result.blobs_left_out, 1u);  // the piece beyond the three-cell gap
+  }
+}
+
+// A grid whose cells are far finer than the join gap (here a malformed
+// resolution of a nanometre) is judged with a bounded join, not a kernel of
+// exabytes.
+TEST(GridImport, JoinIsBoundedOnAGridFarFinerThanTheGap) {
+  OccupancyGrid grid = DottedWall(Heading::kAlongRow);
+  grid.resolution_m = 1e-9;
   const auto result = map_building::VectoriseGrid(grid, {});
-  ASSERT_EQ(result.walls.size(), 1u);
-  const FittedWall& wall = result.walls.front();
-  const double y = grid.CellCentre(0, 12).y();
-  EXPECT_NEAR(wall.a.y(), y, 1e-9);
-  EXPECT_NEAR(wall.b.y(), y, 1e-9);
-  EXPECT_NEAR(wall.Length(), grid.CellCentre(44, 12).x() - grid.CellCentre(5, 12).x(), 1e-9);
-  EXPECT_EQ(result.specks_left_out, 1u);
-  EXPECT_EQ(result.blobs_left_out, 0u);
+  EXPECT_TRUE(result.walls.empty());  // the group is nanometres long
+  // All 13 blobs in one group (64 cells span the grid), judged furniture.
+  EXPECT_EQ(result.specks_left_out, 0u);
+  EXPECT_EQ(result.blobs_left_out, 13u);
 }
 
 // A 3-cell (15 cm) thick wall as SLAM draws them, with a 1 m door: its two

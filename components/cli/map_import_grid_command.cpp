@@ -67,9 +67,10 @@ int MapImportGridCommand(const Invocation& inv) {
        "(default " +
            number(defaults.min_wall_blob_size_m) + ")"},
       {"join-gap", true,
-       "blobs this close (m of empty cells between them) are judged together against "
-       "--min-wall-blob: a wall seen by few scans is dotted in a ray-cast grid; 0 judges each "
-       "alone (default " +
+       "blobs this close (m of empty cells between them, rounded down to whole cells) are "
+       "judged together against --min-wall-blob, and are no specks: a wall seen by few scans is "
+       "dotted in a ray-cast grid; furniture this near a wall goes with the wall; 0 judges each "
+       "blob alone, m in [0, 1] (default " +
            number(defaults.max_join_gap_m) + ")"},
       {"max-pillar-radius", true,
        "largest pillar radius, m (default " + number(defaults.max_pillar_radius_m) + ")"},

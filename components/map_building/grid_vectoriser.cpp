@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 #include "structloc/map_building/option_check.hpp"
 
@@ -152,6 +152,11 @@ struct Blob {
   size_t cells;
 };
 
+// The join's dilation costs time in proportion to the gap in cells: a grid
+// whose cells are far finer than max_join_gap_m (a millimetre grid of a
+// small area, or a malformed YAML's resolution) joins at most this many.
+constexpr double kMaxJoinGapCells = 64;
+
 // What a blob is judged by: the extent (long side, cells) and the cell count
 // of its group, the blobs whose cells lie at most gap_cells empty cells apart.
 // A wall seen by few scans comes out of a ray-cast grid dotted, in blobs of a
@@ -160,14 +165,22 @@ struct BlobGroup {
   int long_side = 0;
   size_t cells = 0;
 };
-std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels, int count,
-                                     int gap_cells) {
-  cv::Mat joined = mask, group_labels;
+std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels,
+                                     const cv::Mat& blob_stats, int count, int gap_cells) {
+  std::vector<BlobGroup> of_blob(static_cast<size_t>(count));
+  if (gap_cells == 0) {  // each blob alone
+    for (int i = 1; i < count; ++i)
+      of_blob[static_cast<size_t>(i)] = {
+          std::max(blob_stats.at<int>(i, cv::CC_STAT_WIDTH),
+                   blob_stats.at<int>(i, cv::CC_STAT_HEIGHT)),
+          static_cast<size_t>(blob_stats.at<int>(i, cv::CC_STAT_AREA))};
+    return of_blob;
+  }
   // A (gap + 1)-square kernel anchored at its corner stretches each cell by
   // gap cells towards the first column and row: cells up to gap empty cells
-  // apart, along either axis or diagonally, then touch.
-  if (gap_cells > 0)
-    cv::dilate(mask, joined, cv::Mat::ones(gap_cells + 1, gap_cells + 1, CV_8UC1), {0, 0});
+  // apart, along either axis or diagonally (in cells), then touch.
+  cv::Mat joined, group_labels;
+  cv::dilate(mask, joined, cv::Mat::ones(gap_cells + 1, gap_cells + 1, CV_8UC1), {0, 0});
   const int groups = cv::connectedComponents(joined, group_labels, 8, CV_32S);
   struct Extent {
     int left = INT_MAX, right = INT_MIN, bottom = INT_MAX, top = INT_MIN;
@@ -189,7 +202,6 @@ std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels,
       ++e.cells;
     }
   }
-  std::vector<BlobGroup> of_blob(static_cast<size_t>(count));
   for (int i = 1; i < count; ++i) {
     const auto& e = extents[static_cast<size_t>(group_of[static_cast<size_t>(i)])];
     of_blob[static_cast<size_t>(i)] = {std::max(e.right - e.left, e.top - e.bottom) + 1, e.cells};
@@ -299,8 +311,10 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   }
 
   // Classify the blobs: specks, pillars, walls, and the rest left out.
-  const auto groups = GroupsOfBlobs(
-      mask, labels, count, static_cast<int>(std::floor(options.max_join_gap_m / res + 1e-9)));
+  // Whole cells of gap, at most kMaxJoinGapCells.
+  const double gap_cells =
+      std::min(std::floor(options.max_join_gap_m / res + 1e-9), kMaxJoinGapCells);
+  const auto groups = GroupsOfBlobs(mask, labels, stats, count, static_cast<int>(gap_cells));
   std::vector<bool> is_wall(static_cast<size_t>(count), false);
   for (int i = 1; i < count; ++i) {
     const Blob& blob = blobs[static_cast<size_t>(i)];
@@ -359,11 +373,13 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   struct Candidate {
     FittedWall fit;
     std::vector<std::vector<Eigen::Vector2d>> runs;
-    std::vector<long long> cells;  // sorted keys of the cells fitted
+    std::vector<long long> cells;  // keys of the cells fitted, each once
     size_t on_line = 0;            // cells within kOnLineCells of the line
     bool dropped = false;
   };
   std::vector<Candidate> candidates;
+  std::unordered_map<long long, std::vector<size_t>> candidates_of_cell;
+  std::vector<size_t> sharers;  // per cell shared, the earlier candidate sharing it
   for (const auto& s : proposals) {
     const Eigen::Vector2d a = grid.CellCentre(s[0], s[1]), b = grid.CellCentre(s[2], s[3]);
     if ((b - a).norm() < 1e-9) continue;
@@ -399,24 +415,37 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
         candidate.on_line += fitted.Distance(p) <= kOnLineCells * res;
       }
     }
-    std::sort(candidate.cells.begin(), candidate.cells.end());
-    for (auto& other : candidates) {
+    // The earlier candidates that share cells with this one, in the order
+    // they came, with how many cells each shares (found by cell: comparing
+    // with every earlier candidate made a noisy grid's import quadratic).
+    sharers.clear();
+    for (const long long key : candidate.cells) {
+      const auto found = candidates_of_cell.find(key);
+      if (found != candidates_of_cell.end())
+        sharers.insert(sharers.end(), found->second.begin(), found->second.end());
+    }
+    std::sort(sharers.begin(), sharers.end());
+    for (size_t first = 0, last = 0; first < sharers.size(); first = last) {
+      const size_t index = sharers[first];
+      while (last < sharers.size() && sharers[last] == index) ++last;
+      const size_t shared = last - first;
+      auto& other = candidates[index];
       if (other.dropped) continue;
       const Line known = LineOf(other.fit);
       const double cross =
           known.normal.x() * fitted.normal.y() - known.normal.y() * fitted.normal.x();
       if (std::abs(cross) > std::sin(options.same_line_angle_rad)) continue;
-      std::vector<long long> shared;
-      std::set_intersection(candidate.cells.begin(), candidate.cells.end(), other.cells.begin(),
-                            other.cells.end(), std::back_inserter(shared));
-      if (2 * shared.size() < std::min(candidate.cells.size(), other.cells.size())) continue;
+      if (2 * shared < std::min(candidate.cells.size(), other.cells.size())) continue;
       if (other.on_line >= candidate.on_line) {
         candidate.dropped = true;
         break;
       }
       other.dropped = true;
     }
-    if (!candidate.dropped) candidates.push_back(std::move(candidate));
+    if (candidate.dropped) continue;
+    for (const long long key : candidate.cells)
+      candidates_of_cell[key].push_back(candidates.size());
+    candidates.push_back(std::move(candidate));
   }
   for (const auto& candidate : candidates) {
     if (candidate.dropped) continue;
@@ -436,6 +465,13 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
       out.walls.push_back(piece);
     }
   }
+  // Refused before the corners are joined (the slowest step on such grids):
+  // no world could hold these walls.
+  if (out.walls.size() > world_model::WorldLimits::kDefaultMaxWalls)
+    throw std::invalid_argument("the grid gives " + std::to_string(out.walls.size()) +
+                                " walls, more than the limit of " +
+                                std::to_string(world_model::WorldLimits::kDefaultMaxWalls) +
+                                " walls per map: is it noise rather than a map?");
   CornerJoinOptions corners = options.corners;
   corners.max_end_distance_m = std::max(corners.max_end_distance_m, 3.0 * res);
   out.corners_joined = JoinCorners(out.walls, corners);

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "structloc/localisation_core/line_fit.hpp"
 
@@ -75,42 +77,115 @@ Eigen::Vector2d& NearerEnd(FittedWall& wall, const Eigen::Vector2d& p, double& d
   return da <= db ? wall.a : wall.b;
 }
 
-// Whether an end of `a` and an end of `b` lie within `reach` of each other. A
-// corner within max_end_distance_m of an end of each wall needs that with
-// twice the distance, so most pairs of a large map are passed over without
-// any trigonometry (a noisy 800 x 800 grid gives tens of thousands of walls).
+// Whether an end of `a` and an end of `b` lie within `reach` of each other.
 bool EndsWithin(const FittedWall& a, const FittedWall& b, double reach) {
   const double r2 = reach * reach;
   return (a.a - b.a).squaredNorm() <= r2 || (a.a - b.b).squaredNorm() <= r2 ||
          (a.b - b.a).squaredNorm() <= r2 || (a.b - b.b).squaredNorm() <= r2;
 }
 
+// The walls by the square cells (of the reach's size) their ends lie in,
+// kept up to date as ends move: a wall end within reach of a point lies in
+// one of the 3 x 3 cells around it. Without it every pair of walls was tried,
+// and a noisy 800 x 800 grid's tens of thousands of walls took minutes.
+class WallEndCells {
+ public:
+  WallEndCells(const std::vector<FittedWall>& walls, double cell) : cell_(cell) {
+    for (size_t i = 0; i < walls.size(); ++i) {
+      Add(i, walls[i].a);
+      Add(i, walls[i].b);
+    }
+  }
+  void Add(size_t wall, const Eigen::Vector2d& end) { cells_[Key(end, 0, 0)].push_back(wall); }
+  // Returns whether the end changed cells.
+  bool Move(size_t wall, const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+    if (Key(from, 0, 0) == Key(to, 0, 0)) return false;
+    auto& in = cells_[Key(from, 0, 0)];
+    in.erase(std::find(in.begin(), in.end(), wall));
+    Add(wall, to);
+    return true;
+  }
+  // The walls above `after` with an end in a cell next to an end of `wall`
+  // (a or b), in ascending order.
+  void Near(const FittedWall& wall, size_t after, std::vector<size_t>& out) const {
+    out.clear();
+    for (const Eigen::Vector2d* end : {&wall.a, &wall.b}) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          const auto found = cells_.find(Key(*end, dx, dy));
+          if (found == cells_.end()) continue;
+          for (size_t w : found->second)
+            if (w > after) out.push_back(w);
+        }
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+ private:
+  std::pair<long long, long long> Key(const Eigen::Vector2d& p, int dx, int dy) const {
+    return {Index(p.x()) + dx, Index(p.y()) + dy};
+  }
+  // A coordinate's cell; far beyond any map (a malformed grid's origin) all
+  // coordinates share the outermost cells, and NaN one of its own.
+  long long Index(double coordinate) const {
+    const double q = std::floor(coordinate / cell_);
+    if (std::isnan(q)) return 0;
+    return static_cast<long long>(std::clamp(q, -1e18, 1e18));
+  }
+  double cell_;
+  std::map<std::pair<long long, long long>, std::vector<size_t>> cells_;
+};
+
 }  // namespace
+
+bool JoinWallEnds(FittedWall& first, FittedWall& second, const CornerJoinOptions& options) {
+  if (!EndsWithin(first, second, 2.0 * options.max_end_distance_m + 1e-9)) return false;
+  const double angle = std::abs(std::sin(first.line.alpha - second.line.alpha));
+  if (angle < std::sin(options.min_angle_rad)) return false;
+  Eigen::Vector2d at;
+  if (!Intersect(first.line, second.line, at)) return false;
+  double d1 = 0.0, d2 = 0.0;
+  Eigen::Vector2d& end_1 = NearerEnd(first, at, d1);
+  Eigen::Vector2d& end_2 = NearerEnd(second, at, d2);
+  if (d1 > options.max_end_distance_m || d2 > options.max_end_distance_m) return false;
+  // Only ends: the intersection must not lie deep inside either wall.
+  const double t1 = AlongWall(first, at), t2 = AlongWall(second, at);
+  const double l1 = first.Length(), l2 = second.Length();
+  const double slack = options.max_end_distance_m;
+  if (!(t1 < slack || t1 > l1 - slack) || !(t2 < slack || t2 > l2 - slack)) return false;
+  end_1 = at;
+  end_2 = at;
+  return true;
+}
 
 size_t JoinCorners(std::vector<FittedWall>& walls, const CornerJoinOptions& options) {
   size_t joined = 0;
-  const double reach = 2.0 * options.max_end_distance_m + 1e-9;
+  WallEndCells cells(walls, 2.0 * options.max_end_distance_m + 1e-9);
+  // The pairs (i, j > i) in the order of a double loop over all pairs, each
+  // tried with the ends as earlier joins left them; only pairs with ends
+  // within reach can join, and the cells give those.
+  std::vector<size_t> near;
   for (size_t i = 0; i < walls.size(); ++i) {
-    for (size_t j = i + 1; j < walls.size(); ++j) {
-      if (!EndsWithin(walls[i], walls[j], reach)) continue;
-      const double angle = std::abs(std::sin(walls[i].line.alpha - walls[j].line.alpha));
-      if (angle < std::sin(options.min_angle_rad)) continue;
-      Eigen::Vector2d at;
-      if (!Intersect(walls[i].line, walls[j].line, at)) continue;
-      double di = 0.0, dj = 0.0;
-      Eigen::Vector2d& end_i = NearerEnd(walls[i], at, di);
-      Eigen::Vector2d& end_j = NearerEnd(walls[j], at, dj);
-      if (di > options.max_end_distance_m || dj > options.max_end_distance_m) continue;
-      // Only ends: the intersection must not lie deep inside either wall.
-      const double ti = AlongWall(walls[i], at), tj = AlongWall(walls[j], at);
-      const double li = walls[i].Length(), lj = walls[j].Length();
-      const double slack = options.max_end_distance_m;
-      const bool near_end_i = ti < slack || ti > li - slack;
-      const bool near_end_j = tj < slack || tj > lj - slack;
-      if (!near_end_i || !near_end_j) continue;
-      end_i = at;
-      end_j = at;
+    cells.Near(walls[i], i, near);
+    size_t k = 0;
+    while (k < near.size()) {
+      const size_t j = near[k++];
+      const FittedWall before_i = walls[i], before_j = walls[j];
+      if (!JoinWallEnds(walls[i], walls[j], options)) continue;
       ++joined;
+      const bool a_changed_cells = cells.Move(i, before_i.a, walls[i].a);
+      const bool b_changed_cells = cells.Move(i, before_i.b, walls[i].b);
+      cells.Move(j, before_j.a, walls[j].a);
+      cells.Move(j, before_j.b, walls[j].b);
+      // Wall i's end moved to another cell: the walls after j near its ends
+      // now. (Within its cell the walls near it are the same, but for j,
+      // which is done with.)
+      if (a_changed_cells || b_changed_cells) {
+        cells.Near(walls[i], j, near);
+        k = 0;
+      }
     }
   }
   return joined;

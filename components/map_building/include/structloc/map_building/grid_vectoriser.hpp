@@ -3,9 +3,10 @@
 // like a round pillar get a circle fitted to their boundary cells, blobs too
 // small for a wall (furniture, noise; judged together with the blobs a gap of
 // up to max_join_gap_m away, since a wall seen by few scans is dotted) are
-// left out and counted, and the rest give walls: OpenCV's probabilistic Hough transform proposes
-// segments, and each wall's line is then the total least-squares fit (FitWall, thesis 3.5.2) of the
-// cell centres near it, so that its position is good to a fraction of a cell.
+// left out and counted, and the rest give walls: OpenCV's probabilistic
+// Hough transform proposes segments, and each wall's line is then the total
+// least-squares fit (FitWall, thesis 3.5.2) of the cell centres near it, so
+// that its position is good to a fraction of a cell.
 //
 // Which cells are fitted: the "face" cells, occupied cells with a free
 // 4-neighbour, i.e. what a laser in the free space sees. A wall one or two
@@ -34,9 +35,11 @@ struct GridVectoriseOptions {
   double min_wall_length_m = 0.3;     // shorter wall pieces are dropped
   double max_gap_m = 0.25;            // a wider gap in a wall's cells splits it (a door)
   double min_wall_blob_size_m = 1.0;  // blobs whose bounding box is smaller are not walls
-  // Blobs at most this far apart (empty cells between them) are judged
-  // together, for min_wall_blob_size_m and max_speck_cells: a wall seen by few
-  // scans is dotted in a ray-cast grid. 0 judges each blob alone.
+  // Blobs at most this far apart (empty cells between them, rounded down to
+  // whole cells, at most 64; diagonally counted in cells) are judged together,
+  // for min_wall_blob_size_m and max_speck_cells: a wall seen by few scans is
+  // dotted in a ray-cast grid. Furniture this near a wall is judged with the
+  // wall, as furniture touching it always was. 0 judges each blob alone.
   double max_join_gap_m = 0.1;
   double proposal_capture_cells = 1.25;  // cells this near a proposed segment start its fit
   double capture_cells = 0.8;            // cells this near a fitted line belong to it
@@ -64,8 +67,9 @@ struct GridVectorisation {
   size_t corners_joined = 0;   // wall ends pulled onto a corner (JoinCorners)
 };
 
-// Throws std::invalid_argument when the grid has no occupied cell, or
-// when the options are out of range (naming the option).
+// Throws std::invalid_argument when the grid has no occupied cell, when it
+// gives more walls than a world may hold (WorldLimits), or when the options
+// are out of range (naming the option).
 GridVectorisation VectoriseGrid(const map_building::OccupancyGrid& grid,
                                 const GridVectoriseOptions& options);
 

@@ -47,10 +47,17 @@ struct CornerJoinOptions {
   double min_angle_rad = 0.5;        // walls meeting at less than ~29 deg are not joined
 };
 
-// Moves the ends of wall pairs that nearly meet onto their lines'
-// intersection (the end nearer to it, when within max_end_distance_m, and only
-// when the intersection lies within or just beyond both walls). Returns how
-// many corners were joined.
+// Moves the ends of two walls that nearly meet onto their lines'
+// intersection (the end of each nearer to it, when within max_end_distance_m,
+// and only when the intersection lies within or just beyond both walls).
+// Returns whether it did.
+bool JoinWallEnds(FittedWall& first, FittedWall& second, const CornerJoinOptions& options);
+
+// JoinWallEnds on every pair of walls (i, j > i) in the order of a double
+// loop over the pairs, each pair with the ends as earlier joins left them;
+// only pairs whose ends lie near each other are tried, found by cell, so the
+// time grows with the walls, not with their pairs. Returns how many corners
+// were joined.
 size_t JoinCorners(std::vector<FittedWall>& walls, const CornerJoinOptions& options);
 
 // A world model of the walls (ids 1..n in order) and cylinders (ids 1..m);
