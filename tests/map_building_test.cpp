@@ -298,11 +298,12 @@ TEST(WallFitting, SplitsAtGapsAndJoinsWallsThatNearlyMeet) {
 
 // JoinCorners tries only the pairs whose ends lie near each other, found by
 // cell as the ends move; it must join exactly what trying every pair in
-// order would: 1500 walls of 0.3-1 m in a 4 m square, many of them joined
+// order would: 1500 walls of 0.3-1 m in a 4 m square about the origin (cells
+// on both sides of zero), many of them joined
 // several times and moved across cells (a noisy grid's walls).
 TEST(WallFitting, JoiningCornersByCellJoinsWhatTryingEveryPairJoins) {
   std::mt19937 generator(20261127);
-  std::uniform_real_distribution<double> coordinate(0.0, 4.0), length(0.3, 1.0), turn(-kPi, kPi);
+  std::uniform_real_distribution<double> coordinate(-2.0, 2.0), length(0.3, 1.0), turn(-kPi, kPi);
   std::vector<FittedWall> walls;
   for (int w = 0; w < 1500; ++w) {
     const Eigen::Vector2d a(coordinate(generator), coordinate(generator));

@@ -235,7 +235,7 @@ TEST(GridImport, DottedWallIsJoinedAcrossItsGaps) {
 
 // A grid whose cells are far finer than the join gap (here a malformed
 // resolution of a nanometre) is judged with a bounded join, not a kernel of
-// exabytes.
+// petabytes.
 TEST(GridImport, JoinIsBoundedOnAGridFarFinerThanTheGap) {
   OccupancyGrid grid = DottedWall(Heading::kAlongRow);
   grid.resolution_m = 1e-9;

@@ -67,7 +67,8 @@ int MapImportGridCommand(const Invocation& inv) {
        "(default " +
            number(defaults.min_wall_blob_size_m) + ")"},
       {"join-gap", true,
-       "blobs this close (m of empty cells between them, rounded down to whole cells) are "
+       "blobs this close (m of empty cells between them, rounded down to whole cells, at most "
+       "64 cells) are "
        "judged together against --min-wall-blob, and are no specks: a wall seen by few scans is "
        "dotted in a ray-cast grid; furniture this near a wall goes with the wall; 0 judges each "
        "blob alone, m in [0, 1] (default " +

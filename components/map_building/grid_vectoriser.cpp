@@ -415,6 +415,11 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
         candidate.on_line += fitted.Distance(p) <= kOnLineCells * res;
       }
     }
+    // Each cell once (a cell centre far from the origin may round into its
+    // neighbour's cell).
+    std::sort(candidate.cells.begin(), candidate.cells.end());
+    candidate.cells.erase(std::unique(candidate.cells.begin(), candidate.cells.end()),
+                          candidate.cells.end());
     // The earlier candidates that share cells with this one, in the order
     // they came, with how many cells each shares (found by cell: comparing
     // with every earlier candidate made a noisy grid's import quadratic).

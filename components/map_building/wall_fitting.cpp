@@ -84,7 +84,7 @@ bool EndsWithin(const FittedWall& a, const FittedWall& b, double reach) {
          (a.b - b.a).squaredNorm() <= r2 || (a.b - b.b).squaredNorm() <= r2;
 }
 
-// The walls by the square cells (of the reach's size) their ends lie in,
+// The walls by the square cells (at least the reach wide) their ends lie in,
 // kept up to date as ends move: a wall end within reach of a point lies in
 // one of the 3 x 3 cells around it. Without it every pair of walls was tried,
 // and a noisy 800 x 800 grid's tens of thousands of walls took minutes.
@@ -101,7 +101,8 @@ class WallEndCells {
   bool Move(size_t wall, const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
     if (Key(from, 0, 0) == Key(to, 0, 0)) return false;
     auto& in = cells_[Key(from, 0, 0)];
-    in.erase(std::find(in.begin(), in.end(), wall));
+    const auto entry = std::find(in.begin(), in.end(), wall);
+    if (entry != in.end()) in.erase(entry);  // always there: every move comes through here
     Add(wall, to);
     return true;
   }
@@ -162,7 +163,9 @@ bool JoinWallEnds(FittedWall& first, FittedWall& second, const CornerJoinOptions
 
 size_t JoinCorners(std::vector<FittedWall>& walls, const CornerJoinOptions& options) {
   size_t joined = 0;
-  WallEndCells cells(walls, 2.0 * options.max_end_distance_m + 1e-9);
+  // Cells a little wider than the reach, so that rounding far from the
+  // origin cannot put two ends within reach two cells apart.
+  WallEndCells cells(walls, 1.01 * (2.0 * options.max_end_distance_m + 1e-9));
   // The pairs (i, j > i) in the order of a double loop over all pairs, each
   // tried with the ends as earlier joins left them; only pairs with ends
   // within reach can join, and the cells give those.
