@@ -166,14 +166,12 @@ struct BlobGroup {
   size_t cells = 0;
 };
 std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels,
-                                     const cv::Mat& blob_stats, int count, int gap_cells) {
-  std::vector<BlobGroup> of_blob(static_cast<size_t>(count));
+                                     const std::vector<Blob>& blobs, int gap_cells) {
+  const int count = static_cast<int>(blobs.size());
+  std::vector<BlobGroup> of_blob(blobs.size());
   if (gap_cells == 0) {  // each blob alone
-    for (int i = 1; i < count; ++i)
-      of_blob[static_cast<size_t>(i)] = {
-          std::max(blob_stats.at<int>(i, cv::CC_STAT_WIDTH),
-                   blob_stats.at<int>(i, cv::CC_STAT_HEIGHT)),
-          static_cast<size_t>(blob_stats.at<int>(i, cv::CC_STAT_AREA))};
+    for (size_t i = 1; i < blobs.size(); ++i)
+      of_blob[i] = {std::max(blobs[i].width, blobs[i].height), blobs[i].cells};
     return of_blob;
   }
   // A (gap + 1)-square kernel anchored at its corner stretches each cell by
@@ -310,11 +308,11 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
     }
   }
 
-  // Classify the blobs: specks, pillars, walls, and the rest left out.
   // Whole cells of gap, at most kMaxJoinGapCells.
   const double gap_cells =
       std::min(std::floor(options.max_join_gap_m / res + 1e-9), kMaxJoinGapCells);
-  const auto groups = GroupsOfBlobs(mask, labels, stats, count, static_cast<int>(gap_cells));
+  const auto groups = GroupsOfBlobs(mask, labels, blobs, static_cast<int>(gap_cells));
+  // Classify the blobs: specks, pillars, walls, and the rest left out.
   std::vector<bool> is_wall(static_cast<size_t>(count), false);
   for (int i = 1; i < count; ++i) {
     const Blob& blob = blobs[static_cast<size_t>(i)];
