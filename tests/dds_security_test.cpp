@@ -4,16 +4,22 @@
 // samples accepted, that an authenticated identity cannot create a writer or
 // reader its permissions do not grant, that a certificate from another CA with
 // the same subject is never matched, and that a component given a missing or
-// broken enclave refuses to start, naming the file. Each check has a positive
+// broken enclave refuses to start, naming the file, and that a QoS profile
+// cannot switch security off (a hostile dds.sec.* property is refused by the
+// component, by structloc_check_qos and by every node given a keystore,
+// whatever file Fast DDS read it from). Each check has a positive
 // control (the granted identity does get its samples through), so none can
 // pass because nothing was connected.
 #include <gtest/gtest.h>
+#include <unistd.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "cli_runner.hpp"
 #include "dds_test_support.hpp"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
@@ -216,6 +222,72 @@ TEST_F(DdsSecurity, AComponentWithoutItsEnclaveRefusesToStart) {
   EXPECT_EQ(*code, 2);
   EXPECT_NE(localisation.CapturedOutput().find("permissions.p7s"), std::string::npos)
       << localisation.CapturedOutput();
+}
+
+// The shipped QoS file with a participant property that names another
+// authentication plugin: Fast DDS takes the first property of a name, and
+// one of the profile's came before the enclave's.
+std::string HostileQos(const testing::TempDir& dir) {
+  std::string text = testing::ReadFile(testing::ShippedQos());
+  const auto rtps = text.find("<rtps>");
+  if (rtps == std::string::npos) return "";
+  text.insert(rtps + 6,
+              "<propertiesPolicy><properties><property><name>dds.sec.auth.plugin</name>"
+              "<value>none</value></property></properties></propertiesPolicy>");
+  return dir.Write("qos_tampered.xml", text);
+}
+
+TEST_F(DdsSecurity, AProfileThatSwitchesSecurityOffIsRefusedEverywhere) {
+  const std::string hostile = HostileQos(dir_);
+  ASSERT_FALSE(hostile.empty());
+  const std::string problem = "sets DDS Security from --security-keystore alone";
+
+  // The component given a keystore refuses to start, naming file, line and property.
+  const auto component =
+      testing::RunExecutable("structloc_localisation",
+                             {"--domain", std::to_string(kDomain), "--qos", hostile,
+                              "--security-keystore", keystore_, "--initial-pose", "2 6.5 0"},
+                             30s);
+  EXPECT_EQ(component.exit_code, 2) << component.output;
+  EXPECT_NE(component.output.find(hostile + ":"), std::string::npos) << component.output;
+  EXPECT_NE(component.output.find("dds.sec.auth.plugin"), std::string::npos) << component.output;
+  EXPECT_NE(component.output.find(problem), std::string::npos) << component.output;
+
+  // structloc_check_qos reports the same, and passes the shipped file (control).
+  const auto check = testing::RunExecutable("structloc_check_qos", {hostile});
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("dds.sec.auth.plugin"), std::string::npos) << check.output;
+  EXPECT_EQ(testing::RunExecutable("structloc_check_qos", {testing::ShippedQos()}).exit_code, 0);
+
+  // A profile of the same name that Fast DDS read before ours (as it reads a
+  // DEFAULT_FASTRTPS_PROFILES.xml in the working folder) cannot slip in
+  // either: Fast DDS keeps the first and only logs that ours was not added.
+  const std::string name = "structloc_hostile_" + std::to_string(::getpid());
+  const std::string elsewhere = dir_.Write(
+      "elsewhere.xml",
+      "<?xml version=\"1.0\"?><dds><profiles xmlns=\"http://www.eprosima.com/XMLSchemas/"
+      "fastRTPS_Profiles\"><participant profile_name=\"" +
+          name +
+          "\"><rtps>"
+          "<propertiesPolicy><properties><property><name>dds.sec.auth.plugin</name><value>none"
+          "</value></property></properties></propertiesPolicy></rtps></participant></profiles></"
+          "dds>");
+  ASSERT_EQ(
+      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(
+          elsewhere),
+      eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK);
+  std::string clean = testing::ReadFile(testing::ShippedQos());
+  const std::string shipped_name = "profile_name=\"structloc_localhost\"";
+  clean.replace(clean.find(shipped_name), shipped_name.size(), "profile_name=\"" + name + "\"");
+  auto options = SecureOptions("localisation", keystore_, "localisation");
+  options.qos_file = dir_.Write("clean_copy.xml", clean);
+  options.participant_profile = name;
+  try {
+    dds_common::Node node(options);
+    ADD_FAILURE() << "a node ran with a profile that switches DDS Security off";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -132,7 +132,18 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenCase{"duration", "<sec>3</sec>", "<sec>-1</sec>", "duration '-1'"},
         BrokenCase{"malformed", "</participant>", "</participnt>", "malformed XML"},
         BrokenCase{"duplicate", "profile_name=\"structloc_network\"",
-                   "profile_name=\"structloc_localhost\"", "duplicate profile"}),
+                   "profile_name=\"structloc_localhost\"", "duplicate profile"},
+        // DDS Security comes from --security-keystore alone: a profile's own
+        // dds.sec.* property would stand before the enclave's and win.
+        BrokenCase{"security_off", "<rtps>",
+                   "<rtps><propertiesPolicy><properties><property><name>dds.sec.auth.plugin"
+                   "</name><value>none</value></property></properties></propertiesPolicy>",
+                   "property 'dds.sec.auth.plugin' configures DDS Security"},
+        BrokenCase{"security_files", "<rtps>",
+                   "<rtps><propertiesPolicy><properties><property><name> DDS.SEC.auth.builtin."
+                   "PKI-DH.identity_ca</name><value>file:///tmp/ca.pem</value></property>"
+                   "</properties></propertiesPolicy>",
+                   "configures DDS Security"}),
     [](const auto& info) { return std::string(info.param.tag); });
 
 TEST(QosProfiles, MissingFileIsAnError) {

@@ -4,6 +4,7 @@
 #include <fastrtps/config.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -36,7 +37,20 @@ Node::Node(const NodeOptions& options)
 #endif
   auto participant_qos = qos_.Participant(options.participant_profile);
   participant_qos.name(options.name);
-  for (auto& [name, value] : SecurityProperties(options.security)) {
+  // What Fast DDS resolved for the profile (from any file it loaded, e.g. a
+  // DEFAULT_FASTRTPS_PROFILES.xml in the working folder), not only what
+  // QosProfiles checked: the first property of a name wins, so none of the
+  // profile's may stand before the enclave's.
+  for (const auto& property : participant_qos.properties().properties()) {
+    if (IsSecurityProperty(property.name())) {
+      throw config::ConfigError(
+          "participant profile '" + options.participant_profile + "' (" + options.qos_file +
+          ") sets the DDS Security property '" + property.name() +
+          "': structloc sets DDS Security from --security-keystore alone; remove the property");
+    }
+  }
+  const auto security = SecurityProperties(options.security);
+  for (const auto& [name, value] : security) {
     participant_qos.properties().properties().emplace_back(name, value);
   }
   participant_ =
@@ -50,6 +64,7 @@ Node::Node(const NodeOptions& options)
         "signed by its CA or grants nothing on domain " +
         std::to_string(options.domain_id) + " (Fast DDS's log above says which)");
   }
+  if (participant_ != nullptr) RequireSecurityAsAsked(security);
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(options.domain_id) + " with profile '" +
@@ -63,6 +78,25 @@ Node::Node(const NodeOptions& options)
     eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(
         participant_);
     throw std::runtime_error("cannot create publisher/subscriber");
+  }
+}
+
+void Node::RequireSecurityAsAsked(
+    const std::vector<std::pair<std::string, std::string>>& security) {
+  // The participant's own view of its properties: each security property
+  // must be the enclave's, and first of its name (the one Fast DDS uses).
+  const auto& properties = participant_->get_qos().properties().properties();
+  for (const auto& [name, value] : security) {
+    const auto first = std::find_if(properties.begin(), properties.end(),
+                                    [&](const auto& property) { return property.name() == name; });
+    if (first == properties.end() || first->value() != value) {
+      participant_->delete_contained_entities();
+      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(
+          participant_);
+      participant_ = nullptr;
+      throw std::runtime_error("DDS Security: the participant was created with '" + name +
+                               "' other than the enclave's; refusing to run unprotected");
+    }
   }
 }
 

@@ -3,7 +3,9 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include <cctype>
 #include <map>
+#include <string_view>
 
 #include "structloc/config/strict_number.hpp"
 #include "structloc/config/strict_xml.hpp"
@@ -101,6 +103,28 @@ std::set<std::string> TopicProfiles() {
   return names;
 }
 
+// DDS Security is set up from an enclave (--security-keystore) alone: a
+// profile's own dds.sec.* property would come first in the participant's
+// properties, and Fast DDS takes the first of a name, so one naming another
+// authentication plugin (or none) would switch security off, or point it at
+// files that were never checked. Refused wherever it appears in the file.
+void RefuseSecurityProperties(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
+  for (const auto* child = element.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (std::string(child->Name()) == "property") {
+      const auto* name = child->FirstChildElement("name");
+      const char* text = name != nullptr ? name->GetText() : nullptr;
+      if (text != nullptr && IsSecurityProperty(text)) {
+        file.Fail(*child, "property '" + std::string(text) +
+                              "' configures DDS Security: structloc sets DDS Security from "
+                              "--security-keystore alone (an enclave made by structloc_keystore); "
+                              "remove the property");
+      }
+    }
+    RefuseSecurityProperties(file, *child);
+  }
+}
+
 std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement& element) {
   const char* name = element.Attribute("profile_name");
   if (name == nullptr || *name == '\0') file.Fail(element, "profile without profile_name");
@@ -108,6 +132,17 @@ std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement&
 }
 
 }  // namespace
+
+bool IsSecurityProperty(const std::string& name) {
+  const auto first = name.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return false;
+  constexpr std::string_view kPrefix = "dds.sec.";
+  if (name.size() - first < kPrefix.size()) return false;
+  for (size_t i = 0; i < kPrefix.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(name[first + i])) != kPrefix[i]) return false;
+  }
+  return true;
+}
 
 QosProfiles QosProfiles::Load(const std::string& path) {
   QosProfiles result = Check(path);
@@ -131,6 +166,7 @@ QosProfiles QosProfiles::Check(const std::string& path) {
       file.Fail(root, "root element must be <dds> or <profiles>");
     }
     if (profiles == nullptr) file.Fail(root, "no <profiles> element");
+    RefuseSecurityProperties(file, root);
     for (const auto* e = profiles->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string kind = e->Name();
       std::set<std::string>* names = nullptr;

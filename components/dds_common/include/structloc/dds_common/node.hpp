@@ -150,6 +150,9 @@ class Node {
   }
 
   static std::string Describe(const TopicSpec& topic, const std::string& type_name);
+  // Deletes the new participant and throws unless every enclave property is
+  // the first of its name in the participant's QoS (the one Fast DDS uses).
+  void RequireSecurityAsAsked(const std::vector<std::pair<std::string, std::string>>& security);
 
   NodeOptions options_;
   QosProfiles qos_;

@@ -2,7 +2,10 @@
 // validating what Fast DDS 2.9 would silently accept (depth 0, negative
 // durations, unknown kinds, a lease of 0) or replace with defaults (a broken
 // file), and that every topic profile of the topic table exists for both
-// writers and readers. structloc_check_qos runs exactly this.
+// writers and readers, and that no profile sets a DDS Security property
+// (dds.sec.*: security comes from --security-keystore alone, and a profile's
+// property would take precedence over the enclave's). structloc_check_qos runs
+// exactly this.
 #pragma once
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -22,6 +25,10 @@ class QosError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// True for a DDS Security property name (dds.sec.*, in any case, blanks
+// around it ignored).
+bool IsSecurityProperty(const std::string& name);
 
 class QosProfiles {
  public:
