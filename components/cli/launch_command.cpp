@@ -21,6 +21,11 @@ std::string Usage() {
       << process::LaunchContext::kDefaultMaxValueBytes << ")\n"
       << "  --max-total-bytes N  all substituted values of the file together (default "
       << process::LaunchContext::kDefaultMaxTotalBytes << ")\n"
+      << "  --max-files N  launch and parameter files read in all, an include counted each "
+         "time (default "
+      << process::LaunchContext::kDefaultMaxFilesRead << ")\n"
+      << "  --max-read-bytes N  their sizes together (default "
+      << process::LaunchContext::kDefaultMaxReadBytes << ")\n"
       << "  --help  print this and exit\n";
   return out.str();
 }
@@ -33,7 +38,7 @@ std::string OptionValue(const Invocation& inv, int* i) {
   return inv.argv[++*i];
 }
 
-size_t ByteLimit(const std::string& option, const std::string& text) {
+size_t PositiveLimit(const std::string& option, const std::string& text) {
   const auto value = config::ParseInteger(text);
   if (!value || *value < 1) {
     throw config::ConfigError("option " + option + " '" + text + "' must be a positive integer");
@@ -44,7 +49,6 @@ size_t ByteLimit(const std::string& option, const std::string& text) {
 }  // namespace
 
 int LaunchCommand(const Invocation& inv) {
-  process::ShutdownSignal shutdown;
   for (int i = 2; i < inv.argc; ++i) {
     if (std::string(inv.argv[i]) == "--help") {
       std::cout << Usage();
@@ -70,9 +74,13 @@ int LaunchCommand(const Invocation& inv) {
         }
         options.duration_s = *seconds;
       } else if (arg == "--max-value-bytes") {
-        context.max_value_bytes = ByteLimit(arg, OptionValue(inv, &i));
+        context.max_value_bytes = PositiveLimit(arg, OptionValue(inv, &i));
       } else if (arg == "--max-total-bytes") {
-        context.max_total_bytes = ByteLimit(arg, OptionValue(inv, &i));
+        context.max_total_bytes = PositiveLimit(arg, OptionValue(inv, &i));
+      } else if (arg == "--max-files") {
+        context.max_files_read = PositiveLimit(arg, OptionValue(inv, &i));
+      } else if (arg == "--max-read-bytes") {
+        context.max_read_bytes = PositiveLimit(arg, OptionValue(inv, &i));
       } else if (sep != std::string::npos && sep > 0) {
         context.overrides[arg.substr(0, sep)] = arg.substr(sep + 2);
       } else {
@@ -81,6 +89,10 @@ int LaunchCommand(const Invocation& inv) {
       }
     }
     const auto description = process::ReadLaunchFile(inv.argv[2], context);
+    // SIGINT and SIGTERM are collected from here on, once the file is read:
+    // while it is read they stop the launcher at once, as they would any
+    // program (nothing has been started yet).
+    process::ShutdownSignal shutdown;
     return process::RunLaunch(description, options, shutdown);
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc launch: " << e.what() << std::endl;

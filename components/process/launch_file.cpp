@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <regex>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -55,33 +55,71 @@ class ValueBuilder {
   std::string value_;
 };
 
+// One "$(KIND NAME)" of a text: KIND in [a-z-]+, NAME (optional) in
+// [A-Za-z0-9_]+.
+struct SubstitutionSpan {
+  size_t begin = 0;  // at "$("
+  size_t end = 0;    // just past ")"
+  std::string kind;
+  std::string name;
+};
+
+// The substitution that starts at text[at] == '$', '(' or nullopt when what
+// follows is no well-formed substitution. Read by hand in one pass, with no
+// recursion: a recursive matcher (libstdc++'s std::regex) needs stack in
+// proportion to the text and overflows it on an attribute of 30 000 bytes.
+std::optional<SubstitutionSpan> ReadSubstitution(const std::string& text, size_t at) {
+  const auto run = [&](size_t from, auto accepts) {
+    size_t to = from;
+    while (to < text.size() && accepts(static_cast<unsigned char>(text[to]))) ++to;
+    return to;
+  };
+  SubstitutionSpan span;
+  span.begin = at;
+  const size_t kind_end = run(at + 2, [](unsigned char c) { return std::islower(c) || c == '-'; });
+  if (kind_end == at + 2) return std::nullopt;
+  span.kind = text.substr(at + 2, kind_end - at - 2);
+  size_t next = kind_end;
+  if (next < text.size() && text[next] == ' ') {
+    const size_t name_end =
+        run(next + 1, [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+    if (name_end == next + 1) return std::nullopt;
+    span.name = text.substr(next + 1, name_end - next - 1);
+    next = name_end;
+  }
+  if (next >= text.size() || text[next] != ')') return std::nullopt;
+  span.end = next + 1;
+  return span;
+}
+
+// A text for an error message: at most 80 characters of it.
+std::string Excerpt(const std::string& text) {
+  constexpr size_t kShown = 80;
+  return text.size() <= kShown
+             ? text
+             : text.substr(0, kShown) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 // `environment`: the <set_env>s in scope, which $(env NAME) sees before the
 // launcher's own environment (as the nodes will).
 std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
                        const std::string& text, const std::map<std::string, std::string>& vars,
                        const std::vector<std::pair<std::string, std::string>>& environment,
                        const LaunchContext& context, size_t* total_bytes) {
-  // std::regex recurses per character: refuse over-long text before matching.
   if (text.size() > context.max_value_bytes) {
     file.Fail(where, "attribute text longer than " + std::to_string(context.max_value_bytes) +
                          " bytes (--max-value-bytes)");
   }
-  static const std::regex pattern(R"(\$\(([a-z-]+)(?: ([A-Za-z0-9_]+))?\))");
   ValueBuilder out(file, where, context, total_bytes);
-  auto begin = std::sregex_iterator(text.begin(), text.end(), pattern);
   size_t last = 0;
-  // Literal text must hold no "$(" that is not a substitution (a value
-  // substituted into it may: a folder may be called "a$(b").
-  const auto literal = [&](const std::string& piece) {
-    if (piece.find("$(") != std::string::npos)
-      file.Fail(where, "malformed substitution in '" + text + "'");
-    out.Append(piece);
-  };
-  for (auto it = begin; it != std::sregex_iterator(); ++it) {
-    const auto& m = *it;
-    literal(text.substr(last, static_cast<size_t>(m.position()) - last));
-    const std::string kind = m[1];
-    const std::string name = m[2];
+  // Every "$(" of the text itself must start a substitution (a value
+  // substituted into it may hold one: a folder may be called "a$(b").
+  for (size_t at = text.find("$("); at != std::string::npos; at = text.find("$(", last)) {
+    const auto m = ReadSubstitution(text, at);
+    if (!m) file.Fail(where, "malformed substitution in '" + Excerpt(text) + "'");
+    out.Append(text.substr(last, at - last));
+    const std::string& kind = m->kind;
+    const std::string& name = m->name;
     if (kind == "var") {
       auto v = vars.find(name);
       if (v == vars.end()) {
@@ -106,9 +144,9 @@ std::string Substitute(const XmlFile& file, const tinyxml2::XMLElement& where,
     } else {
       file.Fail(where, "unknown substitution $(" + kind + ")");
     }
-    last = static_cast<size_t>(m.position() + m.length());
+    last = m->end;
   }
-  literal(text.substr(last));
+  out.Append(text.substr(last));
   return out.Value();
 }
 
@@ -157,6 +195,32 @@ void RequireExecutable(const XmlFile& file, const tinyxml2::XMLElement& node,
   }
 }
 
+// Counts the file at `path` against the reading bounds before it is read
+// (its size from the file system; a missing file counts as one of no bytes):
+// a refusal names the element that reads it (`where` in `file`) and the
+// option that sets the bound.
+void CountFileRead(const XmlFile* file, const tinyxml2::XMLElement* where, const std::string& path,
+                   const LaunchContext& context, size_t* files_read, size_t* read_bytes) {
+  const auto fail = [&](const std::string& what) {
+    if (file != nullptr && where != nullptr) file->Fail(*where, what);
+    throw config::ConfigError(path + ": " + what);
+  };
+  if (++*files_read > context.max_files_read) {
+    fail("reading " + path + " makes more than " + std::to_string(context.max_files_read) +
+         " launch and parameter files read in all, each include counted every time it is read "
+         "(structloc launch --max-files)");
+  }
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  const size_t bytes = error ? 0 : static_cast<size_t>(size);
+  if (bytes > context.max_read_bytes - std::min(*read_bytes, context.max_read_bytes)) {
+    fail("reading " + path + " (" + std::to_string(bytes) + " bytes) makes more than " +
+         std::to_string(context.max_read_bytes) +
+         " bytes of launch and parameter files read in all (structloc launch --max-read-bytes)");
+  }
+  *read_bytes += bytes;
+}
+
 // What a <group> scopes: the variables (<arg>s, <let>s, an <include>'s
 // <arg>s and NAME:=VALUE from the command line) and the ROS 2 namespace pushed
 // so far. An <include> is not scoped (as in ROS 2: a file is included as if
@@ -182,8 +246,11 @@ void SetVariable(std::vector<std::pair<std::string, std::string>>& environment,
 // The state of one file's reading.
 class LaunchReader {
  public:
-  LaunchReader(const XmlFile& file, const LaunchContext& context)
-      : file_(file), context_(context), shared_(&own_shared_) {}
+  // `read_bytes`: the size of `file`, already counted against the bounds.
+  LaunchReader(const XmlFile& file, const LaunchContext& context, size_t read_bytes)
+      : file_(file), context_(context), shared_(&own_shared_) {
+    own_shared_.read_bytes = read_bytes;
+  }
 
   // The file as included by `includer`, which passes it the arguments named
   // `passed` (already set in the scope it reads in).
@@ -311,6 +378,7 @@ class LaunchReader {
       passed.insert(name);
     }
     LaunchDescription description;
+    CountRead(e, path);
     try {
       const auto included = XmlFile::Load(path);
       description = LaunchReader(included, *this, passed).ReadIncluded(scope);
@@ -346,8 +414,15 @@ class LaunchReader {
     }
     const char* file = e.Attribute("file");
     if (file == nullptr) return;
+    std::string path;
     try {
-      const auto included = XmlFile::Load(Substitute(e, file, scope));
+      path = Substitute(e, file, scope);
+    } catch (const config::ConfigError&) {
+      return;  // a variable only set where the include is wanted
+    }
+    CountRead(e, path);
+    try {
+      const auto included = XmlFile::Load(path);
       const auto& root = included.Root("launch");
       for (const auto* a = root.FirstChildElement("arg"); a != nullptr;
            a = a->NextSiblingElement("arg")) {
@@ -420,6 +495,7 @@ class LaunchReader {
         AttributeReader param(file_, *p);
         const std::string from = Substitute(*p, param.String("from"), scope);
         param.Finish();
+        CountRead(*p, from);
         try {
           for (const auto& [name, value] : ReadNodeParameters(from, node.name)) {
             node.arguments.push_back("--" + name);
@@ -599,6 +675,12 @@ class LaunchReader {
                                &shared_->total_bytes);
   }
 
+  // Counts one more file read (an include, a parameter file, or the <arg>s
+  // of an include left out) against the reading bounds, before it is read.
+  void CountRead(const tinyxml2::XMLElement& e, const std::string& path) {
+    CountFileRead(&file_, &e, path, context_, &shared_->files_read, &shared_->read_bytes);
+  }
+
   // Namespaces nest as ROS 2's do: "robot1" inside "fleet" is "fleet/robot1";
   // a leading '/' makes a pushed namespace absolute.
   static std::string Join(const std::string& outer, const std::string& inner) {
@@ -618,6 +700,8 @@ class LaunchReader {
   // <include> left out would have read (NAME:=VALUE must name one of them).
   struct Shared {
     size_t total_bytes = 0;
+    size_t files_read = 1;  // the file named on the command line
+    size_t read_bytes = 0;
     std::set<std::string> declared;
   };
   Shared own_shared_;
@@ -628,8 +712,10 @@ class LaunchReader {
 }  // namespace
 
 LaunchDescription ReadLaunchFile(const std::string& path, const LaunchContext& context) {
+  size_t files_read = 0, read_bytes = 0;
+  CountFileRead(nullptr, nullptr, path, context, &files_read, &read_bytes);
   const auto file = XmlFile::Load(path);
-  return LaunchReader(file, context).Read();
+  return LaunchReader(file, context, read_bytes).Read();
 }
 
 }  // namespace structloc::process

@@ -60,6 +60,8 @@ struct LaunchDescription {
 struct LaunchContext {
   static constexpr size_t kDefaultMaxValueBytes = 64 * 1024;
   static constexpr size_t kDefaultMaxTotalBytes = 4 * 1024 * 1024;
+  static constexpr size_t kDefaultMaxFilesRead = 1000;
+  static constexpr size_t kDefaultMaxReadBytes = 8 * 1024 * 1024;
 
   std::string package_share_dir;                 // what $(find-pkg-share structloc) gives
   std::string executables_dir;                   // where exec names are looked up
@@ -68,6 +70,11 @@ struct LaunchContext {
   // lines would otherwise ask for terabytes.
   size_t max_value_bytes = kDefaultMaxValueBytes;  // one <arg> or <param> value
   size_t max_total_bytes = kDefaultMaxTotalBytes;  // all values of the file together
+  // Reading bounds: forty <include>s in each of six nested files would read
+  // 40^5 files from 5 kB. An included or parameter file counts each time it is
+  // read, the file named on the command line too.
+  size_t max_files_read = kDefaultMaxFilesRead;  // launch and parameter files read
+  size_t max_read_bytes = kDefaultMaxReadBytes;  // their sizes together
 };
 
 // Throws config::ConfigError naming the file, line and problem.

@@ -23,7 +23,9 @@ namespace structloc::process {
 // The parameters for the node `qualified_name` ("ns/name" or "name"), in the
 // file's order. Throws config::ConfigError naming the file, the line and the
 // problem (unreadable file, malformed YAML, an entry without ros__parameters,
-// a value that is a list or a map).
+// a value that is a list or a map, a key that is not a plain name, a node
+// entry or parameter name given twice). Linear in the file's size, aliases
+// included (each entry and parameter is visited once).
 std::vector<std::pair<std::string, std::string>> ReadNodeParameters(
     const std::string& path, const std::string& qualified_name);
 
