@@ -124,5 +124,43 @@ TEST(OnlineCalibration, RefusesBadOptionsAndOutOfOrderSamples) {
   EXPECT_EQ(calibration.Stats().encoders_out_of_order, 1u);
 }
 
+// The review's case: one wheel-encoder sample stamped far ahead made the
+// next window end there, forgot everything before it, and counted every later
+// sample out of order, so that no estimate came again until a restart.
+TEST(OnlineCalibration, ASampleStampedFarAheadDoesNotStopTheEstimates) {
+  const testing::TempDir temp;
+  const auto scenario = DifferentialLoop();
+  const auto run = testing::RecordCalibration(scenario, 1, temp / "run");
+  cc::OnlineCalibrationOptions online;
+  online.window_s = 40.0;
+  online.period_s = 10.0;
+  cc::OnlineCalibration calibration(scenario.nominal, testing::SimulatorNoiseOptions(scenario),
+                                    online);
+  size_t fix = 0, estimates = 0;
+  bool planted = false;
+  for (const auto& sample : run.encoders) {
+    while (fix < run.fixes.size() && run.fixes[fix].t <= sample.t) {
+      calibration.AddFix(run.fixes[fix++]);
+    }
+    calibration.AddEncoders(sample);
+    if (!planted && sample.t > run.encoders.front().t + 10.0) {
+      auto future = sample;
+      future.t += 1e6;
+      EXPECT_FALSE(calibration.AddEncoders(future));
+      planted = true;
+    }
+    if (calibration.Due()) {
+      const auto estimate = calibration.Estimate(calibration.NextWindow());
+      estimates += estimate.report.success;
+    }
+  }
+  ASSERT_TRUE(planted);
+  const double span = run.encoders.back().t - run.encoders.front().t;
+  ASSERT_GT(span, 2.0 * online.window_s) << "the run is too short to test this";
+  EXPECT_GE(estimates, static_cast<size_t>((span - online.window_s) / online.period_s))
+      << "of a " << span << " s run";
+  EXPECT_EQ(calibration.Stats().encoders_out_of_order, 1u);
+}
+
 }  // namespace
 }  // namespace structloc

@@ -27,7 +27,8 @@ std::string Summary(const calibration_core::CalibrationReport& report, size_t en
        << " encoder samples and " << fixes << " fixes";
   text << "\n  encoder stream: largest gap " << stream.largest_gap_s << " s, " << stream.gaps
        << " gaps over " << max_gap_s << " s, " << stream.encoders_out_of_order
-       << " samples out of order; fixes refused: " << stream.fixes_rejected;
+       << " samples out of order or out of line; fixes refused: " << stream.fixes_rejected
+       << "; restarts after the stamps jumped back: " << stream.restarts;
   for (int k = 0; k < calibration_core::kParameterCount; ++k) {
     if (!report.estimated[static_cast<size_t>(k)]) continue;
     text << "\n  " << calibration_core::ParameterName(static_cast<calibration_core::Parameter>(k))
@@ -99,8 +100,8 @@ CalibrationComponent::CalibrationComponent(dds_common::Node& node,
           dds_common::topics::kCalibration)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
           dds_common::topics::kDiagnostics)),
-      recorder_(calibration_core::RecorderOptions{options.record_s,
-                                                  options.calibration.max_encoder_gap_s}) {
+      recorder_(calibration_core::RecorderOptions{
+          options.record_s, options.calibration.max_encoder_gap_s, {}}) {
   if (options_.online) {
     online_.emplace(options_.nominal, options_.calibration, options_.online_options);
   }
@@ -332,11 +333,16 @@ void CalibrationComponent::PublishDiagnostics(double now) {
     wrong_kind = encoders_wrong_kind_;
     changed = changed_;
   }
-  if (stats.gaps > 0 || stats.encoders_out_of_order > 0 || wrong_kind > 0 || !changed.empty())
+  if (stats.gaps > 0 || stats.encoders_out_of_order > 0 || wrong_kind > 0 || stats.restarts > 0 ||
+      !changed.empty())
     report.level = dds_common::HealthLevel::kWarn;
   for (const auto& change : changed) report.message += "; CHANGED: " + change;
   if (stats.gaps > 0) {
     report.message += "; " + std::to_string(stats.gaps) + " gaps in the encoder stream";
+  }
+  if (stats.restarts > 0) {
+    report.message += "; recording restarted " + std::to_string(stats.restarts) +
+                      " times after the stamps jumped back";
   }
   if (wrong_kind > 0) {
     report.message += "; " + std::to_string(wrong_kind) +
@@ -349,6 +355,7 @@ void CalibrationComponent::PublishDiagnostics(double now) {
                    {"largest_encoder_gap_s", std::to_string(stats.largest_gap_s)},
                    {"encoders_out_of_order", std::to_string(stats.encoders_out_of_order)},
                    {"fixes_rejected", std::to_string(stats.fixes_rejected)},
+                   {"stamp_restarts", std::to_string(stats.restarts)},
                    {"encoders_wrong_kind", std::to_string(wrong_kind)}};
   diagnostics_.Write(dds_common::ToDiagnosticArray("calibration", report, now));
 }

@@ -6,20 +6,34 @@
 
 namespace structloc::calibration_core {
 
-CalibrationRecorder::CalibrationRecorder(const RecorderOptions& options) : options_(options) {
+CalibrationRecorder::CalibrationRecorder(const RecorderOptions& options)
+    : options_(options), encoder_stamps_(options.stamps), fix_stamps_(options.stamps) {
   if (!(options_.record_s >= 0)) throw std::invalid_argument("record_s must be >= 0");
   if (!(options_.max_encoder_gap_s > 0)) {
     throw std::invalid_argument("max_encoder_gap_s must be > 0");
   }
 }
 
+void CalibrationRecorder::Restart() {
+  recording_ = {};
+  ++stats_.restarts;
+  // Both streams start again on the new clock.
+  encoder_stamps_ = StampGuard(options_.stamps);
+  fix_stamps_ = StampGuard(options_.stamps);
+}
+
 bool CalibrationRecorder::AddEncoders(const EncoderSample& s) {
   if (finished_) return false;
-  auto& encoders = recording_.encoders;
-  if (!encoders.empty() && !(s.t > encoders.back().t)) {
+  const auto verdict = encoder_stamps_.Check(s.t);
+  if (verdict == StampGuard::Verdict::kOutOfLine) {
     ++stats_.encoders_out_of_order;
     return false;
   }
+  if (verdict == StampGuard::Verdict::kJumpedBack) {
+    Restart();
+    encoder_stamps_.Check(s.t);
+  }
+  auto& encoders = recording_.encoders;
   if (!encoders.empty()) {
     const double dt = s.t - encoders.back().t;
     stats_.largest_gap_s = std::max(stats_.largest_gap_s, dt);
@@ -31,12 +45,20 @@ bool CalibrationRecorder::AddEncoders(const EncoderSample& s) {
 
 bool CalibrationRecorder::AddFix(const Fix& f) {
   if (finished_) return false;
-  auto& fixes = recording_.fixes;
-  if (!geometry::IsFinite(f.pose) || (!fixes.empty() && !(f.t > fixes.back().t))) {
+  if (!geometry::IsFinite(f.pose)) {
     ++stats_.fixes_rejected;
     return false;
   }
-  fixes.push_back(f);
+  const auto verdict = fix_stamps_.Check(f.t);
+  if (verdict == StampGuard::Verdict::kOutOfLine) {
+    ++stats_.fixes_rejected;
+    return false;
+  }
+  if (verdict == StampGuard::Verdict::kJumpedBack) {
+    Restart();
+    fix_stamps_.Check(f.t);
+  }
+  recording_.fixes.push_back(f);
   return true;
 }
 

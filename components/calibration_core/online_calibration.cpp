@@ -43,10 +43,30 @@ OnlineCalibration::OnlineCalibration(const kinematics::RobotParameters& nominal,
     : nominal_(nominal),
       options_(options),
       online_(online),
-      recorder_(RecorderOptions{0.0, options.max_encoder_gap_s}) {
+      recorder_(RecorderOptions{0.0, options.max_encoder_gap_s, {}}) {
   nominal_.Validate();
   options_.Validate();
   online_.Validate();
+}
+
+bool OnlineCalibration::AddEncoders(const EncoderSample& sample) {
+  const bool taken = recorder_.AddEncoders(sample);
+  FollowRestarts();
+  return taken;
+}
+
+bool OnlineCalibration::AddFix(const Fix& fix) {
+  const bool taken = recorder_.AddFix(fix);
+  FollowRestarts();
+  return taken;
+}
+
+void OnlineCalibration::FollowRestarts() {
+  const size_t restarts = recorder_.Stats().restarts;
+  if (restarts == restarts_seen_) return;
+  restarts_seen_ = restarts;
+  last_end_s_.reset();
+  history_.clear();
 }
 
 bool OnlineCalibration::Due() const {

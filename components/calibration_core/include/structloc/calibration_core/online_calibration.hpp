@@ -53,9 +53,11 @@ class OnlineCalibration {
   OnlineCalibration(const kinematics::RobotParameters& nominal, const CalibrationOptions& options,
                     const OnlineCalibrationOptions& online);
 
-  // Return false when the sample was refused (out of order, not finite).
-  bool AddEncoders(const EncoderSample& sample) { return recorder_.AddEncoders(sample); }
-  bool AddFix(const Fix& fix) { return recorder_.AddFix(fix); }
+  // Return false when the sample was refused (out of order or out of line,
+  // not finite). A jump back of the stamps (a clock stepped back) restarts the
+  // windows and the estimates compared with (CalibrationRecorder).
+  bool AddEncoders(const EncoderSample& sample);
+  bool AddFix(const Fix& fix);
 
   // A full window is recorded and a period has passed since the last estimate.
   bool Due() const;
@@ -88,7 +90,11 @@ class OnlineCalibration {
   kinematics::RobotParameters nominal_;
   CalibrationOptions options_;
   OnlineCalibrationOptions online_;
+  // After the recorder restarted: the window and the history are on the old clock.
+  void FollowRestarts();
+
   CalibrationRecorder recorder_;
+  size_t restarts_seen_ = 0;
   std::optional<double> last_end_s_;
   std::vector<Past> history_;  // successful estimates, oldest first
 };
