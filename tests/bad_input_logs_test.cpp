@@ -504,7 +504,7 @@ TEST(BadInputLogs, L4_UnwritablePictureNamesAreRefusedBeforeAnyWork) {
   const TempDir dir;
   const auto xyz = RunCli(With(ReplayArgs(RoomLog(), dir / "t.tum"), {"--plot", dir / "p.xyz"}));
   EXPECT_EQ(xyz.exit_code, 2) << Describe(xyz);
-  EXPECT_NE(xyz.output.find(dir / "p.xyz" + ": not a picture name"), std::string::npos)
+  EXPECT_NE(xyz.output.find(dir / "p.xyz" + ": not a name for a colour picture"), std::string::npos)
       << xyz.output;
   EXPECT_EQ(xyz.output.find("scans used"), std::string::npos) << xyz.output;
   const auto missing_folder =
@@ -517,7 +517,8 @@ TEST(BadInputLogs, L4_UnwritablePictureNamesAreRefusedBeforeAnyWork) {
       RunCli({"render", "--scenario", testing::SourcePath("maps/scenarios/robustness_room.xml"),
               "--out", dir / "r.txt"});
   EXPECT_EQ(render.exit_code, 2) << Describe(render);
-  EXPECT_NE(render.output.find(dir / "r.txt" + ": not a picture name"), std::string::npos)
+  EXPECT_NE(render.output.find(dir / "r.txt" + ": not a name for a colour picture"),
+            std::string::npos)
       << render.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.txt"));
 }

@@ -120,11 +120,13 @@ TEST(GridMapFile, APgmsMaxvalIsItsWhite) {
   }
   dir.Write("m1023.pgm", sixteen);
   for (const std::string image : {"m100.pgm", "m1023.pgm"}) {
-    map_formats::GridMapMode mode = map_formats::GridMapMode::kRaw;
+    map_formats::GridMapSource source;
+    source.mode = map_formats::GridMapMode::kRaw;
     const OccupancyGrid grid = LoadGridMap(
         dir.Write(image + ".yaml", "image: " + image + "\nresolution: 1\norigin: [0, 0, 0]\n"), {},
-        &mode);
-    EXPECT_EQ(mode, map_formats::GridMapMode::kTrinary);
+        &source);
+    EXPECT_EQ(source.mode, map_formats::GridMapMode::kTrinary);
+    EXPECT_EQ(source.image_path, dir / image);
     EXPECT_EQ(grid.At(0, 0), OccupancyGrid::kOccupied) << image;
     EXPECT_EQ(grid.At(1, 0), OccupancyGrid::kUnknown) << image;  // half grey: p 0.5
     EXPECT_EQ(grid.At(2, 0), OccupancyGrid::kFree) << image;
@@ -180,11 +182,18 @@ TEST(GridMapFile, BadYamlsAreRefusedNamingFileAndProblem) {
   dir.Write("empty.pgm", "");
   ExpectRefused(
       dir.Write("empty_image.yaml", "image: empty.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"),
-      "cannot read the image");
+      "empty.pgm is neither a PNG nor a PGM");
   dir.Write("garbage.png", "this is no picture");
   ExpectRefused(
       dir.Write("garbage.yaml", "image: garbage.png\nresolution: 0.05\norigin: [0, 0, 0]\n"),
-      "cannot read the image");
+      "garbage.png is neither a PNG nor a PGM");
+  // A PNG whose data is cut short passes the header and fails in decoding.
+  cv::Mat white(40, 40, CV_8UC1, cv::Scalar(254));
+  ASSERT_TRUE(cv::imwrite(dir / "cut.png", white));
+  const std::string png = testing::ReadFile(dir / "cut.png");
+  dir.Write("cut.png", png.substr(0, png.size() / 2));
+  ExpectRefused(dir.Write("cut.yaml", "image: cut.png\nresolution: 0.05\norigin: [0, 0, 0]\n"),
+                "cannot read the image");
   cv::Mat grey(2, 1, CV_8UC1, cv::Scalar(180));
   ASSERT_TRUE(cv::imwrite(dir / "grey.pgm", grey));
   ExpectRefused(dir.Write("raw.yaml",
@@ -210,6 +219,15 @@ TEST(GridMapFile, TooLargeImagesAreRefusedBeforeDecoding) {
   small.max_cells = 5;
   ExpectRefused(dir.Write("large.yaml", Yaml("")), "too large: 3 x 2 cells (the limit is 5)",
                 small);
+  // Formats whose size is known only by decoding them (TIFF, a 6 kB file of
+  // which decoded to 1 GB) are refused before OpenCV sees them.
+  ASSERT_TRUE(cv::imwrite(dir / "small.tiff", cv::Mat(2, 3, CV_8UC1, cv::Scalar(0))));
+  ExpectRefused(dir.Write("tiff.yaml", "image: small.tiff\nresolution: 0.05\norigin: [0, 0, 0]\n"),
+                "small.tiff is neither a PNG nor a PGM");
+  // A PGM header whose sides multiply past 2^64 (to a small number) is refused.
+  dir.Write("wrap.pgm", "P5\n8589934592 2147483648\n255\n");
+  ExpectRefused(dir.Write("wrap.yaml", "image: wrap.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"),
+                "too large: 8589934592 x 2147483648 cells");
   // A PGM header claiming 100000 x 100000 cells is refused without reading its pixels.
   dir.Write("huge.pgm", "P5\n# a comment\n100000 100000\n255\n");
   ExpectRefused(dir.Write("huge.yaml", "image: huge.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"),

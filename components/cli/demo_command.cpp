@@ -36,7 +36,12 @@ int DemoCommand(const Invocation& inv) {
         simulation_core::LoadScenario(share + "/maps/scenarios/office_people.xml");
     const std::string png = cli.GetOr("out", "structloc_demo/fig44_office.png");
     rendering::MapCanvas::CheckPictureName(png);
-    std::filesystem::create_directories(std::filesystem::path(png).parent_path());
+    const auto folder = std::filesystem::path(png).parent_path();
+    std::filesystem::create_directories(folder);
+    // The saved pose beside the picture, in a folder of the user's own: a
+    // fixed name in /tmp let another user plant a link there, or block it.
+    const std::string state_file =
+        (folder.empty() ? std::filesystem::path(".") : folder) / "demo_pose_state.txt";
 
     dds_common::NodeOptions node_options{
         "demo_observer", domain, share + "/qos/structloc_qos.xml", "structloc_localhost", "", {}};
@@ -54,7 +59,8 @@ int DemoCommand(const Invocation& inv) {
         {"launch", share + "/launch_xml/demo.launch.xml", "domain:=" + std::to_string(domain),
          "time_scale:=" + std::to_string(time_scale),
          "initial_pose:=" + std::to_string(p.x) + " " + std::to_string(p.y) + " " +
-             std::to_string(p.theta)});
+             std::to_string(p.theta),
+         "state_file:=" + state_file});
     std::optional<int> code;
     while (!(code = launch.WaitExit(std::chrono::seconds(1)))) {
       const auto s = evaluator.Snapshot();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include "file_names.hpp"
 #include "map_action.hpp"
@@ -56,6 +57,11 @@ int MapBuildCommand(const Invocation& inv) {
     std::vector<std::string> inputs{log_path};
     if (!params_path.empty()) inputs.push_back(params_path);
     config::OutputFile out(out_path, inputs);
+    std::optional<config::OutputFile> plot;
+    if (!plot_path.empty()) {
+      inputs.push_back(out_path);
+      plot.emplace(plot_path, inputs);
+    }
 
     const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
     auto log = map_building::ReadPosedScans(log_path, options.scans);
@@ -79,11 +85,25 @@ int MapBuildCommand(const Invocation& inv) {
              " scan segments merged into " + std::to_string(world.Walls().size()) + " walls, " +
              std::to_string(world.Cylinders().size()) + " pillars."},
         out.Stream());
+    if (plot) {
+      MapPicture picture;
+      picture.title = "map build: " + Stem(log_path, "built");
+      picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 500));
+      picture.legend = {{rendering::colours::kWall, "walls and pillars built"},
+                        {cv::Scalar(200, 200, 200), "readings"}};
+      WriteMapPicture(*plot, world, picture);
+      plot->Flush();
+    }
+    // Both on disk before either replaces a file: a failed picture leaves the
+    // world as it was.
+    out.Flush();
     out.Commit();
+    if (plot) plot->Commit();
 
+    std::cerr << log_formats::MalformedLinesText(log.reader, log_path);
     std::cout << "structloc map build: " << log.scans.size() << " scans (" << log.readings
               << " readings, " << log.out_of_range << " out of range";
-    if (log.malformed_lines > 0) std::cout << ", " << log.malformed_lines << " malformed lines";
+    if (log.reader.malformed > 0) std::cout << ", " << log.reader.malformed << " malformed lines";
     std::cout << ")\n  " << r.segments << " scan segments -> " << r.candidates
               << " wall candidates (" << r.merged << " merged) -> " << r.pieces
               << " pieces split at gaps\n  dropped: " << r.too_few_scans << " seen from fewer than "
@@ -98,15 +118,7 @@ int MapBuildCommand(const Invocation& inv) {
               << result.pillar_report.too_few_scans << " seen too rarely)\n  wrote " << out_path
               << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
-    if (!plot_path.empty()) {
-      MapPicture picture;
-      picture.title = "map build: " + Stem(log_path, "built");
-      picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 500));
-      picture.legend = {{rendering::colours::kWall, "walls and pillars built"},
-                        {cv::Scalar(200, 200, 200), "readings"}};
-      SaveMapPicture(plot_path, world, picture);
-      std::cout << "  picture: " << plot_path << "\n";
-    }
+    if (plot) std::cout << "  picture: " << plot_path << "\n";
     return 0;
   });
 }

@@ -6,15 +6,16 @@
 // scan's recorded pose lies from the pose at which the map explains it best
 // (where a reference trajectory and the map disagree).
 #include <algorithm>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <numeric>
+#include <optional>
 
 #include "map_action.hpp"
 #include "map_picture.hpp"
 #include "map_subcommands.hpp"
 #include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
 #include "structloc/map_building/map_check.hpp"
 #include "structloc/map_building/scan_pose_fit.hpp"
 #include "structloc/rendering/map_canvas.hpp"
@@ -78,9 +79,9 @@ std::vector<cv::Scalar> WallColours(const map_building::MapCheckReport& report,
 constexpr const char* kPoseFitColumns =
     "scan,fitted,converged,iterations,readings,dx_m,dy_m,dtheta_rad";
 
-// The summary of the scans' best-fit offsets, the ten farthest, and the CSV.
-void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
-                    const std::string& csv_path) {
+// The summary of the scans' best-fit offsets, the ten farthest, and the CSV
+// (written through `csv` when given; committed by the caller).
+void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits, config::OutputFile* csv) {
   const auto summary = map_building::SummarisePoseFits(fits, 10);
   constexpr double kDeg = 180.0 / geometry::kPi;
   std::cout << std::fixed << "  scan poses fitted to the map alone: " << summary.converged << " of "
@@ -103,16 +104,14 @@ void ReportPoseFits(const std::vector<map_building::ScanPoseFit>& fits,
     }
     std::cout << "\n";
   }
-  if (csv_path.empty()) return;
-  std::ofstream csv(csv_path);
-  if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  csv << kPoseFitColumns << "\n" << std::setprecision(6);
+  if (csv == nullptr) return;
+  auto& out = csv->Stream();
+  out << kPoseFitColumns << "\n" << std::setprecision(6);
   for (const auto& f : fits) {
-    csv << f.index << "," << f.fitted << "," << f.converged << "," << f.iterations << ","
+    out << f.index << "," << f.fitted << "," << f.converged << "," << f.iterations << ","
         << f.readings << "," << f.offset.x << "," << f.offset.y << "," << f.offset.theta << "\n";
   }
-  if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  std::cout << "  pose fits: " << csv_path << "\n";
+  std::cout << "  pose fits: " << csv->Path() << "\n";
 }
 
 }  // namespace
@@ -139,6 +138,7 @@ int MapCheckCommand(const Invocation& inv) {
   return RunMapAction(inv, "check", specs, [&](const config::CommandLine& cli) {
     const std::string map_path = cli.Required("map");
     const std::string log_path = cli.Required("log");
+    const std::vector<std::string> inputs{map_path, log_path};
     const std::string plot_path = cli.GetOr("plot", "");
     if (!plot_path.empty()) rendering::MapCanvas::CheckPictureName(plot_path);
     map_building::MapCheckOptions options;
@@ -147,10 +147,20 @@ int MapCheckCommand(const Invocation& inv) {
     map_building::PosedScanOptions scan_options;
     scan_options.max_range_m =
         cli.NumberIn("max-range", scan_options.max_range_m, scan_options.min_range_m + 0.01, 1e3);
+    // The outputs first: refused before any work when they would replace an
+    // input, and committed together at the end.
+    std::optional<config::OutputFile> csv, plot;
+    if (cli.Has("fit-poses-out")) csv.emplace(cli.Required("fit-poses-out"), inputs);
+    if (!plot_path.empty()) {
+      auto plot_inputs = inputs;
+      if (csv) plot_inputs.push_back(csv->Path());
+      plot.emplace(plot_path, plot_inputs);
+    }
     const auto world = world_model::LoadWorldModel(map_path);
     const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
     auto log = map_building::ReadPosedScans(log_path, scan_options);
     map_building::KeepScans(log, range.first, range.second);
+    std::cerr << log_formats::MalformedLinesText(log.reader, log_path);
     std::vector<Eigen::Vector2d> unexplained;
     const auto report = map_building::CheckMap(world, log.scans, options, &unexplained);
     std::cout << std::fixed << std::setprecision(1) << "structloc map check: " << map_path
@@ -169,9 +179,9 @@ int MapCheckCommand(const Invocation& inv) {
       map_building::ScanPoseFitOptions fit_options;
       fit_options.near_m = options.near_m;
       ReportPoseFits(map_building::FitScanPoses(world, log.scans, fit_options),
-                     cli.GetOr("fit-poses-out", ""));
+                     csv ? &*csv : nullptr);
     }
-    if (!plot_path.empty()) {
+    if (plot) {
       MapPicture picture;
       picture.title = "map check: " + map_path;
       picture.readings = MapFrameReadings(log.scans, std::max<size_t>(1, log.scans.size() / 300));
@@ -184,9 +194,14 @@ int MapCheckCommand(const Invocation& inv) {
                         {kRarelySeen, "rarely seen"},
                         {kNeverSeen, "never seen"},
                         {cv::Scalar(60, 60, 255), "readings no wall explains"}};
-      SaveMapPicture(plot_path, world, picture);
+      WriteMapPicture(*plot, world, picture);
       std::cout << "  picture: " << plot_path << "\n";
     }
+    for (auto* file : {csv ? &*csv : nullptr, plot ? &*plot : nullptr}) {
+      if (file != nullptr) file->Flush();
+    }
+    if (csv) csv->Commit();
+    if (plot) plot->Commit();
     return 0;
   });
 }

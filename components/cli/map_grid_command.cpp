@@ -35,6 +35,7 @@ int MapGridCommand(const Invocation& inv) {
     const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
     auto log = map_building::ReadPosedScans(log_path, scan_options);
     map_building::KeepScans(log, range.first, range.second);
+    std::cerr << log_formats::MalformedLinesText(log.reader, log_path);
     const auto grid = map_building::RayCastGrid(log.scans, options);
     map_formats::SaveGridMap(grid, out_path, {log_path});
     size_t occupied = 0, free = 0;

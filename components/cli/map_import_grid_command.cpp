@@ -77,6 +77,20 @@ int MapImportGridCommand(const Invocation& inv) {
        "largest pillar radius, m (default " + number(defaults.max_pillar_radius_m) + ")"},
       {"ignore-unknown-keys", false,
        "ignore YAML keys map_server does not read (as ROS does) instead of refusing them"},
+      {"max-cells", true,
+       "larger images are refused before they are decoded, cells (default " +
+           std::to_string(map_formats::GridMapReadOptions::kDefaultMaxCells) + ")"},
+      {"max-face-cells", true,
+       "grids with more occupied cells next to open space are refused (default " +
+           std::to_string(defaults.max_face_cells) + ")"},
+      {"max-blobs", true,
+       "grids with more blobs of occupied cells are refused (default " +
+           std::to_string(defaults.max_blobs) + ")"},
+      {"max-refit-work", true,
+       "refitting the wall proposals may gather at most this many face cells, each counted "
+       "every time (default " +
+           std::to_string(defaults.max_refit_work) +
+           "; the real recordings' grids need under 200000)"},
   };
   return RunMapAction(inv, "import", specs, [&](const config::CommandLine& cli) {
     const std::string grid_path = cli.Required("grid");
@@ -92,12 +106,31 @@ int MapImportGridCommand(const Invocation& inv) {
     options.max_join_gap_m = cli.NumberIn("join-gap", defaults.max_join_gap_m, 0.0, 1.0);
     options.max_pillar_radius_m = cli.NumberIn("max-pillar-radius", defaults.max_pillar_radius_m,
                                                defaults.min_pillar_radius_m, 1e3);
+    const auto limit = [&](const char* option, size_t fallback) {
+      return static_cast<size_t>(
+          cli.IntegerIn(option, static_cast<long long>(fallback), 1, 1000000000000LL));
+    };
+    options.max_face_cells = limit("max-face-cells", defaults.max_face_cells);
+    options.max_blobs = limit("max-blobs", defaults.max_blobs);
+    options.max_refit_work = limit("max-refit-work", defaults.max_refit_work);
     map_formats::GridMapReadOptions read;
     read.ignore_unknown_keys = cli.Has("ignore-unknown-keys");
+    read.max_cells = limit("max-cells", read.max_cells);
     const std::string name = cli.GetOr("name", std::filesystem::path(grid_path).stem().string());
 
-    map_formats::GridMapMode mode = map_formats::GridMapMode::kTrinary;
-    const auto grid = map_formats::LoadGridMap(grid_path, read, &mode);
+    map_formats::GridMapSource source;
+    const auto grid = map_formats::LoadGridMap(grid_path, read, &source);
+    const map_formats::GridMapMode mode = source.mode;
+    // Both outputs are refused before any work when they would replace an
+    // input: the YAML or the image it names.
+    const std::vector<std::string> inputs{grid_path, source.image_path};
+    config::OutputFile out(out_path, inputs);
+    std::optional<config::OutputFile> plot;
+    if (plot_path) {
+      std::vector<std::string> plot_inputs = inputs;
+      plot_inputs.push_back(out_path);
+      plot.emplace(*plot_path, plot_inputs);
+    }
     // Trinary and scale grids come with the YAML's thresholds applied: a value
     // below 100 is below occupied_thresh (scale's 0..99 only grade the cells
     // in between). Raw grids hold probabilities in percent, judged by the
@@ -110,7 +143,7 @@ int MapImportGridCommand(const Invocation& inv) {
     try {
       result = map_building::VectoriseGrid(grid, options);
     } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(grid_path + ": " + e.what());
+      throw config::ConfigError(grid_path + ": " + e.what());
     }
     if (result.walls.empty() && result.pillars.empty())
       throw std::runtime_error(grid_path + ": found no wall or pillar in " +
@@ -118,9 +151,6 @@ int MapImportGridCommand(const Invocation& inv) {
                                " occupied cells (see --min-wall-length and --min-wall-blob)");
     const auto world = map_building::MakeWorld(name, result.walls, result.pillars);
 
-    config::OutputFile out(out_path, {grid_path});
-    std::optional<config::OutputFile> plot;
-    if (plot_path) plot.emplace(*plot_path, std::vector<std::string>{grid_path, out_path});
     std::ostringstream made;
     made << "made by structloc map import --grid " << grid_path << " (" << grid.width << " x "
          << grid.height << " cells of " << grid.resolution_m << " m), min wall length "

@@ -16,8 +16,8 @@ std::vector<Eigen::Vector2d> MapFrameReadings(const std::vector<map_building::Po
   return out;
 }
 
-void SaveMapPicture(const std::string& path, const world_model::WorldModel& world,
-                    const MapPicture& picture) {
+void WriteMapPicture(config::OutputFile& file, const world_model::WorldModel& world,
+                     const MapPicture& picture) {
   Eigen::Vector4d bounds = world.Bounds();
   for (const auto& p : picture.readings) {
     bounds = {std::min(bounds[0], p.x()), std::min(bounds[1], p.y()), std::max(bounds[2], p.x()),
@@ -38,7 +38,7 @@ void SaveMapPicture(const std::string& path, const world_model::WorldModel& worl
   }
   canvas.DrawLegend(picture.legend);
   canvas.DrawTitle(picture.title);
-  canvas.Save(path);
+  canvas.WriteTo(file);
 }
 
 }  // namespace structloc::cli

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "structloc/config/output_file.hpp"
 #include "structloc/map_building/posed_scans.hpp"
 #include "structloc/world_model/world_model.hpp"
 
@@ -25,8 +26,9 @@ struct MapPicture {
 std::vector<Eigen::Vector2d> MapFrameReadings(const std::vector<map_building::PosedScan>& scans,
                                               size_t step);
 
-// Draws and saves the picture (PNG); throws std::runtime_error.
-void SaveMapPicture(const std::string& path, const world_model::WorldModel& world,
-                    const MapPicture& picture);
+// Draws the picture and writes it through `file` (the caller commits it with
+// the run's other outputs); throws std::runtime_error.
+void WriteMapPicture(config::OutputFile& file, const world_model::WorldModel& world,
+                     const MapPicture& picture);
 
 }  // namespace structloc::cli

@@ -100,15 +100,19 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
                                                    restamp.turn_rate_rad_s, restamp.min_step_s);
       previous_known = *known;
       const geometry::Pose2D pose = odometry->Next(*known);
+      // The field of view from the first beam to the last (none for a scan of
+      // no beams), within one turn: the reader refuses beams beyond it.
+      const size_t beams = record.ranges.size();
       log_formats::CarmenLaser laser{
           record.start_angle,
-          record.angular_resolution * static_cast<double>(record.ranges.size() - 1),
+          beams > 0 ? record.angular_resolution * static_cast<double>(beams - 1) : 0.0,
           record.angular_resolution, record.max_range, 0.01};
       out.Odometry(stamp, pose, 0.0, 0.0);
       out.RobotLaser(stamp, laser, record.ranges, geometry::Compose(pose, mount), pose, 0.0, 0.0);
       truth.Pose(stamp, *known);
       ++scans;
     }
+    std::cerr << log_formats::MalformedLinesText(reader.Stats(), log_path);
     if (scans == 0)
       throw config::ConfigError(log_path + ": no laser scan with a pose to make odometry from" +
                                 (cli.Has("scans") ? " in --scans " + cli.Required("scans") : ""));

@@ -51,11 +51,16 @@ OutputFile::OutputFile(std::string path, const std::vector<std::string>& inputs)
   if (std::filesystem::is_directory(path_, error)) {
     throw ConfigError(path_ + ": is a folder, not a file");
   }
-  // A symbolic link is followed: the file it names is replaced, the link stays.
-  if (std::filesystem::is_symlink(path_, error)) {
-    path_ = std::filesystem::weakly_canonical(path_, error).string();
-  }
   const auto status = std::filesystem::status(path_, error);
+  // A symbolic link is not followed: replacing the file it names would write
+  // wherever whoever made the link chose (another user's file, for a name in
+  // /tmp). Only a link to a device or pipe (/dev/stdout) is written through.
+  if (std::filesystem::is_symlink(path_, error) &&
+      (!std::filesystem::exists(status) || std::filesystem::is_regular_file(status))) {
+    throw ConfigError(path_ +
+                      ": is a symbolic link; outputs are not written through links (name the "
+                      "file itself, or remove the link)");
+  }
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     // A device or pipe (/dev/stdout, a FIFO): written in place, errors still checked.
     stream_.open(path_, std::ios::binary);

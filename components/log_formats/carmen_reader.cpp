@@ -242,6 +242,15 @@ CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRec
       return bad();
     }
     if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
+    // Every beam's angle start + i * res must be a direction: a resolution of
+    // 1e308 is finite but its later beams' angles are not.
+    constexpr double kTurn = 2.0 * M_PI + 1e-6;
+    if (!(std::abs(r.start_angle) <= kTurn) ||
+        !(std::abs(r.angular_resolution) * static_cast<double>(n > 0 ? n - 1 : 0) <= kTurn)) {
+      return Malformed("start_angle " + Quote(f[2]) + " and angular_resolution " + Quote(f[4]) +
+                       " over " + std::to_string(n) +
+                       " beams do not lie within one turn (|angle| <= 2 pi)");
+    }
     const size_t remissions_at = kLaserHeader + n;  // the num_remissions field
     const auto declared_m =
         remissions_at < f.size() ? ParseCount(f[remissions_at]) : std::optional<uint64_t>();
@@ -326,6 +335,19 @@ bool CarmenReader::Next(CarmenRecord& record) {
     }
   }
   return false;
+}
+
+std::string MalformedLinesText(const CarmenStats& stats, const std::string& path) {
+  if (stats.malformed == 0) return "";
+  std::string text = std::to_string(stats.malformed) + " malformed line" +
+                     (stats.malformed == 1 ? "" : "s") + " of " + path + " left out\n";
+  for (const auto& m : stats.malformed_lines) {
+    text += "  line " + std::to_string(m.line) + ": " + m.reason + "\n";
+  }
+  if (stats.malformed > stats.malformed_lines.size()) {
+    text += "  (" + std::to_string(stats.malformed - stats.malformed_lines.size()) + " more)\n";
+  }
+  return text;
 }
 
 }  // namespace structloc::log_formats

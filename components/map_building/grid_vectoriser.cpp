@@ -41,7 +41,40 @@ void CheckOptions(const GridVectoriseOptions& o) {
   RequireOption(o.max_pillar_rms_cells > 0.0, kOptions, "max_pillar_rms_cells must be positive");
   RequireOption(o.min_pillar_roundness > 0.0 && o.min_pillar_roundness <= 1.0, kOptions,
                 "min_pillar_roundness must lie in (0, 1]");
+  RequireOption(o.max_face_cells > 0 && o.max_blobs > 0 && o.max_refit_work > 0, kOptions,
+                "max_face_cells, max_blobs and max_refit_work must be positive");
 }
+
+// The refusal of a grid that needs more work than `option` allows.
+[[noreturn]] void OverBudget(const std::string& what, const std::string& option, size_t limit) {
+  std::string flag = "--" + option;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  throw std::invalid_argument(what + ", more than the option " + option + " allows (" +
+                              std::to_string(limit) + "; " + flag +
+                              " of structloc map import): is it noise rather than a map? A "
+                              "larger map may need a larger limit");
+}
+
+// Counts the refits' work against max_refit_work.
+class RefitBudget {
+ public:
+  explicit RefitBudget(size_t limit) : limit_(limit) {}
+  void Spend(size_t gathered, size_t walked) {
+    walked_ += walked;
+    work_ += gathered + walked_ / 16;
+    walked_ %= 16;
+    if (work_ > limit_) {
+      OverBudget("refitting the wall proposals takes more than " + std::to_string(limit_) +
+                     " cells of work",
+                 "max_refit_work", limit_);
+    }
+  }
+
+ private:
+  size_t limit_;
+  size_t work_ = 0;
+  size_t walked_ = 0;
+};
 
 // A cell this near a fitted line counts as lying on it (a wall two cells
 // thick has its cells half a cell either side of its line).
@@ -93,8 +126,9 @@ class FaceCells {
     const Eigen::Vector2i cell = grid_.CellOf(p);
     return static_cast<long long>(Key(cell.x(), cell.y()));
   }
-  // Face cells whose centre is at most `distance` from the line.
-  std::vector<Eigen::Vector2d> Near(const Line& line, double distance) const {
+  // Face cells whose centre is at most `distance` from the line, its work
+  // spent from `budget`.
+  std::vector<Eigen::Vector2d> Near(const Line& line, double distance, RefitBudget& budget) const {
     // The line in cell units: n_g . u = r_g, u = (column + 0.5, row + 0.5) at centres.
     const double c = std::cos(grid_.origin.z()), s = std::sin(grid_.origin.z());
     const Eigen::Vector2d n(c * line.normal.x() + s * line.normal.y(),
@@ -117,6 +151,7 @@ class FaceCells {
           near.push_back(points_[static_cast<size_t>(at)]);
       }
     }
+    budget.Spend(near.size(), static_cast<size_t>(steps));
     return near;
   }
 
@@ -288,23 +323,51 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   auto face = [&](int c, int r) {
     return open(c - 1, r) || open(c + 1, r) || open(c, r - 1) || open(c, r + 1);
   };
+  // Hough's time grows with the face cells: bounded before any blob is made.
+  size_t all_faces = 0;
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) all_faces += mask.at<uint8_t>(r, c) != 0 && face(c, r);
+  }
+  if (all_faces > options.max_face_cells) {
+    OverBudget("the grid has " + std::to_string(all_faces) + " occupied cells next to open space",
+               "max_face_cells", options.max_face_cells);
+  }
 
   cv::Mat labels, stats, centroids;
   const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  if (static_cast<size_t>(count - 1) > options.max_blobs) {
+    OverBudget("the grid has " + std::to_string(count - 1) + " blobs of occupied cells",
+               "max_blobs", options.max_blobs);
+  }
   std::vector<Blob> blobs(static_cast<size_t>(count));
-  std::vector<std::vector<Eigen::Vector2d>> boundary(static_cast<size_t>(count));
   for (int i = 1; i < count; ++i) {
     blobs[static_cast<size_t>(i)] = {
         stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
         stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
         static_cast<size_t>(stats.at<int>(i, cv::CC_STAT_AREA))};
   }
+  // Boundary cells of the blobs shaped like a pillar (small and round), the
+  // only ones a circle is fitted to.
+  const auto pillar_shaped = [&](const Blob& blob) {
+    const double long_side = std::max(blob.width, blob.height) * res;
+    const double short_side = std::min(blob.width, blob.height) * res;
+    return long_side <= 2.0 * options.max_pillar_radius_m + 2.0 * res &&
+           short_side >= options.min_pillar_roundness * long_side;
+  };
+  std::vector<int> pillar_slot(static_cast<size_t>(count), -1);
+  std::vector<std::vector<Eigen::Vector2d>> boundary;
+  for (int i = 1; i < count; ++i) {
+    if (!pillar_shaped(blobs[static_cast<size_t>(i)])) continue;
+    pillar_slot[static_cast<size_t>(i)] = static_cast<int>(boundary.size());
+    boundary.emplace_back();
+  }
   for (int r = 0; r < grid.height; ++r) {
     for (int c = 0; c < grid.width; ++c) {
       const int label = labels.at<int>(r, c);
-      if (label == 0) continue;
+      if (label == 0 || pillar_slot[static_cast<size_t>(label)] < 0) continue;
       if (!occupied(c - 1, r) || !occupied(c + 1, r) || !occupied(c, r - 1) || !occupied(c, r + 1))
-        boundary[static_cast<size_t>(label)].push_back(grid.CellCentre(c, r));
+        boundary[static_cast<size_t>(pillar_slot[static_cast<size_t>(label)])].push_back(
+            grid.CellCentre(c, r));
     }
   }
 
@@ -315,18 +378,14 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   // Classify the blobs: specks, pillars, walls, and the rest left out.
   std::vector<bool> is_wall(static_cast<size_t>(count), false);
   for (int i = 1; i < count; ++i) {
-    const Blob& blob = blobs[static_cast<size_t>(i)];
     const BlobGroup& group = groups[static_cast<size_t>(i)];
-    const double long_side = std::max(blob.width, blob.height) * res;
-    const double short_side = std::min(blob.width, blob.height) * res;
     if (group.cells <= options.max_speck_cells) {
       ++out.specks_left_out;
       continue;
     }
-    const auto& edge = boundary[static_cast<size_t>(i)];
-    if (long_side <= 2.0 * options.max_pillar_radius_m + 2.0 * res &&
-        short_side >= options.min_pillar_roundness * long_side && edge.size() >= 6) {
-      const auto circle = FitPillar(edge, res);
+    const int slot = pillar_slot[static_cast<size_t>(i)];
+    if (slot >= 0 && boundary[static_cast<size_t>(slot)].size() >= 6) {
+      const auto circle = FitPillar(boundary[static_cast<size_t>(slot)], res);
       if (circle && circle->radius >= options.min_pillar_radius_m &&
           circle->radius <= options.max_pillar_radius_m &&
           circle->rms_m <= options.max_pillar_rms_cells * res) {
@@ -376,6 +435,7 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
     bool dropped = false;
   };
   std::vector<Candidate> candidates;
+  RefitBudget budget(options.max_refit_work);
   std::unordered_map<long long, std::vector<size_t>> candidates_of_cell;
   std::vector<size_t> sharers;  // per cell shared, the earlier candidate sharing it
   for (const auto& s : proposals) {
@@ -389,7 +449,7 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
     const Eigen::Vector2d direction = proposed.Direction();
     const double half = (b - a).norm() / 2.0 + options.max_gap_m;
     std::vector<Eigen::Vector2d> start;
-    for (const auto& p : face_cells.Near(proposed, options.proposal_capture_cells * res))
+    for (const auto& p : face_cells.Near(proposed, options.proposal_capture_cells * res, budget))
       if (std::abs(direction.dot(p - mid)) <= half) start.push_back(p);
     auto runs = Runs(start, options.max_gap_m, options.min_wall_length_m);
     if (runs.empty()) continue;
@@ -400,8 +460,8 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
     for (int iteration = 0; iteration < 4 && !runs.empty(); ++iteration) {
       const double capture =
           (iteration < 2 ? options.proposal_capture_cells : options.capture_cells) * res;
-      runs =
-          Runs(face_cells.Near(LineOf(fit), capture), options.max_gap_m, options.min_wall_length_m);
+      runs = Runs(face_cells.Near(LineOf(fit), capture, budget), options.max_gap_m,
+                  options.min_wall_length_m);
       if (!runs.empty()) fit = FitWall(Joined(runs));
     }
     if (runs.empty()) continue;

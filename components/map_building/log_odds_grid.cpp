@@ -99,22 +99,24 @@ map_building::OccupancyGrid RayCastGrid(const std::vector<PosedScan>& scans,
     l = std::clamp(l + delta, options.min_log_odds, options.max_log_odds);
   };
   std::vector<uint8_t> seen(grid.cells.size(), 0);
+  const auto update = [&](int x, int y, double delta) {
+    if (!grid.Contains(x, y)) return;  // never: the grid bounds every finite point
+    add(x, y, delta);
+    seen[static_cast<size_t>(y) * static_cast<size_t>(grid.width) + static_cast<size_t>(x)] = 1;
+  };
   for (const auto& scan : scans) {
+    if (!geometry::IsFinite(scan.laser_pose)) continue;
     const Eigen::Vector2i from = grid.CellOf(scan.laser_pose.Translation());
     for (const auto& p : scan.points) {
-      const Eigen::Vector2i to = grid.CellOf(scan.laser_pose.Apply(p));
+      const Eigen::Vector2d end = scan.laser_pose.Apply(p);
+      // A point that is not finite is outside the bounds above, and its cell
+      // index would be undefined: skipped (the log reader refuses such beams).
+      if (!end.allFinite()) continue;
+      const Eigen::Vector2i to = grid.CellOf(end);
       TraceCells(
           from.x(), from.y(), to.x(), to.y(),
-          [&](int x, int y) {
-            add(x, y, options.miss_log_odds);
-            seen[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
-                 static_cast<size_t>(x)] = 1;
-          },
-          [&](int x, int y) {
-            add(x, y, options.hit_log_odds);
-            seen[static_cast<size_t>(y) * static_cast<size_t>(grid.width) +
-                 static_cast<size_t>(x)] = 1;
-          });
+          [&](int x, int y) { update(x, y, options.miss_log_odds); },
+          [&](int x, int y) { update(x, y, options.hit_log_odds); });
     }
   }
   const double occupied = LogOdds(options.occupied_probability);

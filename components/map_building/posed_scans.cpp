@@ -43,7 +43,7 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
     }
     log.scans.push_back(std::move(scan));
   }
-  log.malformed_lines = reader.Stats().malformed;
+  log.reader = reader.Stats();
   if (log.scans.empty()) {
     throw config::ConfigError(log_path + ": no laser scan with a pose (FLASER, ROBOTLASER) in " +
                               std::to_string(reader.Stats().lines) + " lines");

@@ -52,14 +52,31 @@ bool IsAnnouncedCount(const std::string& kind, unsigned int code) {
          (kind == "LEADER" && code == 76);
 }
 
-// Refuses, with the line, a count beyond kMaxAnnouncedCount before dxflib
-// reads the file (it allocates for a count as soon as it reads it). Group
-// codes and values alternate line by line; a group 0 starts an entity.
+// The longest line dxflib reads whole: it reads with fgets into a buffer of
+// DL_DXF_MAXLINE (1024) bytes, so a line of 1023 bytes or more (its '\r' if
+// any counted) is read as two, and every code and value after it pairs
+// differently from how this file pairs them.
+constexpr size_t kMaxLineBytes = DL_DXF_MAXLINE - 2;
+
+// Refuses, with the line, counts beyond kMaxAnnouncedCount in all before
+// dxflib reads the file (it allocates and zeroes for a count as soon as it
+// reads it, then frees at the entity's end: a thousand entities announcing a
+// million each would zero 32 GB), and lines dxflib would split. Group codes
+// and values alternate line by line; a group 0 starts an entity.
 void CheckAnnouncedCounts(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string code_line, value;
   std::string kind;
+  long long announced = 0;
+  const auto check_length = [&](const std::string& text, size_t line) {
+    if (text.size() <= kMaxLineBytes) return;
+    throw config::ConfigError(path + ":" + std::to_string(line) + ": a line of " +
+                              std::to_string(text.size()) + " bytes; DXF readers take at most " +
+                              std::to_string(kMaxLineBytes) + " (is it a DXF drawing?)");
+  };
   for (size_t line = 1; std::getline(in, code_line) && std::getline(in, value); line += 2) {
+    check_length(code_line, line);
+    check_length(value, line + 1);
     char* end = nullptr;
     const long code = std::strtol(code_line.c_str(), &end, 10);
     if (end == code_line.c_str() || code < 0) continue;  // dxflib judges the rest
@@ -70,11 +87,15 @@ void CheckAnnouncedCounts(const std::string& path) {
     }
     if (!IsAnnouncedCount(kind, static_cast<unsigned int>(code))) continue;
     const long long count = std::strtoll(value.c_str(), nullptr, 10);
-    if (count >= 0 && count <= kMaxAnnouncedCount) continue;
+    if (count >= 0 && count <= kMaxAnnouncedCount - announced) {
+      announced += count;
+      continue;
+    }
     throw config::ConfigError(path + ":" + std::to_string(line + 1) + ": a " + kind +
                               " announces " + std::to_string(count) + " items (group code " +
-                              std::to_string(code) + "); more than " +
-                              std::to_string(kMaxAnnouncedCount) + " or negative is no floor plan");
+                              std::to_string(code) + "), making more than " +
+                              std::to_string(kMaxAnnouncedCount) +
+                              " vertices, knots or points in all (or negative): no floor plan");
   }
 }
 
@@ -83,6 +104,10 @@ class DrawingCollector : public DL_CreationAdapter {
   explicit DrawingCollector(CadDrawing& drawing) : drawing_(drawing) {}
 
   bool SawSection() const { return saw_section_; }
+  // Whether the ENTITIES section was closed (ENDSEC) and the file ended with
+  // EOF: a drawing cut short has neither, and would import in part.
+  bool EntitiesEnded() const { return entities_ended_; }
+  bool SawEof() const { return saw_eof_; }
   // The first coordinate, length or angle that is no number (dxflib reads it as 0).
   const std::string& BadNumber() const { return bad_number_; }
   size_t Entities() const { return entities_; }
@@ -92,7 +117,11 @@ class DrawingCollector : public DL_CreationAdapter {
       FinishRawEntity();
       expect_section_name_ = value == "SECTION";
       saw_section_ = saw_section_ || expect_section_name_;
-      if (value == "ENDSEC") section_.clear();
+      if (value == "ENDSEC") {
+        entities_ended_ = entities_ended_ || section_ == "ENTITIES";
+        section_.clear();
+      }
+      saw_eof_ = saw_eof_ || value == "EOF";
       raw_kind_ = value;
       raw_layer_ = "0";
       raw_paper_space_ = false;
@@ -168,6 +197,8 @@ class DrawingCollector : public DL_CreationAdapter {
   CadDrawing& drawing_;
   std::set<std::string> known_layers_;  // lower case
   bool saw_section_ = false;
+  bool entities_ended_ = false;
+  bool saw_eof_ = false;
   std::string bad_number_;
   bool expect_section_name_ = false;
   std::string section_;
@@ -257,6 +288,12 @@ CadDrawing ReadDxfDrawing(const std::string& path) {
   }
   if (!collector.BadNumber().empty())
     throw config::ConfigError(path + ": " + collector.BadNumber());
+  if (!collector.EntitiesEnded() || !collector.SawEof()) {
+    throw config::ConfigError(
+        path + ": ends before " +
+        (collector.EntitiesEnded() ? std::string("its EOF") : "the ENTITIES section's ENDSEC") +
+        ": the drawing is cut short (copied in part?); save it again from the CAD program");
+  }
   if (collector.Entities() == 0) {
     throw config::ConfigError(path +
                               ": no DXF entities in the drawing's model space (ENTITIES section)");

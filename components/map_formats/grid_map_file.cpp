@@ -155,7 +155,8 @@ struct ImageHeader {
   bool pgm_ascii = false;   // P2 rather than P5
 };
 
-// The header of a PGM or PNG; nullopt for other formats (checked after decoding).
+// The header of a PGM or PNG; nullopt for other formats (refused: their size
+// is not known before OpenCV decodes them whole).
 std::optional<ImageHeader> ReadImageHeader(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::array<unsigned char, 24> head{};
@@ -208,7 +209,14 @@ cv::Mat ReadImage(const std::string& yaml_path, const std::string& image_path,
   const std::string too_large = yaml_path + ": the image " + image_path + " is too large: ";
   const std::string limit = " cells (the limit is " + std::to_string(options.max_cells) + ")";
   const auto header = ReadImageHeader(image_path);
-  if (header && header->width * header->height > options.max_cells)
+  if (!header)
+    throw ConfigError(yaml_path + ": the image " + image_path +
+                      " is neither a PNG nor a PGM (map_server's formats, whose size is read "
+                      "before decoding); convert it to PNG");
+  // Each side first: a PGM header's numbers may be large enough for their
+  // product to wrap around.
+  if (header->width > options.max_cells || header->height > options.max_cells ||
+      header->width * header->height > options.max_cells)
     throw ConfigError(too_large + SizeText(header->width, header->height) + limit);
   cv::Mat image;
   try {
@@ -229,11 +237,11 @@ cv::Mat ReadImage(const std::string& yaml_path, const std::string& image_path,
   // Grey levels to 0..255 as map_server reads them: white is a PGM's maxval
   // (OpenCV scales only ASCII PGMs of up to 8 bits itself), a 16-bit PNG's 65535.
   double full = image.depth() == CV_16U ? 65535.0 : 255.0;
-  if (header && header->pgm_maxval > 0 && !(header->pgm_ascii && image.depth() == CV_8U))
+  if (header->pgm_maxval > 0 && !(header->pgm_ascii && image.depth() == CV_8U))
     full = static_cast<double>(header->pgm_maxval);
   if (!(full >= 1.0 && full <= 65535.0))
     throw ConfigError(yaml_path + ": the image " + image_path + " has a maxval of " +
-                      std::to_string(header ? header->pgm_maxval : 0) + " (PGM allows 1..65535)");
+                      std::to_string(header->pgm_maxval) + " (PGM allows 1..65535)");
   if (image.depth() != CV_8U || full != 255.0) {
     cv::Mat eight;
     image.convertTo(eight, CV_8U, 255.0 / full);
@@ -271,9 +279,9 @@ std::string NumberText(double value) {
 }  // namespace
 
 OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options,
-                          GridMapMode* mode) {
+                          GridMapSource* source) {
   const GridYaml yaml = ReadYaml(yaml_path, options);
-  if (mode != nullptr) *mode = yaml.mode;
+  if (source != nullptr) *source = {yaml.mode, yaml.image_path};
   const cv::Mat image = ReadImage(yaml_path, yaml.image_path, options);
   OccupancyGrid grid(image.cols, image.rows, yaml.resolution_m, yaml.origin);
   const int channels = image.channels();

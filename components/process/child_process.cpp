@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -193,12 +194,12 @@ int ChildProcess::Stop(std::chrono::milliseconds grace) {
   return WaitExit(std::chrono::seconds(5)).value_or(128 + SIGKILL);
 }
 
-std::string ChildProcess::ReadAvailable() {
+std::string ChildProcess::ReadAvailable(size_t max_bytes) {
   std::string out;
   if (pipe_fd_ < 0) return out;
   char buffer[4096];
-  while (true) {
-    const ssize_t n = read(pipe_fd_, buffer, sizeof buffer);
+  while (out.size() < max_bytes) {
+    const ssize_t n = read(pipe_fd_, buffer, std::min(sizeof buffer, max_bytes - out.size()));
     if (n > 0) {
       out.append(buffer, static_cast<size_t>(n));
     } else if (!(n < 0 && errno == EINTR)) {

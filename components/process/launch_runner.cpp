@@ -38,7 +38,10 @@ struct Running {
 // the unfinished line too.
 void Relay(const NodeLaunch& node, Running& running, bool flush) {
   if (!running.child) return;
-  running.partial_line += running.child->ReadAvailable();
+  // At most 64 KiB per poll (a chatty node is relayed a piece each time, and
+  // the launcher keeps its pace); at the end, what the pipe still holds.
+  constexpr size_t kPerPoll = 64 * 1024, kAtTheEnd = 1024 * 1024;
+  running.partial_line += running.child->ReadAvailable(flush ? kAtTheEnd : kPerPoll);
   size_t start = 0;
   for (size_t end; (end = running.partial_line.find('\n', start)) != std::string::npos;
        start = end + 1) {

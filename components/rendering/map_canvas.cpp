@@ -2,9 +2,11 @@
 #include "structloc/rendering/map_canvas.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <set>
 #include <stdexcept>
 
 #include "structloc/config/strict_xml.hpp"
@@ -135,14 +137,21 @@ void MapCanvas::Save(const std::string& path) const {
 }
 
 void MapCanvas::CheckPictureName(const std::string& path) {
+  // Colour formats only: OpenCV also "writes" .pgm and .pbm, then fails on a
+  // colour picture after all the work.
+  static const std::set<std::string> kColour = {".png", ".jpg", ".jpeg", ".bmp"};
+  const auto dot = path.find_last_of('.');
+  std::string extension = dot == std::string::npos ? "" : path.substr(dot);
+  for (auto& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   bool known = false;
   try {
-    known = cv::haveImageWriter(path);
+    known = kColour.count(extension) != 0 && cv::haveImageWriter(path);
   } catch (const cv::Exception&) {
     known = false;
   }
   if (!known) {
-    throw config::ConfigError(path + ": not a picture name OpenCV can write; name it .png");
+    throw config::ConfigError(path +
+                              ": not a name for a colour picture; name it .png (or .jpg, .bmp)");
   }
 }
 

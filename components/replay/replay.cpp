@@ -75,10 +75,14 @@ class Replayer {
       }
     }
     reader_ = std::make_unique<log_formats::CarmenReader>(o.log_path, o.limits);
-    const std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
+    // Each output is refused when it would replace an input or an output
+    // named before it.
+    std::vector<std::string> inputs = {o.log_path, o.map_path, o.params_path, o.truth_path};
     out_ = std::make_unique<log_formats::TumWriter>(o.out_tum, inputs);
+    inputs.push_back(o.out_tum);
     if (!o.fixes_path.empty()) {
       fixes_ = std::make_unique<log_formats::FixesCsvWriter>(o.fixes_path, true, inputs);
+      inputs.push_back(o.fixes_path);
     }
     if (!o.plot_path.empty()) plot_ = std::make_unique<config::OutputFile>(o.plot_path, inputs);
   }

@@ -2,9 +2,9 @@
 #include "structloc/simulation_core/recorder.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 
+#include "structloc/config/output_file.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/simulation_core/simulation.hpp"
 
@@ -23,6 +23,7 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
       encoders.Sample(s.time, s.traction_ticks, s.steering_ticks);
     }
   };
+  config::OutputFile initial(out_dir + "/initial_pose");
   clf.Comment("scenario " + scenario.name + ", seed " + std::to_string(scenario.seed));
   Simulation sim(scenario);
   // ROBOTLASER1 lines carry no beam timing: this PARAM lets our replay de-skew.
@@ -52,22 +53,22 @@ RecordingSummary RecordScenario(const Scenario& scenario, const std::string& out
                      s.odom_angular);
       truth.Pose(scan->stamp, scan->truth);
       if (first_scan) {
-        std::ofstream initial(out_dir + "/initial_pose");
-        initial << std::setprecision(9) << scan->truth.x << " " << scan->truth.y << " "
-                << scan->truth.theta << "\n";
-        if (!initial) throw std::runtime_error(out_dir + "/initial_pose: write failed");
+        initial.Stream() << std::setprecision(9) << scan->truth.x << " " << scan->truth.y << " "
+                         << scan->truth.theta << "\n";
         first_scan = false;
       }
       ++summary.scans;
     }
   }
-  // All three reach the disk before any replaces an earlier recording.
+  // All four reach the disk before any replaces an earlier recording.
   clf.Flush();
   truth.Flush();
   encoders.Flush();
+  initial.Flush();
   clf.Close();
   truth.Close();
   encoders.Close();
+  initial.Commit();
   const auto& s = sim.State();
   summary.duration_s = s.time;
   // The odometry frame starts at the initial pose: compare in the map frame.

@@ -1,7 +1,10 @@
 // Output files that never lose data: written to a temporary file beside the
 // target and renamed over it only when everything was written and flushed, so
 // a failed run leaves an existing file untouched; refused when the target is
-// one of the run's inputs. DDS-free.
+// one of the run's inputs (the same file by device and inode, whatever its
+// name) or a symbolic link (only a link to a device or pipe, /dev/stdout, is
+// written through, in place). Every file structloc writes goes through this.
+// DDS-free.
 #pragma once
 
 #include <fstream>
@@ -12,9 +15,9 @@ namespace structloc::config {
 
 class OutputFile {
  public:
-  // Throws ConfigError when `path` is (the same file as) one of `inputs`, or
-  // when its folder is missing or not writable. Nothing is created at `path`
-  // until Commit().
+  // Throws ConfigError when `path` is (the same file as) one of `inputs`, a
+  // symbolic link to a file, or when its folder is missing or not writable.
+  // Nothing is created at `path` until Commit().
   explicit OutputFile(std::string path, const std::vector<std::string>& inputs = {});
   // Removes the temporary file when Commit() was not reached.
   ~OutputFile();

@@ -91,6 +91,10 @@ class CarmenReader {
   double time_increment_ = 0.0;
 };
 
+// What a reader left out, for the user: "N malformed lines of PATH left out"
+// with the first few lines and their reasons, one per line; "" when none was.
+std::string MalformedLinesText(const CarmenStats& stats, const std::string& path);
+
 // FLASER angles from the beam count (the rule above).
 void FlaserGeometry(size_t beams, double* start_angle, double* resolution);
 

@@ -53,6 +53,15 @@ struct GridVectoriseOptions {
   double min_pillar_roundness = 0.7;  // bounding box: short side / long side
   size_t max_speck_cells = 2;         // blobs this small are noise, counted apart
   CornerJoinOptions corners{0.15, 0.5};
+  // Work bounds, so that a noisy or hostile grid is refused in about a second
+  // instead of running for minutes (a 45 kB PNG of noise asked for hours). A
+  // grid beyond one is refused naming the option; the building grids of the
+  // real recordings need a twentieth of each.
+  size_t max_face_cells = 300000;  // occupied cells next to open space (~15 km of wall at 5 cm)
+  size_t max_blobs = 100000;       // connected blobs of occupied cells
+  // Refitting Hough's proposals: the face cells each refit gathers (counted
+  // every time), plus one for every 16 grid columns or rows walked to find them.
+  size_t max_refit_work = 2000000;
 };
 
 struct GridVectorisation {
@@ -68,8 +77,9 @@ struct GridVectorisation {
 };
 
 // Throws std::invalid_argument when the grid has no occupied cell, when it
-// gives more walls than a world may hold (WorldLimits), or when the options
-// are out of range (naming the option).
+// gives more walls than a world may hold (WorldLimits), when it needs more
+// work than a bound of the options allows, or when the options are out of
+// range (each naming the option).
 GridVectorisation VectoriseGrid(const map_building::OccupancyGrid& grid,
                                 const GridVectoriseOptions& options);
 

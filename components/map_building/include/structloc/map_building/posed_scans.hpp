@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
+#include "structloc/log_formats/carmen_reader.hpp"
 
 namespace structloc::map_building {
 
@@ -33,10 +34,10 @@ struct PosedScan {
 
 struct PosedScanLog {
   std::vector<PosedScan> scans;
-  size_t readings = 0;      // all readings of all scans
-  size_t out_of_range = 0;  // of them, dropped by the range limits
-  size_t malformed_lines = 0;
-  size_t scans_without_pose = 0;  // laser lines with no pose at all (raw RAWLASER lines)
+  size_t readings = 0;              // all readings of all scans
+  size_t out_of_range = 0;          // of them, dropped by the range limits
+  log_formats::CarmenStats reader;  // the lines read, and those left out as malformed
+  size_t scans_without_pose = 0;    // laser lines with no pose at all (raw RAWLASER lines)
 };
 
 // Reads every scan of the log with its laser pose (the line's laser pose, else

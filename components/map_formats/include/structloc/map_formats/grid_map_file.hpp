@@ -21,11 +21,13 @@ enum class GridMapMode { kTrinary, kScale, kRaw };
 
 // How strictly a map_server YAML is read, and how large a grid may be.
 struct GridMapReadOptions {
-  static constexpr size_t kDefaultMaxCells = 100'000'000;  // 10000 x 10000 cells, 100 MB
+  // 4000 x 4000 cells: 200 m square at 5 cm. Importing a grid this large
+  // takes under a second and 300 MB; a larger one needs a larger limit.
+  static constexpr size_t kDefaultMaxCells = 16'000'000;
 
   // Cells (width * height) beyond which the image is refused before it is
-  // decoded (PGM and PNG headers are read first): a guard against a wrong or
-  // hostile file taking all memory.
+  // decoded (the PGM or PNG header is read first): a guard against a wrong or
+  // hostile file taking all memory (a 1 MB PNG can hold 10^9 cells).
   size_t max_cells = kDefaultMaxCells;
   // map_server and Nav2 read only image, resolution, origin, negate,
   // occupied_thresh, free_thresh and mode, and ignore every other key. We
@@ -49,10 +51,17 @@ struct GridMapReadOptions {
 // positive, unknown mode, thresholds outside [0, 1] or free >= occupied,
 // missing or unreadable image, image too large, empty image). A PGM's grey
 // levels are read against its maxval (white), a 16-bit PNG's against 65535.
-// `mode`, when given, receives the YAML's mode: with "trinary" and "scale"
-// the thresholds are applied already (only 100 is occupied, only 0 free).
+// The image must be a PNG or a PGM (map_server's formats, whose size is read
+// from the header before anything is decoded); other formats are refused.
+// `source`, when given, receives the YAML's mode (with "trinary" and "scale"
+// the thresholds are applied already: only 100 is occupied, only 0 free) and
+// the image's path, an input too.
+struct GridMapSource {
+  GridMapMode mode = GridMapMode::kTrinary;
+  std::string image_path;  // resolved against the YAML's folder
+};
 OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions& options = {},
-                          GridMapMode* mode = nullptr);
+                          GridMapSource* source = nullptr);
 
 // Writes `<yaml_path>` and a PGM image beside it (same stem), trinary mode,
 // negate 0, occupied_thresh 0.65, free_thresh 0.196 (map_saver's defaults), so

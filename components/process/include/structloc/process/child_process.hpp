@@ -10,6 +10,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,8 +45,10 @@ class ChildProcess {
   int Stop(std::chrono::milliseconds grace);
   // Captured stdout+stderr so far (empty when output is inherited).
   std::string CapturedOutput() const;
-  // kPipe: the stdout+stderr bytes written since the last call, without waiting.
-  std::string ReadAvailable();
+  // kPipe: the stdout+stderr bytes written since the last call, at most
+  // `max_bytes` of them (a node writing without pause would otherwise keep
+  // the reader here, its memory growing), without waiting.
+  std::string ReadAvailable(size_t max_bytes = 64 * 1024);
   pid_t Pid() const { return pid_; }
 
  private:

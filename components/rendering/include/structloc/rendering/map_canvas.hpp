@@ -50,8 +50,9 @@ class MapCanvas {
   void WriteTo(config::OutputFile& file) const;
   // WriteTo a new file and Commit(): an existing picture is replaced only on success.
   void Save(const std::string& path) const;
-  // Throws config::ConfigError when OpenCV cannot write pictures named like
-  // `path` (e.g. "p.xyz"), so that callers refuse it before doing any work.
+  // Throws config::ConfigError unless `path` names a colour picture OpenCV
+  // writes (.png, .jpg, .jpeg, .bmp; not "p.xyz", nor a grey-only ".pgm"), so
+  // that callers refuse it before doing any work.
   static void CheckPictureName(const std::string& path);
 
   cv::Point ToPixel(const Eigen::Vector2d& p) const;

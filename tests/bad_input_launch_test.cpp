@@ -1,4 +1,5 @@
-// Launch files written to hurt (issue 42): an over-long malformed
+// Launch files written to hurt (issue 42; the findings' ids are those of the
+// bad-input review of 36dc199): an over-long malformed
 // substitution, parameter files whose aliases repeat an entry thousands of
 // times, keys that are lists, and includes that fan out to millions of reads
 // are refused quickly with the file, the line and the limit; and a launcher
@@ -40,7 +41,7 @@ std::string RefusalOf(const std::string& path, const process::LaunchContext& con
   return "";
 }
 
-TEST(LaunchHostileInput, AnOverLongMalformedSubstitutionIsRefusedWithoutExhaustingTheStack) {
+TEST(BadInputLaunch, H2_AnOverLongMalformedSubstitutionIsRefusedWithoutExhaustingTheStack) {
   // 60 000 characters is under the 64 KiB value limit; a recursive matcher
   // overflowed an 8 MB stack from about 30 000.
   for (const size_t letters : {30000u, 60000u}) {
@@ -63,7 +64,7 @@ TEST(LaunchHostileInput, AnOverLongMalformedSubstitutionIsRefusedWithoutExhausti
 
 // A node's entry repeated through an alias: N entries of M parameters made
 // N x M x M steps (N = 2000: 23 s). YAML keys are unique; a second is refused.
-TEST(LaunchHostileInput, ParameterFileEntriesAndNamesAreEachGivenOnce) {
+TEST(BadInputLaunch, M5_ParameterFileEntriesAndNamesAreEachGivenOnce) {
   const testing::TempDir temp;
   std::string yaml = "base: &p {ros__parameters: {";
   for (int k = 0; k < 2000; ++k) yaml += (k ? ", k" : "k") + std::to_string(k) + ": 1";
@@ -93,7 +94,7 @@ TEST(LaunchHostileInput, ParameterFileEntriesAndNamesAreEachGivenOnce) {
 
 // A list or map as a key was a yaml-cpp conversion error without the file,
 // and exit 1; it is bad input like any other.
-TEST(LaunchHostileInput, AKeyThatIsAListIsRefusedWithTheFileAndLine) {
+TEST(BadInputLaunch, L4_AKeyThatIsAListIsRefusedWithTheFileAndLine) {
   const testing::TempDir temp;
   const std::string entry = temp.Write("entry.yaml", "[a, b]:\n  ros__parameters:\n    x: 1\n");
   const std::string name = temp.Write("name.yaml", "loc:\n  ros__parameters:\n    [x]: 1\n");
@@ -126,7 +127,7 @@ std::string WriteFanOut(const testing::TempDir& temp) {
   return temp.Write("fan.launch.xml", top + "<executable cmd='true' name='t'/></launch>");
 }
 
-TEST(LaunchHostileInput, IncludesThatFanOutAreRefusedAtTheReadingBounds) {
+TEST(BadInputLaunch, M5_IncludesThatFanOutAreRefusedAtTheReadingBounds) {
   const testing::TempDir temp;
   const std::string fan = WriteFanOut(temp);
   std::string why = RefusalOf(fan, Context());
@@ -153,7 +154,7 @@ TEST(LaunchHostileInput, IncludesThatFanOutAreRefusedAtTheReadingBounds) {
   EXPECT_NE(RefusalOf(small, context).find("more than 41"), std::string::npos);
 }
 
-TEST(LaunchHostileInput, ALauncherStillReadingItsFileStopsOnSigintAndSigterm) {
+TEST(BadInputLaunch, M5_ALauncherStillReadingItsFileStopsOnSigintAndSigterm) {
   const testing::TempDir temp;
   const std::string fan = WriteFanOut(temp);
   for (const int signal_number : {SIGINT, SIGTERM}) {

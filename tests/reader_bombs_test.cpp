@@ -1,0 +1,267 @@
+// No reader takes more than 2 s of CPU or 500 MB on any input under 1 MB
+// (issue 42): the bombs of the bad-input review of 36dc199 (and the worst
+// cases within the limits that fixed them), each run through the structloc
+// CLI as a user would, must end with a clear refusal (exit 2) or a result
+// (exit 0) within those bounds, the child's CPU time and peak memory read
+// from the kernel's accounting of it. A reader that crashes, hangs (a 60 s
+// timeout) or runs over fails.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "temp_dir.hpp"
+#include "test_paths.hpp"
+
+namespace structloc {
+namespace {
+
+using testing::TempDir;
+
+constexpr double kMaxCpuSeconds = 2.0;
+constexpr long kMaxResidentKb = 500L * 1024;
+constexpr uintmax_t kMaxInputBytes = 1 << 20;
+
+struct Usage {
+  double cpu_s = 0.0;
+  long max_resident_kb = 0;
+};
+
+Usage ChildrenUsage() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  const auto seconds = [](const timeval& t) { return t.tv_sec + 1e-6 * t.tv_usec; };
+  return {seconds(usage.ru_utime) + seconds(usage.ru_stime), usage.ru_maxrss};
+}
+
+// One bomb: the files it is made of (each under 1 MB) and the command that reads it.
+struct Bomb {
+  std::vector<std::string> files;
+  std::vector<std::string> args;
+  int exit_code = 2;
+  std::string says;  // in the output
+};
+
+void Explode(const Bomb& bomb) {
+  for (const auto& file : bomb.files) {
+    ASSERT_LT(std::filesystem::file_size(file), kMaxInputBytes) << file;
+  }
+  const Usage before = ChildrenUsage();
+  const auto run = testing::RunCli(bomb.args, std::chrono::seconds(60));
+  const Usage after = ChildrenUsage();
+  const double cpu_s = after.cpu_s - before.cpu_s;
+  std::printf("%.2f s CPU, %ld MB at most (exit %d)\n", cpu_s, after.max_resident_kb / 1024,
+              run.exit_code);
+  EXPECT_EQ(run.exit_code, bomb.exit_code) << run.output;
+  EXPECT_NE(run.output.find(bomb.says), std::string::npos) << run.output;
+  EXPECT_LE(cpu_s, kMaxCpuSeconds) << run.output;
+  // The largest child so far: each test runs in a process of its own under ctest.
+  EXPECT_LE(after.max_resident_kb, kMaxResidentKb) << run.output;
+}
+
+std::string Launch(const std::string& body) {
+  return "<launch>" + body + "</launch>";
+}
+
+void WritePng(const std::string& path, const cv::Mat& image) {
+  ASSERT_TRUE(cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 9})) << path;
+}
+
+std::string GridYaml(const TempDir& dir, const std::string& name, const cv::Mat& image) {
+  WritePng(dir / (name + ".png"), image);
+  return dir.Write(name + ".yaml", "image: " + name +
+                                       ".png\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n"
+                                       "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+}
+
+// A 64 x 64 tile of random black and white cells, repeated over `size`
+// (compresses to little: the review's noise PNGs).
+cv::Mat Noise(int rows, int cols) {
+  std::mt19937 random(1);
+  cv::Mat tile(64, 64, CV_8UC1);
+  for (int r = 0; r < 64; ++r)
+    for (int c = 0; c < 64; ++c) tile.at<uint8_t>(r, c) = random() % 2 ? 0 : 254;
+  cv::Mat out;
+  cv::repeat(tile, rows / 64 + 1, cols / 64 + 1, out);
+  return out(cv::Rect(0, 0, cols, rows)).clone();
+}
+
+// Free space crossed by a wall every 200 cells.
+cv::Mat Building(int size) {
+  cv::Mat image(size, size, CV_8UC1, cv::Scalar(254));
+  for (int k = 0; k < size; k += 200) {
+    image.row(k).setTo(0);
+    image.col(k).setTo(0);
+  }
+  return image;
+}
+
+TEST(ReaderBombs, LaunchFileWithAnAttributeOf60000Characters) {
+  const TempDir dir;
+  const std::string path =
+      dir.Write("regex.launch.xml", Launch("<let name='x' value='$(" + std::string(60000, 'a') +
+                                           "'/><executable cmd='true' name='t'/>"));
+  Explode({{path}, {"launch", path}, 2, "malformed substitution"});
+}
+
+TEST(ReaderBombs, LaunchParameterFileWithAnEntryRepeatedThroughAliases) {
+  const TempDir dir;
+  std::string yaml = "base: &p {ros__parameters: {";
+  for (int k = 0; k < 2000; ++k) yaml += (k ? ", k" : "k") + std::to_string(k) + ": 1";
+  yaml += "}}\n";
+  for (int n = 0; n < 2000; ++n) yaml += "localisation: *p\n";
+  const std::string params = dir.Write("alias.yaml", yaml);
+  const std::string path =
+      dir.Write("alias.launch.xml",
+                Launch("<node pkg='structloc' exec='structloc_localisation' name='localisation'>"
+                       "<param from='" +
+                       params + "'/></node>"));
+  Explode({{path, params}, {"launch", path}, 2, "appears a second time"});
+}
+
+TEST(ReaderBombs, LaunchFilesThatIncludeEachOtherFortyTimesSixDeep) {
+  const TempDir dir;
+  const std::string names = "bcdefg";
+  std::vector<std::string> files;
+  for (size_t i = 0; i < names.size(); ++i) {
+    std::string body;
+    for (int k = 0; k < 40 && i + 1 < names.size(); ++k)
+      body += "<include file='" + dir / std::string(1, names[i + 1]) + "'/>";
+    files.push_back(dir.Write(std::string(1, names[i]), Launch(body)));
+  }
+  std::string top;
+  for (int k = 0; k < 40; ++k) top += "<include file='" + dir / "b" + "'/>";
+  files.push_back(dir.Write("fan.launch.xml", Launch(top + "<executable cmd='true' name='t'/>")));
+  Explode({files, {"launch", files.back()}, 2, "--max-files"});
+}
+
+TEST(ReaderBombs, LaunchedNodeThatNeverStopsWriting) {
+  const TempDir dir;
+  const std::string path =
+      dir.Write("yes.launch.xml", Launch("<executable cmd='yes' name='chatty' output='log'/>"));
+  // The launcher relays it for the second asked, then stops it: exit 0.
+  Explode({{path}, {"launch", path, "--duration", "1"}, 0, "chatty"});
+}
+
+TEST(ReaderBombs, LogLineWhoseBeamAnglesOverflow) {
+  const TempDir dir;
+  // Five beams of 1 m, each field finite; the second line's resolution puts
+  // its later beams' angles at infinity (they wrote outside the grid).
+  const auto line = [](const std::string& resolution, const std::string& stamp) {
+    return "ROBOTLASER1 0 -1.5707963 3.14159 " + resolution +
+           " 20 0.01 0 5 1.0 1.0 1.0 1.0 1.0 0 0 0 0 0 0 0 0 0 0 0 0 " + stamp + " host " + stamp +
+           "\n";
+  };
+  const std::string log =
+      dir.Write("nan_angles.clf", line("0.785398", "1.0") + line("1e308", "2.0"));
+  Explode({{log},
+           {"map", "grid", "--log", log, "--out", dir / "g.yaml"},
+           0,
+           "do not lie within one turn"});
+}
+
+TEST(ReaderBombs, DxfWhoseLongLineShiftsTheVertexCountPastTheGuard) {
+  const TempDir dir;
+  const std::string path = dir.Write(
+      "shifted.dxf", "999\n" + std::string(1023, 'x') +
+                         "999\nshifted\n0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nWALLS\n90\n"
+                         "20000000\n70\n0\n10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "DXF readers take at most"});
+}
+
+TEST(ReaderBombs, DxfOfAThousandPolylinesAnnouncingAMillionVerticesEach) {
+  const TempDir dir;
+  std::string text = "0\nSECTION\n2\nENTITIES\n";
+  for (int k = 0; k < 1000; ++k) {
+    text += "0\nLWPOLYLINE\n8\nWALLS\n90\n1000000\n70\n0\n10\n0\n20\n0\n10\n1\n20\n0\n";
+  }
+  const std::string path = dir.Write("announced.dxf", text + "0\nENDSEC\n0\nEOF\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "vertices, knots or points in all"});
+}
+
+TEST(ReaderBombs, GridImageInAFormatWhoseSizeIsOnlyKnownByDecodingIt) {
+  const TempDir dir;
+  ASSERT_TRUE(cv::imwrite(dir / "map.tiff", Building(64)));
+  const std::string yaml =
+      dir.Write("tiff.yaml", "image: map.tiff\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n");
+  Explode({{yaml, dir / "map.tiff"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "neither a PNG nor a PGM"});
+}
+
+// A PNG says its size in its header: 40000 x 40000 cells (a uniform image
+// that large compresses to about 1.6 MB; its header is all that is read).
+TEST(ReaderBombs, GridPngOfAGigaCell) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "giga", Building(64));
+  std::string png = testing::ReadFile(dir / "giga.png");
+  for (const size_t at : {16u, 20u}) {  // IHDR's width and height, big-endian
+    const uint32_t side = 40000;
+    for (int k = 0; k < 4; ++k)
+      png[at + static_cast<size_t>(k)] = static_cast<char>(side >> (24 - 8 * k));
+  }
+  dir.Write("giga.png", png);
+  Explode({{yaml, dir / "giga.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "is too large: 40000 x 40000 cells"});
+}
+
+TEST(ReaderBombs, GridOfNoise800) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "noise", Noise(800, 800));
+  Explode({{yaml, dir / "noise.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "is it noise rather than a map?"});
+}
+
+TEST(ReaderBombs, GridOfNoise2000) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "noise", Noise(2000, 2000));
+  Explode({{yaml, dir / "noise.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "is it noise rather than a map?"});
+}
+
+// The slowest grid the limits let through to the wall refits: the largest
+// grid, walls across it, and a patch of noise just small enough to pass the
+// face-cell limit.
+TEST(ReaderBombs, LargestGridWithAPatchOfNoise) {
+  const TempDir dir;
+  cv::Mat image = Building(4000);
+  Noise(500, 500).copyTo(image(cv::Rect(0, 0, 500, 500)));
+  const std::string yaml = GridYaml(dir, "patch", image);
+  Explode({{yaml, dir / "patch.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "is it noise rather than a map?"});
+}
+
+// The largest clean grid the limits allow imports in full.
+TEST(ReaderBombs, LargestCleanGridImports) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "building", Building(4000));
+  Explode({{yaml, dir / "building.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           0,
+           "wrote"});
+}
+
+}  // namespace
+}  // namespace structloc
