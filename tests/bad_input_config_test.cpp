@@ -416,6 +416,38 @@ TEST(BadInputConfig, L5_MalformedDurationsAndInitialPosesAreRefused) {
   }
 }
 
+// Bad-input review of 36dc199, M6 (issue 42): what a component writes over
+// and over (the saved pose, the calibration's files) is refused at start-up
+// when it names a file the component reads.
+TEST(BadInputConfig, M6_TheComponentsNeverWriteTheirStateOverAFileTheyRead) {
+  TempDir dir;
+  const std::string map =
+      dir.Write("map.xml", testing::ReadFile(SourcePath("maps/office_floor.xml")));
+  const auto localisation =
+      testing::RunExecutable("structloc_localisation",
+                             {"--domain", std::to_string(testing::domains::kBadInputConfig),
+                              "--map", map, "--state-file", map, "--initial-pose", "2 6.5 0"},
+                             30s);
+  EXPECT_EQ(localisation.exit_code, 2) << localisation.output;
+  EXPECT_NE(localisation.output.find("refusing to write the output over the input"),
+            std::string::npos)
+      << localisation.output;
+  EXPECT_EQ(testing::ReadFile(map), testing::ReadFile(SourcePath("maps/office_floor.xml")));
+
+  const std::string robot =
+      dir.Write("calibrated.xml", testing::ReadFile(SourcePath("maps/robots/tricycle.xml")));
+  const auto calibration =
+      testing::RunExecutable("structloc_calibration",
+                             {"--domain", std::to_string(testing::domains::kBadInputConfig),
+                              "--robot", robot, "--out-dir", dir.Path()},
+                             30s);
+  EXPECT_EQ(calibration.exit_code, 2) << calibration.output;
+  EXPECT_NE(calibration.output.find("refusing to write the output over the input"),
+            std::string::npos)
+      << calibration.output;
+  EXPECT_EQ(testing::ReadFile(robot), testing::ReadFile(SourcePath("maps/robots/tricycle.xml")));
+}
+
 TEST(BadInputConfig, L5_DemoValidatesItsOptionsBeforeStartingAnything) {
   const auto demo = testing::RunCli(
       {"demo", "--time-scale", "-1", "--domain", std::to_string(testing::domains::kBadInputConfig)},

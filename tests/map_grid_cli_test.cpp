@@ -58,7 +58,7 @@ TEST(MapGridCli, BadGridsAreRefusedNamingTheFileAndLeaveTheOutputAlone) {
   map_building::OccupancyGrid empty(20, 20, 0.05, {0, 0, 0}, map_building::OccupancyGrid::kFree);
   map_formats::SaveGridMap(empty, dir / "empty.yaml");
   result = RunCli({"map", "import", "--grid", dir / "empty.yaml", "--out", out});
-  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_EQ(result.exit_code, 2) << result.output;  // bad input, as any grid refused
   EXPECT_TRUE(Contains(result.output, "empty.yaml: the grid has no occupied cell"))
       << result.output;
   EXPECT_TRUE(Contains(result.output, "nothing to import")) << result.output;

@@ -90,7 +90,13 @@ void CalibrationComponentOptions::Validate() const {
   } catch (const std::invalid_argument& e) {
     throw config::ConfigError(e.what());
   }
-  if (!out_dir.empty()) PrepareOutputFolder(out_dir);
+  if (!out_dir.empty()) {
+    PrepareOutputFolder(out_dir);
+    // Outputs written over and over: never over the robot file read.
+    for (const char* name : {"encoders.csv", "fixes.csv", "calibrated.xml", kLastResultFileName}) {
+      config::RefuseOverwritingInput(out_dir + "/" + name, {robot_path});
+    }
+  }
 }
 
 CalibrationComponent::CalibrationComponent(dds_common::Node& node,

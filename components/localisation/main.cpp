@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_number.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/localisation/localisation_component.hpp"
@@ -53,6 +54,11 @@ int main(int argc, char** argv) {
         loc::LocalisationComponentOptions options;
         options.frames = structloc::dds_common::FrameIdsFrom(cli);
         options.state_file = cli.GetOr("state-file", "");
+        // The saved pose is written over and over: never over a file read.
+        if (!options.state_file.empty()) {
+          structloc::config::RefuseOverwritingInput(options.state_file,
+                                                    {map, params_path, node.Options().qos_file});
+        }
         if (auto text = cli.Get("initial-pose")) {
           const auto pose = structloc::config::ParseNumberList(*text, 3);
           if (!pose) {
