@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -169,6 +170,23 @@ TEST(BadInputLaunch, M5_ALauncherStillReadingItsFileStopsOnSigintAndSigterm) {
     ASSERT_TRUE(code.has_value()) << "signal " << signal_number << " was not answered";
     EXPECT_EQ(launch.EndingSignal(), signal_number);
   }
+}
+
+// A node writing without pause ("yes") kept the launcher reading until the
+// pipe ran dry, which it never did: --duration 2 took 9 s and 243 MB.
+TEST(BadInputLaunch, L5_AChattyNodeIsRelayedWithoutOverrunningTheDuration) {
+  const testing::TempDir temp;
+  const std::string path =
+      temp.Write("yes.launch.xml", "<launch><executable cmd='yes' name='chatty'/></launch>");
+  const auto started = std::chrono::steady_clock::now();
+  const auto run = testing::RunCli({"launch", path, "--duration", "2"}, std::chrono::seconds(60));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_EQ(run.exit_code, 0) << run.output.substr(run.output.size() -
+                                                   std::min<size_t>(2000, run.output.size()));
+  EXPECT_NE(run.output.find("[chatty] y"), std::string::npos);
+  // Two seconds, and the stop (SIGINT ends it at once) with room for a busy host.
+  EXPECT_LT(seconds, 6.0);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 // timeout) or runs over fails.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -165,6 +166,26 @@ TEST(ReaderBombs, LogLineWhoseBeamAnglesOverflow) {
            {"map", "grid", "--log", log, "--out", dir / "g.yaml"},
            0,
            "do not lie within one turn"});
+}
+
+// 200 MB of one scan line repeated, gzipped to a few hundred kB: the map
+// tools hold every scan (readings, points) in memory, 700 MB for this one.
+TEST(ReaderBombs, GzippedLogThatInflatesAThousandfold) {
+  const TempDir dir;
+  std::string line = "ROBOTLASER1 0 -1.5707963 3.14159 0.0087266 20 0.01 0 361";
+  for (int k = 0; k < 361; ++k) line += " 2.000";
+  line += " 0 0 0 0 0 0 0 0 0 0 0 0 1.0 host 1.0\n";
+  std::string block;
+  while (block.size() < (1u << 20)) block += line;
+  const std::string path = dir / "bomb.log.gz";
+  gzFile file = gzopen(path.c_str(), "wb9");
+  ASSERT_NE(file, nullptr);
+  for (int k = 0; k < 200; ++k) {
+    ASSERT_EQ(gzwrite(file, block.data(), static_cast<unsigned>(block.size())),
+              static_cast<int>(block.size()));
+  }
+  ASSERT_EQ(gzclose(file), Z_OK);
+  Explode({{path}, {"map", "build", "--log", path, "--out", dir / "w.xml"}, 2, "a gzip bomb?"});
 }
 
 TEST(ReaderBombs, DxfWhoseLongLineShiftsTheVertexCountPastTheGuard) {

@@ -86,10 +86,11 @@ void Node::RequireSecurityAsAsked(
   // The participant's own view of its properties: each security property
   // must be the enclave's, and first of its name (the one Fast DDS uses).
   const auto& properties = participant_->get_qos().properties().properties();
-  for (const auto& [name, value] : security) {
+  for (const auto& wanted : security) {
+    const std::string& name = wanted.first;
     const auto first = std::find_if(properties.begin(), properties.end(),
                                     [&](const auto& property) { return property.name() == name; });
-    if (first == properties.end() || first->value() != value) {
+    if (first == properties.end() || first->value() != wanted.second) {
       participant_->delete_contained_entities();
       eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->delete_participant(
           participant_);

@@ -162,7 +162,7 @@ std::string LaserCountMismatch(const Fields& f, uint64_t declared, size_t tail) 
 }  // namespace
 
 CarmenReader::CarmenReader(const std::string& path, const CarmenLimits& limits)
-    : path_(path), limits_(limits), lines_(path, limits.MaxLineBytes()) {}
+    : path_(path), limits_(limits), lines_(path, limits.MaxLineBytes(), limits.inflate) {}
 
 CarmenReader::ParseResult CarmenReader::Malformed(std::string reason) {
   reason_ = std::move(reason);

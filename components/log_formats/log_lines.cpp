@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "structloc/config/strict_xml.hpp"
+
 namespace structloc::log_formats {
 namespace {
 
@@ -20,7 +22,7 @@ bool NamedGz(const std::string& path) {
 
 }  // namespace
 
-LogLines::LogLines(const std::string& path, size_t max_line_bytes)
+LogLines::LogLines(const std::string& path, size_t max_line_bytes, const InflateBound& inflate)
     : path_(path), max_line_bytes_(max_line_bytes), buffer_(kChunkBytes) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
@@ -37,6 +39,12 @@ LogLines::LogLines(const std::string& path, size_t max_line_bytes)
     throw std::runtime_error(path +
                              ": not gzip data although the name ends in .gz; a plain-text log "
                              "must not be named .gz");
+  }
+  if (gzdirect(file_) == 0) {
+    const auto compressed = std::filesystem::file_size(path, error);
+    max_inflated_ =
+        inflate.allowance_bytes +
+        static_cast<size_t>(inflate.max_ratio * static_cast<double>(error ? 0 : compressed));
   }
 }
 
@@ -57,6 +65,13 @@ bool LogLines::Fill() {
   if (got == 0) {
     at_end_ = true;
     return false;
+  }
+  inflated_ += static_cast<size_t>(got);
+  if (max_inflated_ > 0 && inflated_ > max_inflated_) {
+    throw config::ConfigError(path_ + ": the gzip data inflate to more than " +
+                              std::to_string(max_inflated_) + " bytes by line " +
+                              std::to_string(lines_read_) +
+                              ", far more than a log compresses (a gzip bomb?)");
   }
   begin_ = 0;
   end_ = static_cast<size_t>(got);

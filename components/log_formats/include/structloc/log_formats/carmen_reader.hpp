@@ -45,6 +45,7 @@ struct CarmenRecord {
 struct CarmenLimits {
   size_t max_beams = 100000;    // ranges (and remissions) per laser line
   size_t max_lines = 50000000;  // lines per log (about 2 days of a 50 Hz ODOM + 10 Hz laser log)
+  InflateBound inflate;         // a .gz log's inflated size (16 MiB + 20 times the compressed)
   // The longest line read: 32 characters for each of 2 * max_beams values and
   // the fixed fields. Longer lines are malformed and never held in memory.
   size_t MaxLineBytes() const { return 32 * (2 * max_beams + 64); }
