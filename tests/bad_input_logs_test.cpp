@@ -17,11 +17,10 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "room_recording.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/rendering/map_canvas.hpp"
 #include "structloc/replay/replay.hpp"
-#include "structloc/simulation_core/recorder.hpp"
-#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -35,25 +34,8 @@ using testing::TempDir;
 
 constexpr const char* kRoomInitialPose = "1.5 1.5 0.3";
 
-// The robustness room recorded once for all tests (24 scans): run.clf, truth.tum.
-const TempDir& RoomRecording() {
-  static const TempDir dir;
-  static const bool recorded = [] {
-    simulation_core::RecordScenario(
-        simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/robustness_room.xml")),
-        dir.Path());
-    return true;
-  }();
-  EXPECT_TRUE(recorded);
-  return dir;
-}
-
-std::string RoomLog() {
-  return RoomRecording() / "run.clf";
-}
-std::string RoomTruth() {
-  return RoomRecording() / "truth.tum";
-}
+using testing::RoomLog;
+using testing::RoomTruth;
 
 std::vector<std::string> ReplayArgs(const std::string& log, const std::string& out) {
   return {"replay",         "--map", testing::SourcePath("maps/robustness_room.xml"),

@@ -11,10 +11,9 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "room_recording.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
-#include "structloc/simulation_core/recorder.hpp"
-#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -26,22 +25,7 @@ using testing::ReadFile;
 using testing::RunCli;
 using testing::TempDir;
 
-// The robustness room recorded once for all tests: run.clf, truth.tum.
-const TempDir& RoomRecording() {
-  static const TempDir dir;
-  static const bool recorded = [] {
-    simulation_core::RecordScenario(
-        simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/robustness_room.xml")),
-        dir.Path());
-    return true;
-  }();
-  EXPECT_TRUE(recorded);
-  return dir;
-}
-
-std::string RoomLog() {
-  return RoomRecording() / "run.clf";
-}
+using testing::RoomLog;
 
 std::string Describe(const CliResult& r) {
   return "exit " + std::to_string(r.exit_code) + ":\n" + r.output;
@@ -71,13 +55,9 @@ std::string HalfBadLog(const TempDir& dir) {
 
 TEST(BadInputMaps, H3_ABeamAngleOverflowingToInfinityIsAMalformedLine) {
   const TempDir dir;
-  const auto line = [](const std::string& resolution, const std::string& stamp) {
-    return "ROBOTLASER1 0 -1.5707963 3.14159 " + resolution +
-           " 20 0.01 0 5 1.0 1.0 1.0 1.0 1.0 0 0 0 0 0 0 0 0 0 0 0 0 " + stamp + " host " + stamp +
-           "\n";
-  };
   const std::string log =
-      dir.Write("nan_angles.clf", line("0.785398", "1.0") + line("1e308", "2.0"));
+      dir.Write("nan_angles.clf", testing::FiveBeamLaserLine("0.785398", "1.0") +
+                                      testing::FiveBeamLaserLine("1e308", "2.0"));
   log_formats::CarmenReader reader(log);
   log_formats::CarmenRecord record;
   size_t scans = 0;
@@ -212,9 +192,8 @@ TEST(BadInputMaps, L3_SynthesisedOdometryIsReadBackWhole) {
   const std::string log = dir.Write(
       "zero.clf", ReadFile(RoomLog()) +
                       "ROBOTLASER1 0 -1.5707963 3.14159 0.0174533 20 0.01 0 0 0 0 0 0 0 0 0 0 0 0 "
-                      "0 0 999.0 host 999.0\n"
-                      "ROBOTLASER1 0 -1.5707963 3.14159 1e308 20 0.01 0 5 1.0 1.0 1.0 1.0 1.0 0 0 "
-                      "0 0 0 0 0 0 0 0 0 0 1000.0 host 1000.0\n");
+                      "0 0 999.0 host 999.0\n" +
+                      testing::FiveBeamLaserLine("1e308", "1000.0"));
   const auto r = RunCli(
       {"synthesise-odometry", "--log", log, "--out", dir / "e.clf", "--truth", dir / "e.tum"});
   ASSERT_EQ(r.exit_code, 0) << Describe(r);

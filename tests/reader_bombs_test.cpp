@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "room_recording.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -155,13 +156,9 @@ TEST(ReaderBombs, LogLineWhoseBeamAnglesOverflow) {
   const TempDir dir;
   // Five beams of 1 m, each field finite; the second line's resolution puts
   // its later beams' angles at infinity (they wrote outside the grid).
-  const auto line = [](const std::string& resolution, const std::string& stamp) {
-    return "ROBOTLASER1 0 -1.5707963 3.14159 " + resolution +
-           " 20 0.01 0 5 1.0 1.0 1.0 1.0 1.0 0 0 0 0 0 0 0 0 0 0 0 0 " + stamp + " host " + stamp +
-           "\n";
-  };
   const std::string log =
-      dir.Write("nan_angles.clf", line("0.785398", "1.0") + line("1e308", "2.0"));
+      dir.Write("nan_angles.clf", testing::FiveBeamLaserLine("0.785398", "1.0") +
+                                      testing::FiveBeamLaserLine("1e308", "2.0"));
   Explode({{log},
            {"map", "grid", "--log", log, "--out", dir / "g.yaml"},
            0,

@@ -22,17 +22,24 @@ void CalibrationRecorder::Restart() {
   fix_stamps_ = StampGuard(options_.stamps);
 }
 
-bool CalibrationRecorder::AddEncoders(const EncoderSample& s) {
-  if (finished_) return false;
-  const auto verdict = encoder_stamps_.Check(s.t);
+bool CalibrationRecorder::Admit(StampGuard CalibrationRecorder::*stream, double t,
+                                size_t* refused) {
+  const auto verdict = (this->*stream).Check(t);
   if (verdict == StampGuard::Verdict::kOutOfLine) {
-    ++stats_.encoders_out_of_order;
+    ++*refused;
     return false;
   }
   if (verdict == StampGuard::Verdict::kJumpedBack) {
     Restart();
-    encoder_stamps_.Check(s.t);
+    (this->*stream).Check(t);  // the first stamp of the new clock
   }
+  return true;
+}
+
+bool CalibrationRecorder::AddEncoders(const EncoderSample& s) {
+  if (finished_ ||
+      !Admit(&CalibrationRecorder::encoder_stamps_, s.t, &stats_.encoders_out_of_order))
+    return false;
   auto& encoders = recording_.encoders;
   if (!encoders.empty()) {
     const double dt = s.t - encoders.back().t;
@@ -49,15 +56,7 @@ bool CalibrationRecorder::AddFix(const Fix& f) {
     ++stats_.fixes_rejected;
     return false;
   }
-  const auto verdict = fix_stamps_.Check(f.t);
-  if (verdict == StampGuard::Verdict::kOutOfLine) {
-    ++stats_.fixes_rejected;
-    return false;
-  }
-  if (verdict == StampGuard::Verdict::kJumpedBack) {
-    Restart();
-    fix_stamps_.Check(f.t);
-  }
+  if (!Admit(&CalibrationRecorder::fix_stamps_, f.t, &stats_.fixes_rejected)) return false;
   recording_.fixes.push_back(f);
   return true;
 }

@@ -66,6 +66,9 @@ class CalibrationRecorder {
  private:
   // A confirmed jump back: what was recorded is on another clock.
   void Restart();
+  // Whether a sample stamped `t` of `stream` is taken (a refusal is counted
+  // in `refused`; a confirmed jump back restarts the recording first).
+  bool Admit(StampGuard CalibrationRecorder::*stream, double t, size_t* refused);
 
   RecorderOptions options_;
   StampGuard encoder_stamps_, fix_stamps_;
