@@ -86,12 +86,19 @@ TEST(GlobalLocalisationReplay, TheCliReportsTheSearchAndFailsClearlyOnAForeignMa
   const std::string dir = temp / "office";
   simulation_core::RecordScenario(scenario, dir);
 
-  const auto ok = testing::RunCli(
-      {"replay", "--map", testing::SourcePath("maps/office_floor.xml"), "--log", dir + "/run.clf",
-       "--params", testing::SourcePath("maps/params/office_sick.xml"), "--out", temp / "ok.tum"});
+  const auto ok = testing::RunCli({"replay", "--map", testing::SourcePath("maps/office_floor.xml"),
+                                   "--log", dir + "/run.clf", "--params",
+                                   testing::SourcePath("maps/params/office_sick.xml"), "--out",
+                                   temp / "ok.tum", "--timings"});
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("global localisation, scan 1"), std::string::npos) << ok.output;
   EXPECT_NE(ok.output.find("tracking started from robot pose"), std::string::npos) << ok.output;
+  // --timings: a row per stage of the update, and the update's CPU time.
+  for (const char* row :
+       {"prefilter", "expectation", "line fits", "extraction", "solve", "whole-scan check",
+        "search", "update (thread CPU)", "between scans (CPU)"}) {
+    EXPECT_NE(ok.output.find("\n  " + std::string(row) + " "), std::string::npos) << row;
+  }
 
   // A symmetric room the office log does not fit: no scan is placed.
   const std::string room = temp / "room.xml";

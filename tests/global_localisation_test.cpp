@@ -169,6 +169,40 @@ TEST(GlobalLocalisation, AScanOfClutterOnlyIsNotFound) {
   }
 }
 
+// A search done a slice at a time (as a lost tracker does between scans)
+// gives exactly what one done at once gives, whatever the slices: over the
+// whole map and in a window, found or not.
+TEST(GlobalLocalisation, ASearchInSlicesGivesWhatOneAtOnceGives) {
+  const testing::OfficeScene office(4.71238898038469);
+  const GlobalLocaliser localiser(office.world, GlobalLocaliserOptions{});
+  std::mt19937 rng(11);
+  for (int n = 0; n < 2; ++n) {
+    const geometry::Pose2D truth = RandomPose(office.world, {1.0, 1.0, 19.0, 11.0}, 0.4, rng);
+    const auto points =
+        Points(testing::CastScan(office.scene, truth, {541, 4.71238898038469, 30.0, 0.01}, rng));
+    const localisation_core::SearchWindow window{truth, 1.5, 0.5};
+    for (const auto* w : {static_cast<const localisation_core::SearchWindow*>(nullptr), &window}) {
+      const auto whole = localiser.Locate(points, w);
+      localisation_core::GlobalSearch search(
+          localiser, localisation_core::OneScan(points),
+          w != nullptr ? std::optional<localisation_core::SearchWindow>(*w) : std::nullopt);
+      int slices = 1;
+      for (uint64_t budget = 5000; !search.Advance(budget); budget = budget * 3 / 2) ++slices;
+      EXPECT_GT(slices, 3);
+      const auto& sliced = search.Result();
+      EXPECT_EQ(sliced.decision, whole.decision);
+      ASSERT_EQ(sliced.best.has_value(), whole.best.has_value());
+      if (whole.best) {
+        EXPECT_EQ(sliced.best->pose.x, whole.best->pose.x);
+        EXPECT_EQ(sliced.best->pose.y, whole.best->pose.y);
+        EXPECT_EQ(sliced.best->pose.theta, whole.best->pose.theta);
+        EXPECT_EQ(sliced.best->score, whole.best->score);
+      }
+      EXPECT_EQ(sliced.reason, whole.reason);
+    }
+  }
+}
+
 TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   const testing::OfficeScene office(2 * geometry::kPi);
   GlobalLocaliserOptions options;

@@ -34,12 +34,14 @@ TrackRun Track(const geometry::Pose2D& start, double min_explained_share,
   options.min_explained_share = min_explained_share;
   PoseTracker tracker(office.world, office.options, options);
   std::mt19937 rng(5);
-  for (int k = 0; k <= 50; ++k) EXPECT_FALSE(tracker.AddOdometry(0.1 * k, {0, 0, 0}));
+  for (int k = 0; k <= 160; ++k) EXPECT_FALSE(tracker.AddOdometry(0.1 * k, {0, 0, 0}));
   // Given with a sigma of 0.3 m: the search reaches 3 sigma + 0.5 m around it.
   const Eigen::Matrix3d covariance = Eigen::Vector3d(0.09, 0.09, 0.0025).asDiagonal();
   EXPECT_FALSE(tracker.SetInitialPose(0.0, start, covariance));
   TrackRun run;
-  for (int k = 1; k <= 40; ++k) {
+  // Fifteen seconds: each search runs a slice between scans, for a few
+  // seconds (as the session runs it, after each scan's pose).
+  for (int k = 1; k <= 150; ++k) {
     const auto synthetic = office.Scan(1081, rng);
     const ScanInput scan = testing::TrackerInput(synthetic, 0.1 * k);
     if (given_again_at >= 0.0 && scan.stamp >= given_again_at - 1e-9 &&
@@ -54,6 +56,7 @@ TrackRun Track(const geometry::Pose2D& start, double min_explained_share,
       run.jump = out.jump;
     }
     run.last = out.pose.pose;
+    tracker.Anticipate();
   }
   run.reacquisitions = tracker.Stats().reacquisitions;
   return run;

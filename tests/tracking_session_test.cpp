@@ -96,6 +96,34 @@ TEST_F(SessionTest, TheInitialCovarianceComesFromTheOptions) {
   EXPECT_NEAR(latest->pose.x, office.truth.x, 1e-12);
 }
 
+// Each tracked scan says where its update's time went, stage by stage, and
+// what the work between scans took (issue 37).
+TEST_F(SessionTest, ATrackedScanReportsItsTimeStageByStage) {
+  TrackingSession session(&office.world, office.options, options, Scheduling::kInOrder);
+  session.ExpectInitialPose(office.truth, TrackingSession::InitialPoseWhen::kAtFirstOdometry);
+  const geometry::Pose2D still{0, 0, 0};
+  for (int k = 0; k <= 3; ++k) ASSERT_TRUE(session.AddOdometry(0.1 * k, still, 0.0));
+  for (int k = 1; k <= 2; ++k) session.AddScan(HallScan(office, 0.1 * k, rng), 0.0);
+  int tracked = 0;
+  while (auto report = session.Next(0.0)) {
+    ASSERT_EQ(report->kind, ScanReport::Kind::kTracked);
+    ++tracked;
+    const auto& t = report->timings;
+    double stages = 0.0;
+    for (const double us : t.us) {
+      EXPECT_GE(us, 0.0);
+      stages += us;
+    }
+    EXPECT_GT(t[Stage::kExtraction], 0.0);
+    EXPECT_GT(t[Stage::kCheck], 0.0);
+    EXPECT_GT(t.total_cpu_us, 0.0);
+    EXPECT_LE(stages, t.total_us);
+    session.Anticipate();
+    EXPECT_GE(session.LastAnticipateCpuUs(), 0.0);
+  }
+  EXPECT_EQ(tracked, 2);
+}
+
 TEST_F(SessionTest, AnInitialPoseBeforeAnyOdometryWaitsForIt) {
   TrackingSession session(&office.world, office.options, options, Scheduling::kNewestWins);
   EXPECT_TRUE(session.WaitingForInitialPose());

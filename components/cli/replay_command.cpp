@@ -43,6 +43,10 @@ int ReplayCommand(const Invocation& inv) {
       {"plot", true, "PNG of map, scans, truth, odometry and estimate"},
       {"fixes-out", true, "also write the estimate as fixes.csv (with variances) for calibrate"},
       {"no-map", false, "pass odometry through (parse, filter and time only)"},
+      {"timings", false,
+       "print each stage's time per tracked scan (median, p99, max, mean): prefilter, "
+       "expectation, line fits, extraction, solve, whole-scan check, search, and the whole update "
+       "as wall and thread CPU time"},
       {"max-beams", true,
        "most beams per laser line; lines with more are malformed (default " +
            std::to_string(log_formats::CarmenLimits{}.max_beams) + ")"},
@@ -88,8 +92,10 @@ int ReplayCommand(const Invocation& inv) {
     };
     const auto report = replay::RunReplay(o);
     end_progress_line();
-    std::cout << replay::FormatReport(report) << "wrote " << o.out_tum
-              << (o.plot_path.empty() ? "" : " and " + o.plot_path) << "\n";
+    std::cout << replay::FormatReport(report);
+    if (cli.Has("timings")) std::cout << replay::FormatStageTimes(report);
+    std::cout << "wrote " << o.out_tum << (o.plot_path.empty() ? "" : " and " + o.plot_path)
+              << "\n";
     return 0;
   } catch (const config::ConfigError& e) {
     end_progress_line();

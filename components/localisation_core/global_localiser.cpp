@@ -137,7 +137,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   fine_gain_.resize(count);
   rank_gain_.resize(count);
   coarse_gain_.resize(count);
-  wall_.resize(count);
+  wall_distance_.resize(count);
   const double t = options.truncation_m, tr = options.rank_truncation_m;
   for (int r = 0; r < cells_.height; ++r) {
     for (int c = 0; c < cells_.width; ++c) {
@@ -149,7 +149,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
       const double sharp = std::min(d, tr);
       rank_gain_[i] = static_cast<float>(1.0 - sharp * sharp / (tr * tr));
       coarse_gain_[i] = static_cast<float>(1.0 - coarse * coarse / (t * t));
-      wall_[i] = image.at<uchar>(r, c) == 0 ? 1 : 0;
+      wall_distance_[i] = distance.at<float>(r, c);
     }
   }
 
@@ -157,7 +157,11 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   const double step = options.coarse_step_m;
   const int steps_x = static_cast<int>(std::floor((bounds[2] - bounds[0]) / step));
   const int steps_y = static_cast<int>(std::floor((bounds[3] - bounds[1]) / step));
+  lattice_.x0 = bounds[0];
+  lattice_.y0 = bounds[1];
+  lattice_.rows = steps_y + 1;
   for (int j = 0; j <= steps_y; ++j) {
+    lattice_.row_first.push_back(positions_.size());
     for (int i = 0; i <= steps_x; ++i) {
       const double x = bounds[0] + i * step, y = bounds[1] + j * step;
       const int c = static_cast<int>(std::floor((x - cells_.x0) / res));
@@ -166,6 +170,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
       if (distance.at<float>(r, c) * res >= options.clearance_m) positions_.emplace_back(x, y);
     }
   }
+  lattice_.row_first.push_back(positions_.size());
 }
 
 // Every `step`-th of the points, at most `most` of them, spread over the scan.
@@ -223,7 +228,8 @@ Readings GlobalLocaliser::UsableReadings(const Readings& readings) const {
 
 double GlobalLocaliser::FineScore(const std::vector<float>& gain,
                                   const std::vector<Eigen::Vector2d>& points,
-                                  const geometry::Pose2D& pose) const {
+                                  const geometry::Pose2D& pose, uint64_t* work) const {
+  if (work != nullptr) *work += points.size();
   double sum = 0.0;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
   for (const auto& p : points)
@@ -231,16 +237,29 @@ double GlobalLocaliser::FineScore(const std::vector<float>& gain,
   return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
 }
 
+// The samples every half cell from `from` to `to` (ends excluded), as many
+// as fit, each tested for lying in a wall cell; the distance field says how
+// many of the next samples are certainly clear, and those are skipped (the
+// result is that of testing every sample).
 bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
   const double res = options_.grid_resolution_m;
   const double length = (to - from).norm();
   const int steps = static_cast<int>(length / (0.5 * res));
-  for (int i = 1; i < steps; ++i) {
+  if (steps < 2) return false;
+  const double spacing = length / steps;
+  // A wall cell's points lie at least (d - sqrt 2) cells from any point of a
+  // cell whose centre is d cells from the wall cell's centre (with a margin
+  // for the field's rounding).
+  constexpr double kCellDiagonal = 1.4142135623730951 + 1e-3;
+  for (int i = 1; i < steps;) {
     const Eigen::Vector2d p = from + (to - from) * (double(i) / steps);
     const int c = static_cast<int>(std::floor((p.x() - cells_.x0) / res));
     const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
     if (c < 0 || r < 0 || c >= cells_.width || r >= cells_.height) return false;
-    if (wall_[static_cast<size_t>(r) * cells_.width + c]) return true;
+    const double d = wall_distance_[static_cast<size_t>(r) * cells_.width + c];
+    if (d == 0.0) return true;
+    const double clear_m = (d - kCellDiagonal) * res;
+    i += 1 + (clear_m > spacing ? static_cast<int>(clear_m / spacing) : 0);
   }
   return false;
 }
@@ -254,13 +273,16 @@ double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
     const Eigen::Vector2d origin =
         seen_from.empty() ? pose.Translation() : pose.Apply(seen_from[i]);
     const Eigen::Vector2d q = pose.Apply(points[i]);
+    // A point no surface explains adds nothing, whether its beam crossed a wall or not.
+    const double gain = Gain(rank_gain_, q.x(), q.y());
+    if (gain <= 0.0) continue;
     const double range = (q - origin).norm();
     if (range > options_.see_through_margin_m) {
       const Eigen::Vector2d short_end =
           origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
       if (CrossesWall(origin, short_end)) continue;
     }
-    sum += Gain(rank_gain_, q.x(), q.y());
+    sum += gain;
   }
   return sum / static_cast<double>(points.size());
 }
@@ -285,32 +307,60 @@ bool GlobalLocaliser::InWindow(const geometry::Pose2D& pose, const SearchWindow&
              window.heading_rad + options_.coarse_heading_step_rad;
 }
 
-// Hill climbing on the fine field: moves of one step in x, y or heading while
-// they raise the score, halving the steps when none does.
-geometry::Pose2D GlobalLocaliser::Refine(const std::vector<float>& gain,
-                                         const std::vector<Eigen::Vector2d>& points,
-                                         geometry::Pose2D pose, double step, double turn) const {
-  double score = FineScore(gain, points, pose);
-  while (step > 0.005) {
-    bool improved = false;
-    const geometry::Pose2D moves[6] = {{step, 0, 0},  {-step, 0, 0}, {0, step, 0},
-                                       {0, -step, 0}, {0, 0, turn},  {0, 0, -turn}};
-    for (const auto& m : moves) {
-      const geometry::Pose2D trial{pose.x + m.x, pose.y + m.y,
-                                   geometry::WrapAngle(pose.theta + m.theta)};
-      const double s = FineScore(gain, points, trial);
-      if (s > score) {
-        score = s;
-        pose = trial;
-        improved = true;
-      }
-    }
-    if (!improved) {
-      step *= 0.5;
-      turn *= 0.5;
+GlobalLocaliser::Climb GlobalLocaliser::StartClimb(const std::vector<float>& gain,
+                                                   const std::vector<Eigen::Vector2d>& points,
+                                                   const geometry::Pose2D& pose, double step,
+                                                   double turn, uint64_t* work) const {
+  return {pose, FineScore(gain, points, pose, work), step, turn};
+}
+
+// One round of hill climbing: a move of one step in x, y or heading wherever
+// it raises the score, the steps halved when none does.
+void GlobalLocaliser::ClimbRound(const std::vector<float>& gain,
+                                 const std::vector<Eigen::Vector2d>& points, Climb& climb,
+                                 uint64_t* work) const {
+  bool improved = false;
+  const double step = climb.step, turn = climb.turn;
+  const geometry::Pose2D moves[6] = {{step, 0, 0},  {-step, 0, 0}, {0, step, 0},
+                                     {0, -step, 0}, {0, 0, turn},  {0, 0, -turn}};
+  for (const auto& m : moves) {
+    const geometry::Pose2D trial{climb.pose.x + m.x, climb.pose.y + m.y,
+                                 geometry::WrapAngle(climb.pose.theta + m.theta)};
+    const double s = FineScore(gain, points, trial, work);
+    if (s > climb.score) {
+      climb.score = s;
+      climb.pose = trial;
+      improved = true;
     }
   }
-  return pose;
+  if (!improved) {
+    climb.step *= 0.5;
+    climb.turn *= 0.5;
+  }
+}
+
+std::vector<size_t> GlobalLocaliser::PositionsNear(const Eigen::Vector2d& centre,
+                                                   double radius_m) const {
+  std::vector<size_t> near;
+  const double step = options_.coarse_step_m;
+  const int first_row =
+      std::max(0, static_cast<int>(std::floor((centre.y() - radius_m - lattice_.y0) / step)));
+  const int last_row = std::min(
+      lattice_.rows - 1, static_cast<int>(std::ceil((centre.y() + radius_m - lattice_.y0) / step)));
+  for (int j = first_row; j <= last_row; ++j) {
+    // A row's positions run west to east.
+    const auto begin = positions_.begin() +
+                       static_cast<std::ptrdiff_t>(lattice_.row_first[static_cast<size_t>(j)]);
+    const auto end = positions_.begin() +
+                     static_cast<std::ptrdiff_t>(lattice_.row_first[static_cast<size_t>(j) + 1]);
+    auto it = std::lower_bound(begin, end, centre.x() - radius_m,
+                               [](const Eigen::Vector2d& p, double x) { return p.x() < x; });
+    for (; it != end && it->x() <= centre.x() + radius_m; ++it) {
+      if ((*it - centre).norm() <= radius_m)
+        near.push_back(static_cast<size_t>(it - positions_.begin()));
+    }
+  }
+  return near;
 }
 
 }  // namespace structloc::localisation_core

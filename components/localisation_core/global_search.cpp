@@ -1,13 +1,15 @@
-// The search of the global localiser (see global_localiser.hpp): the coarse
-// lattice of positions and headings on the blurred field, the refinement of
-// the best candidates on the fine field, the polishing and ranking of the
-// distinct poses, and the decision "found", "ambiguous" or "not found".
-#include "structloc/localisation_core/global_localiser.hpp"
-
+// The search of the global localiser (see global_localiser.hpp), as a
+// GlobalSearch done a slice at a time: the coarse lattice of positions and
+// headings on the blurred field, the refinement of the best candidates on the
+// fine field, the polishing and ranking of the distinct poses, and the
+// decision "found", "ambiguous" or "not found".
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
+
+#include "structloc/localisation_core/global_localiser.hpp"
 
 namespace structloc::localisation_core {
 namespace {
@@ -18,11 +20,13 @@ bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
          std::abs(geometry::WrapAngle(a.theta - b.theta)) > o.distinct_heading_rad;
 }
 
-struct CoarseHit {
-  float score;
-  int position;
-  int heading;
-};
+// A point checked for a beam through a wall (RankScore) costs about ten
+// lookups in a field.
+constexpr uint64_t kRankPointWork = 10;
+
+int Headings(const GlobalLocaliserOptions& o) {
+  return std::max(1, static_cast<int>(std::ceil(2 * geometry::kPi / o.coarse_heading_step_rad)));
+}
 
 }  // namespace
 
@@ -32,189 +36,284 @@ GlobalResult GlobalLocaliser::Locate(const std::vector<Eigen::Vector2d>& points,
 }
 
 GlobalResult GlobalLocaliser::Locate(const Readings& readings, const SearchWindow* window) const {
-  GlobalResult result;
-  result.scans = readings.scans;
-  const Readings usable = UsableReadings(readings);
-  const std::vector<Eigen::Vector2d>& all = usable.points;
-  const std::vector<Eigen::Vector2d> points = Spread(all, options_.max_points);
-  result.points_used = all.size();
-  if (all.size() < static_cast<size_t>(options_.min_points)) {
-    result.reason = "only " + std::to_string(all.size()) + " readings within " +
-                    std::to_string(options_.min_range_m) + ".." +
-                    std::to_string(options_.max_range_m) + " m";
-    return result;
+  GlobalSearch search(*this, readings,
+                      window != nullptr ? std::optional<SearchWindow>(*window) : std::nullopt);
+  search.Advance(std::numeric_limits<uint64_t>::max());
+  return search.Result();
+}
+
+uint64_t GlobalSearch::CoarseWork(const GlobalLocaliserOptions& options, size_t positions) {
+  return static_cast<uint64_t>(positions) * static_cast<uint64_t>(Headings(options)) *
+         static_cast<uint64_t>(options.coarse_points);
+}
+
+GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& readings,
+                           std::optional<SearchWindow> window)
+    : g_(localiser), window_(window) {
+  const auto& o = g_.options_;
+  result_.scans = readings.scans;
+  usable_ = g_.UsableReadings(readings);
+  const std::vector<Eigen::Vector2d>& all = usable_.points;
+  points_ = GlobalLocaliser::Spread(all, o.max_points);
+  result_.points_used = all.size();
+  phase_ = Phase::kDone;
+  if (all.size() < static_cast<size_t>(o.min_points)) {
+    result_.reason = "only " + std::to_string(all.size()) + " readings within " +
+                     std::to_string(o.min_range_m) + ".." + std::to_string(o.max_range_m) + " m";
+    return;
   }
   // With earlier scans, the newest scan's own readings: it must have enough.
-  const bool earlier = readings.newest_points && *readings.newest_points < readings.points.size();
-  Readings newest;
-  if (earlier) {
+  earlier_ = readings.newest_points && *readings.newest_points < readings.points.size();
+  if (earlier_) {
     const auto end = readings.points.begin() + static_cast<std::ptrdiff_t>(*readings.newest_points);
-    newest = UsableReadings(OneScan({readings.points.begin(), end}));
-    if (newest.points.size() < static_cast<size_t>(options_.min_points)) {
-      result.reason = "the newest scan has only " + std::to_string(newest.points.size()) +
-                      " readings within " + std::to_string(options_.min_range_m) + ".." +
-                      std::to_string(options_.max_range_m) + " m";
-      return result;
+    newest_ = g_.UsableReadings(OneScan({readings.points.begin(), end}));
+    if (newest_.points.size() < static_cast<size_t>(o.min_points)) {
+      result_.reason = "the newest scan has only " + std::to_string(newest_.points.size()) +
+                       " readings within " + std::to_string(o.min_range_m) + ".." +
+                       std::to_string(o.max_range_m) + " m";
+      return;
     }
   }
-  const std::vector<Eigen::Vector2d> coarse = Spread(points, options_.coarse_points);
-
-  // Coarse search: every candidate position at every heading, scan points
-  // looked up in the blurred field.
-  const double res = options_.grid_resolution_m;
-  const int headings = std::max(
-      1, static_cast<int>(std::ceil(2 * geometry::kPi / options_.coarse_heading_step_rad)));
-  const double heading_step = 2 * geometry::kPi / headings;
-  std::vector<float> offsets;  // per heading, per point: x, y in cells
-  offsets.reserve(static_cast<size_t>(headings) * coarse.size() * 2);
-  for (int h = 0; h < headings; ++h) {
-    const double c = std::cos(h * heading_step), s = std::sin(h * heading_step);
+  phase_ = Phase::kCoarse;
+  const std::vector<Eigen::Vector2d> coarse = GlobalLocaliser::Spread(points_, o.coarse_points);
+  coarse_count_ = coarse.size();
+  // Every candidate position at every heading, scan points looked up in the
+  // blurred field, offsets precomputed per heading.
+  const double res = o.grid_resolution_m;
+  headings_ = Headings(o);
+  heading_step_ = 2 * geometry::kPi / headings_;
+  offsets_.reserve(static_cast<size_t>(headings_) * coarse.size() * 2);
+  for (int h = 0; h < headings_; ++h) {
+    const double c = std::cos(h * heading_step_), s = std::sin(h * heading_step_);
     for (const auto& p : coarse) {
-      offsets.push_back(static_cast<float>((c * p.x() - s * p.y()) / res));
-      offsets.push_back(static_cast<float>((s * p.x() + c * p.y()) / res));
+      offsets_.push_back(static_cast<float>((c * p.x() - s * p.y()) / res));
+      offsets_.push_back(static_cast<float>((s * p.x() + c * p.y()) / res));
     }
   }
-  const int separation =
-      std::max(1, static_cast<int>(std::ceil(options_.distinct_heading_rad * 2 / heading_step)));
-  std::vector<CoarseHit> hits;
-  hits.reserve(positions_.size() * 2);
-  std::vector<float> scores(static_cast<size_t>(headings));
-  const size_t n = coarse.size();
+  work_ += offsets_.size();
+  separation_ =
+      std::max(1, static_cast<int>(std::ceil(o.distinct_heading_rad * 2 / heading_step_)));
   // A lattice position half a lattice diagonal outside the window can still
   // be the one nearest a pose inside it.
-  const double reach =
-      window != nullptr ? window->radius_m + options_.coarse_step_m * std::sqrt(0.5) : 0.0;
-  for (size_t k = 0; k < positions_.size(); ++k) {
-    if (window != nullptr && (positions_[k] - window->centre.Translation()).norm() > reach) {
+  if (window_) {
+    window_positions_ = g_.PositionsNear(window_->centre.Translation(),
+                                         window_->radius_m + o.coarse_step_m * std::sqrt(0.5));
+    work_ += window_positions_.size();
+  }
+  hits_.reserve(window_ ? 64 : g_.positions_.size() * 2);
+  scores_.resize(static_cast<size_t>(headings_));
+}
+
+bool GlobalSearch::Advance(uint64_t work) {
+  const uint64_t until = work > std::numeric_limits<uint64_t>::max() - work_
+                             ? std::numeric_limits<uint64_t>::max()
+                             : work_ + work;
+  do {
+    switch (phase_) {
+      case Phase::kCoarse:
+        if (next_ < PositionCount()) {
+          CoarsePosition(window_ ? window_positions_[next_] : next_);
+          ++next_;
+        } else {
+          SelectHits();
+        }
+        break;
+      case Phase::kRefine:
+        if (next_ < keep_) {
+          if (RefineHit(next_)) ++next_;
+        } else {
+          ChooseRanked();
+        }
+        break;
+      case Phase::kRank:
+        if (next_ < refined_.size()) {
+          if (RankCandidate(next_)) ++next_;
+        } else {
+          Decide();
+        }
+        break;
+      case Phase::kDone:
+        return true;
+    }
+  } while (work_ < until && phase_ != Phase::kDone);
+  return Done();
+}
+
+void GlobalSearch::CoarsePosition(size_t k) {
+  const auto& o = g_.options_;
+  const auto& cells = g_.cells_;
+  const double res = o.grid_resolution_m;
+  const float px = static_cast<float>((g_.positions_[k].x() - cells.x0) / res);
+  const float py = static_cast<float>((g_.positions_[k].y() - cells.y0) / res);
+  const size_t n = coarse_count_;
+  for (int h = 0; h < headings_; ++h) {
+    scores_[static_cast<size_t>(h)] = -1.0f;  // outside the window: never the best
+    if (window_ && std::abs(geometry::WrapAngle(h * heading_step_ - window_->centre.theta)) >
+                       window_->heading_rad + 0.5 * heading_step_) {
       continue;
     }
-    const float px = static_cast<float>((positions_[k].x() - cells_.x0) / res);
-    const float py = static_cast<float>((positions_[k].y() - cells_.y0) / res);
-    for (int h = 0; h < headings; ++h) {
-      scores[static_cast<size_t>(h)] = -1.0f;  // outside the window: never the best
-      if (window != nullptr &&
-          std::abs(geometry::WrapAngle(h * heading_step - window->centre.theta)) >
-              window->heading_rad + 0.5 * heading_step) {
-        continue;
-      }
-      const float* o = &offsets[static_cast<size_t>(h) * n * 2];
-      float sum = 0.0f;
-      for (size_t i = 0; i < n; ++i) {
-        const float fc = px + o[2 * i], fr = py + o[2 * i + 1];
-        if (!(fc >= 0.0f && fr >= 0.0f)) continue;  // off the grid (not truncated onto it)
-        const int c = static_cast<int>(fc), r = static_cast<int>(fr);
-        if (c < cells_.width && r < cells_.height)
-          sum += coarse_gain_[static_cast<size_t>(r) * cells_.width + c];
-      }
-      scores[static_cast<size_t>(h)] = sum;
+    const float* off = &offsets_[static_cast<size_t>(h) * n * 2];
+    float sum = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+      const float fc = px + off[2 * i], fr = py + off[2 * i + 1];
+      if (!(fc >= 0.0f && fr >= 0.0f)) continue;  // off the grid (not truncated onto it)
+      const int c = static_cast<int>(fc), r = static_cast<int>(fr);
+      if (c < cells.width && r < cells.height)
+        sum += g_.coarse_gain_[static_cast<size_t>(r) * cells.width + c];
     }
-    // The best heading here, and the best one clearly turned from it.
-    const int best =
-        static_cast<int>(std::max_element(scores.begin(), scores.end()) - scores.begin());
-    int second = -1;
-    for (int h = 0; h < headings; ++h) {
-      const int apart = std::min(std::abs(h - best), headings - std::abs(h - best));
-      if (apart >= separation && (second < 0 || scores[h] > scores[second])) second = h;
-    }
-    hits.push_back({scores[best], static_cast<int>(k), best});
-    if (second >= 0 && scores[second] >= 0.0f)
-      hits.push_back({scores[second], static_cast<int>(k), second});
+    scores_[static_cast<size_t>(h)] = sum;
+    work_ += n;
   }
-  const size_t keep = std::min(hits.size(), static_cast<size_t>(options_.coarse_keep));
-  std::partial_sort(hits.begin(), hits.begin() + keep, hits.end(),
-                    [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
+  // The best heading here, and the best one clearly turned from it.
+  const int best =
+      static_cast<int>(std::max_element(scores_.begin(), scores_.end()) - scores_.begin());
+  int second = -1;
+  for (int h = 0; h < headings_; ++h) {
+    const int apart = std::min(std::abs(h - best), headings_ - std::abs(h - best));
+    if (apart >= separation_ && (second < 0 || scores_[h] > scores_[second])) second = h;
+  }
+  hits_.push_back({scores_[best], static_cast<int>(k), best});
+  if (second >= 0 && scores_[second] >= 0.0f)
+    hits_.push_back({scores_[second], static_cast<int>(k), second});
+}
 
-  // Refinement on the fine field; poses that converged to the same place
-  // count once.
+void GlobalSearch::SelectHits() {
+  keep_ = std::min(hits_.size(), static_cast<size_t>(g_.options_.coarse_keep));
+  std::partial_sort(hits_.begin(), hits_.begin() + static_cast<std::ptrdiff_t>(keep_), hits_.end(),
+                    [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
+  work_ += hits_.size();
+  phase_ = Phase::kRefine;
+  next_ = 0;
+}
+
+// Refinement on the fine field, a round of the climb at a time.
+bool GlobalSearch::RefineHit(size_t i) {
+  const auto& o = g_.options_;
+  if (!climb_) {
+    const auto& hit = hits_[i];
+    const geometry::Pose2D start{g_.positions_[hit.position].x(), g_.positions_[hit.position].y(),
+                                 geometry::WrapAngle(hit.heading * heading_step_)};
+    climb_ = g_.StartClimb(g_.fine_gain_, points_, start, 0.5 * o.coarse_step_m,
+                           0.5 * o.coarse_heading_step_rad, &work_);
+    return false;
+  }
+  if (!climb_->Done()) {
+    g_.ClimbRound(g_.fine_gain_, points_, *climb_, &work_);
+    return false;
+  }
+  const geometry::Pose2D pose = climb_->pose;
+  climb_.reset();
+  if (window_ && !g_.InWindow(pose, *window_)) return true;  // climbed out of it
+  converged_.push_back({pose, g_.FineScore(g_.fine_gain_, points_, pose, &work_), std::nullopt});
+  return true;
+}
+
+// Poses that converged to the same place count once; the best distinct ones
+// go on to be ranked.
+void GlobalSearch::ChooseRanked() {
+  const auto& o = g_.options_;
   auto by_score = [](const GlobalCandidate& a, const GlobalCandidate& b) {
     return a.score > b.score;
   };
-  std::vector<GlobalCandidate> converged;
-  for (size_t i = 0; i < keep; ++i) {
-    const auto& hit = hits[i];
-    const geometry::Pose2D start{positions_[hit.position].x(), positions_[hit.position].y(),
-                                 geometry::WrapAngle(hit.heading * heading_step)};
-    const geometry::Pose2D pose = Refine(fine_gain_, points, start, 0.5 * options_.coarse_step_m,
-                                         0.5 * options_.coarse_heading_step_rad);
-    if (window != nullptr && !InWindow(pose, *window)) continue;  // climbed out of it
-    converged.push_back({pose, FineScore(fine_gain_, points, pose), std::nullopt});
-  }
-  std::sort(converged.begin(), converged.end(), by_score);
-  std::vector<GlobalCandidate> refined;
-  for (const auto& candidate : converged) {
-    if (refined.size() >= static_cast<size_t>(options_.ranked)) break;
+  std::sort(converged_.begin(), converged_.end(), by_score);
+  for (const auto& candidate : converged_) {
+    if (refined_.size() >= static_cast<size_t>(o.ranked)) break;
     bool seen = false;
-    for (const auto& r : refined) {
+    for (const auto& r : refined_) {
       seen = seen || (std::hypot(r.pose.x - candidate.pose.x, r.pose.y - candidate.pose.y) < 0.1 &&
                       std::abs(geometry::WrapAngle(r.pose.theta - candidate.pose.theta)) < 0.035);
     }
-    if (!seen) refined.push_back(candidate);
+    if (!seen) refined_.push_back(candidate);
   }
   // The best pose distinct from the best one must be ranked too, however many
   // near-duplicates of the best outscored it in the refinement: without it a
   // symmetric twin would never be weighed and the best would look unrivalled.
-  if (!refined.empty()) {
-    const bool rivalled = std::any_of(refined.begin() + 1, refined.end(), [&](const auto& r) {
-      return Distinct(r.pose, refined.front().pose, options_);
+  if (!refined_.empty()) {
+    const bool rivalled = std::any_of(refined_.begin() + 1, refined_.end(), [&](const auto& r) {
+      return Distinct(r.pose, refined_.front().pose, o);
     });
     if (!rivalled) {
-      const auto twin = std::find_if(converged.begin(), converged.end(), [&](const auto& c) {
-        return Distinct(c.pose, refined.front().pose, options_);
+      const auto twin = std::find_if(converged_.begin(), converged_.end(), [&](const auto& c) {
+        return Distinct(c.pose, refined_.front().pose, o);
       });
-      if (twin != converged.end()) refined.push_back(*twin);
+      if (twin != converged_.end()) refined_.push_back(*twin);
     }
   }
-  // Polishing on the sharp field with all points, and ranking.
-  for (auto& candidate : refined) {
-    candidate.pose = Refine(rank_gain_, all, candidate.pose, 0.05, 0.01);
-    candidate.score = window != nullptr && !InWindow(candidate.pose, *window)
-                          ? 0.0
-                          : RankScore(all, usable.seen_from, candidate.pose);
+  work_ += converged_.size();
+  phase_ = Phase::kRank;
+  next_ = 0;
+}
+
+// Polishing on the sharp field with all points, a round at a time, and ranking.
+bool GlobalSearch::RankCandidate(size_t i) {
+  auto& candidate = refined_[i];
+  if (!climb_) {
+    climb_ = g_.StartClimb(g_.rank_gain_, usable_.points, candidate.pose, 0.05, 0.01, &work_);
+    return false;
   }
-  std::sort(refined.begin(), refined.end(), by_score);
-  if (refined.empty()) {
-    result.reason = std::string(window != nullptr ? "the search window has" : "the map has") +
-                    " no place clear of walls by " + std::to_string(options_.clearance_m) + " m";
-    return result;
+  if (!climb_->Done()) {
+    g_.ClimbRound(g_.rank_gain_, usable_.points, *climb_, &work_);
+    return false;
+  }
+  candidate.pose = climb_->pose;
+  climb_.reset();
+  candidate.score = window_ && !g_.InWindow(candidate.pose, *window_)
+                        ? 0.0
+                        : g_.RankScore(usable_.points, usable_.seen_from, candidate.pose);
+  work_ += kRankPointWork * usable_.points.size();
+  return true;
+}
+
+void GlobalSearch::Decide() {
+  const auto& o = g_.options_;
+  phase_ = Phase::kDone;
+  std::sort(refined_.begin(), refined_.end(),
+            [](const GlobalCandidate& a, const GlobalCandidate& b) { return a.score > b.score; });
+  if (refined_.empty()) {
+    result_.reason = std::string(window_ ? "the search window has" : "the map has") +
+                     " no place clear of walls by " + std::to_string(o.clearance_m) + " m";
+    return;
   }
   // With earlier scans, how much of the newest scan alone a pose explains
   // (asked only of the best and of the poses close to it on all readings).
   auto newest_share = [&](GlobalCandidate& c) {
-    if (!c.newest_score) c.newest_score = RankScore(newest.points, {}, c.pose);
+    if (!c.newest_score) {
+      c.newest_score = g_.RankScore(newest_.points, {}, c.pose);
+      work_ += kRankPointWork * newest_.points.size();
+    }
     return *c.newest_score;
   };
-  const double margin = options_.ambiguity_margin;
-  if (earlier) newest_share(refined.front());
+  const double margin = o.ambiguity_margin;
+  if (earlier_) newest_share(refined_.front());
   bool ambiguous = false;
   std::optional<size_t> rival;
-  for (size_t i = 1; i < refined.size() && !ambiguous; ++i) {
-    if (!Distinct(refined[i].pose, refined.front().pose, options_)) continue;
-    ambiguous = refined[i].score > refined.front().score - margin &&
-                (!earlier || newest_share(refined[i]) > *refined.front().newest_score - margin);
+  for (size_t i = 1; i < refined_.size() && !ambiguous; ++i) {
+    if (!Distinct(refined_[i].pose, refined_.front().pose, o)) continue;
+    ambiguous = refined_[i].score > refined_.front().score - margin &&
+                (!earlier_ || newest_share(refined_[i]) > *refined_.front().newest_score - margin);
     if (!rival || ambiguous) rival = i;
   }
-  result.best = refined.front();
-  if (rival) result.runner_up = refined[*rival];
+  result_.best = refined_.front();
+  if (rival) result_.runner_up = refined_[*rival];
   const auto too_little = [&](double share, const char* of) {
     return "the best pose explains only " + std::to_string(static_cast<int>(100 * share)) +
-           " % of " + of + " (at least " +
-           std::to_string(static_cast<int>(100 * options_.min_score)) + " % needed)";
+           " % of " + of + " (at least " + std::to_string(static_cast<int>(100 * o.min_score)) +
+           " % needed)";
   };
-  if (result.best->score < options_.min_score) {
-    result.decision = GlobalDecision::kNotFound;
-    result.reason = too_little(result.best->score, earlier ? "the readings" : "the scan");
-  } else if (earlier && *result.best->newest_score < options_.min_score) {
-    result.decision = GlobalDecision::kNotFound;
-    result.reason = too_little(*result.best->newest_score, "the newest scan alone");
+  if (result_.best->score < o.min_score) {
+    result_.decision = GlobalDecision::kNotFound;
+    result_.reason = too_little(result_.best->score, earlier_ ? "the readings" : "the scan");
+  } else if (earlier_ && *result_.best->newest_score < o.min_score) {
+    result_.decision = GlobalDecision::kNotFound;
+    result_.reason = too_little(*result_.best->newest_score, "the newest scan alone");
   } else if (ambiguous) {
-    result.decision = GlobalDecision::kAmbiguous;
-    result.reason = earlier
-                        ? "a distinct pose explains the scan and the ones before it nearly as well"
-                        : "a distinct pose explains the scan nearly as well";
+    result_.decision = GlobalDecision::kAmbiguous;
+    result_.reason = earlier_
+                         ? "a distinct pose explains the scan and the ones before it nearly as well"
+                         : "a distinct pose explains the scan nearly as well";
   } else {
-    result.decision = GlobalDecision::kFound;
+    result_.decision = GlobalDecision::kFound;
   }
-  return result;
 }
 
 }  // namespace structloc::localisation_core

@@ -77,7 +77,17 @@ int LocalisationResult::Matched() const {
   return n;
 }
 
+double LocalisationResult::ExtractUs() const {
+  double us = 0.0;
+  for (const auto& k : features) us += k.extract_us;
+  return us;
+}
+
 namespace {
+
+// Places whose visibility is kept (VisibilityCache): the robot's surroundings
+// for a loop through a few rooms.
+constexpr size_t kVisibilityPlaces = 64;
 
 std::vector<std::unique_ptr<FeatureExtractor>> ValidatedExtractors(
     const world_model::WorldModel& world, const LocaliserOptions& options) {
@@ -99,6 +109,8 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
       options_(options),
       scene_(world_model::Scene::FromWorld(world)),
       lines_(GroupCollinearWalls(world)),
+      visibility_cache_(world, scene_, options.visibility.refresh_distance_m,
+                        options.visibility.refresh_angle_rad, kVisibilityPlaces),
       extractors_(std::move(extractors)) {
   options_.Validate();
   wall_line_of_.assign(world.Walls().size(), 0);
@@ -107,7 +119,6 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   }
   const size_t beams = static_cast<size_t>(options_.max_beams);
   const size_t nc = world.Corners().size(), ny = world.Cylinders().size();
-  visibility_.Reserve(world, scene_);
   directions_.Reserve(beams);
   points_.Reserve(beams);
   keep_.reserve(beams);
@@ -127,32 +138,26 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   }
 }
 
-bool Localiser::VisibilityStale(const geometry::Pose2D& sensor_pose,
-                                const world_model::VisibilityOptions& view) const {
-  const auto& v = options_.visibility;
-  const bool full_circle = view.view_max_rad - view.view_min_rad >= 2 * geometry::kPi - 1e-9;
-  return !visibility_valid_ || !SameView(view, visibility_view_) ||
-         (sensor_pose.Translation() - visibility_pose_.Translation()).norm() >=
-             v.refresh_distance_m ||
-         (!full_circle && std::abs(geometry::WrapAngle(
-                              sensor_pose.theta - visibility_pose_.theta)) >= v.refresh_angle_rad);
-}
-
 void Localiser::Anticipate(const geometry::Pose2D& robot_pose) {
-  if (!visibility_valid_ || !geometry::IsFinite(robot_pose)) return;
-  const geometry::Pose2D sensor_pose = geometry::Compose(robot_pose, options_.sensor_mount);
-  if (!VisibilityStale(sensor_pose, visibility_view_)) return;
-  world_model::ComputeVisibility(world_, scene_, sensor_pose, visibility_view_, visibility_);
-  visibility_pose_ = sensor_pose;
+  if (!visibility_cache_.View() || !geometry::IsFinite(robot_pose)) return;
+  // Where the newest estimate has the sensor (the next scan is taken near
+  // it), when no visibility holds there yet.
+  const geometry::Pose2D sensor = geometry::Compose(robot_pose, options_.sensor_mount);
+  if (visibility_entry_ >= 0 && visibility_cache_.Holds(visibility_entry_, sensor)) return;
+  if (visibility_cache_.Find(sensor) < 0) visibility_cache_.Compute(sensor, visibility_entry_);
 }
 
 void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan) {
-  const world_model::VisibilityOptions view = ScanVisibility(options_, scan);
-  if (!VisibilityStale(sensor_pose, view)) return;
-  world_model::ComputeVisibility(world_, scene_, sensor_pose, view, visibility_);
-  visibility_pose_ = sensor_pose;
-  visibility_view_ = view;
-  visibility_valid_ = true;
+  if (visibility_cache_.SetView(ScanVisibility(options_, scan))) visibility_entry_ = -1;
+  if (visibility_entry_ >= 0 && visibility_cache_.Holds(visibility_entry_, sensor_pose)) return;
+  int entry = visibility_cache_.Find(sensor_pose);
+  // Nothing to fall back on (the first scan, or a new view): computed here.
+  if (entry < 0 && visibility_entry_ < 0) entry = visibility_cache_.Compute(sensor_pose);
+  if (entry >= 0) {
+    visibility_entry_ = entry;
+  } else {
+    ++stale_visibility_updates_;
+  }
 }
 
 void Localiser::ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose) {
@@ -227,8 +232,10 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   const Eigen::Matrix3d sensor_prior_cov = jm * input.odometry_covariance * jm.transpose();
 
   RefreshVisibility(sensor_prior, scan);
-  ComputeExpectedFeatures(world_, lines_, wall_line_of_, visibility_, sensor_prior, expected_);
+  ComputeExpectedFeatures(world_, lines_, wall_line_of_, visibility_cache_.At(visibility_entry_),
+                          sensor_prior, expected_);
   ApplyMapErrorMemory(sensor_prior);
+  const auto t_expected = Clock::now();
 
   // 1. Prefilter (+ de-skew before the neighbourhood tests).
   directions_.Update(scan);
@@ -253,7 +260,8 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   last_pose_ = result_.pose;
   last_covariance_ = result_.covariance;
   auto& times = result_.times;
-  times.prefilter_us = Us(t0, t1);
+  times.expectation_us = Us(t0, t_expected);
+  times.prefilter_us = Us(t_expected, t1);
   times.line_fit_us = Us(t1, t2);
   times.solve_us = Us(t3, t4);
   times.total_us = Us(t0, t4);

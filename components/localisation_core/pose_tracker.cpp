@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +51,13 @@ Eigen::Matrix3d TrackerOptions::InitialCovariance() const {
   return Eigen::Vector3d(xy, xy, initial_sigma_theta_rad * initial_sigma_theta_rad).asDiagonal();
 }
 
+TrackerStats PoseTracker::Stats() const {
+  TrackerStats stats = stats_;
+  stats.visibility_computations = localiser_.VisibilityComputations();
+  stats.stale_visibility_updates = localiser_.StaleVisibilityUpdates();
+  return stats;
+}
+
 uint64_t TrackerStats::Rejected() const {
   uint64_t n = 0;
   for (auto c : rejected) n += c;
@@ -57,6 +65,11 @@ uint64_t TrackerStats::Rejected() const {
 }
 
 namespace {
+double MicrosecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 // Two searches that arrive at corrections this close agree.
 constexpr double kSameCorrectionM = 0.2;
 constexpr double kSameCorrectionRad = 0.087;  // 5 deg
@@ -153,6 +166,7 @@ std::optional<Rejection> PoseTracker::SetInitialPose(double stamp, const geometr
   // A search before this pose was given must neither hurry nor confirm the next one.
   low_share_since_ = -1.0;
   pending_correction_.reset();
+  search_task_.reset();
   return std::nullopt;
 }
 
@@ -160,10 +174,14 @@ void PoseTracker::ForgetPose() {
   initialised_ = false;
   low_share_since_ = -1.0;
   pending_correction_.reset();
+  search_task_.reset();
 }
 
 void PoseTracker::Anticipate() {
   if (const auto latest = Latest()) localiser_.Anticipate(latest->pose);
+  if (search_task_ && !search_task_->Done()) {
+    search_task_->Advance(static_cast<uint64_t>(options_.search_work_per_scan));
+  }
 }
 
 std::optional<TrackedPose> PoseTracker::Latest() const {
@@ -246,6 +264,7 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   const bool usable = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
   bool refused = false;
   double share = -1.0;
+  const auto check_start = std::chrono::steady_clock::now();
   if (search_ != nullptr) {
     CollectCheckPoints(scan);
     // The correction must not make the map explain less of the scan. Below a
@@ -259,11 +278,14 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     }
     if (refused) ++stats_.corrections_refused;
   }
+  out.check_us = MicrosecondsSince(check_start);
   out.pinned_directions = refused ? 0 : Correct(r, in, odom);
   map_to_odom_ = geometry::Compose(filter_.Pose(), geometry::Inverse(odom));
   if (search_ != nullptr) {
     out.explained_share = share;  // at the prior or the localiser's correction of it
+    const auto search_start = std::chrono::steady_clock::now();
     Reacquire(scan, out);
+    out.search_us = MicrosecondsSince(search_start);
   }
   const Eigen::Matrix3d covariance = filter_.PoseCovariance();
   const double sigma_xy =
@@ -312,23 +334,41 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
       check_points_.size() < static_cast<size_t>(o.min_points)) {
     low_share_since_ = -1.0;
     pending_correction_.reset();
+    search_task_.reset();  // explained again: nothing to find
     return;
   }
   if (low_share_since_ < 0.0) low_share_since_ = scan.stamp;
-  if (scan.stamp - low_share_since_ < options_.reacquire_after_s) return;
-  // Lost: search around the tracked pose, as far as its uncertainty says.
-  const Eigen::Matrix3d p = filter_.PoseCovariance();
-  // The position's largest standard deviation, along its principal axis.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> position(p.topLeftCorner<2, 2>());
-  const double sigma_xy = std::sqrt(std::max(0.0, position.eigenvalues().maxCoeff()));
-  const geometry::Pose2D mount = localiser_.Options().sensor_mount;
-  SearchWindow window;
-  window.centre = geometry::Compose(filter_.Pose(), mount);
-  // At least 0.5 m, at most reacquire_max_radius_m (even when that is smaller).
-  window.radius_m = std::min(std::max(3.0 * sigma_xy + 0.5, 0.5), options_.reacquire_max_radius_m);
-  window.heading_rad = std::clamp(3.0 * std::sqrt(p(2, 2)) + 0.2, 0.2, geometry::kPi);
-  const GlobalResult found = search_->Locate(check_points_, &window);
-  low_share_since_ = scan.stamp;  // search again after another reacquire_after_s
+  if (!search_task_) {
+    if (scan.stamp - low_share_since_ < options_.reacquire_after_s) return;
+    // Lost: search around the tracked pose, as far as its uncertainty says.
+    const Eigen::Matrix3d p = filter_.PoseCovariance();
+    // The position's largest standard deviation, along its principal axis.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> position(p.topLeftCorner<2, 2>());
+    const double sigma_xy = std::sqrt(std::max(0.0, position.eigenvalues().maxCoeff()));
+    SearchWindow window;
+    window.centre = geometry::Compose(filter_.Pose(), localiser_.Options().sensor_mount);
+    // At least 0.5 m, at most reacquire_max_radius_m (even when that is smaller).
+    window.radius_m =
+        std::min(std::max(3.0 * sigma_xy + 0.5, 0.5), options_.reacquire_max_radius_m);
+    window.heading_rad = std::clamp(3.0 * std::sqrt(p(2, 2)) + 0.2, 0.2, geometry::kPi);
+    search_points_ = check_points_;
+    search_odometry_ = odom_at_last_update_;
+    search_share_ = out.explained_share;
+    search_stamp_ = scan.stamp;
+    search_task_.emplace(*search_, OneScan(search_points_), window);
+    return;  // searched between scans, a slice at a time (Anticipate)
+  }
+  if (!search_task_->Done()) return;
+  const GlobalResult found = search_task_->Result();
+  search_task_.reset();
+  // The next search reacquire_after_s after this one started (at once when
+  // this one took longer): searches start no more often than that, and each
+  // searches a scan taken further along.
+  low_share_since_ = search_stamp_;
+  ApplySearch(found, out);
+}
+
+void PoseTracker::ApplySearch(const GlobalResult& found, ScanOutcome& out) {
   // A jump must be worth it: the found pose explains at least min_explained_share
   // more of the scan than the tracked one (an unmapped room explains little
   // anywhere; coasting on odometry through it beats jumping to a chance fit).
@@ -336,17 +376,20 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
   // lacks (or changed), not evidence of being lost; the tracker coasts and
   // its uncertainty decides (lost_sigma_m).
   if (found.decision != GlobalDecision::kFound ||
-      found.best->score < out.explained_share + options_.min_explained_share) {
+      found.best->score < search_share_ + options_.min_explained_share) {
     pending_correction_.reset();
     return;
   }
-  const geometry::Pose2D pose = geometry::Compose(found.best->pose, geometry::Inverse(mount));
+  const geometry::Pose2D mount = localiser_.Options().sensor_mount;
+  // The robot where the searched scan was taken, and so the map -> odom
+  // correction (which odometry carries to the newest scan).
+  const geometry::Pose2D searched = geometry::Compose(found.best->pose, geometry::Inverse(mount));
+  const geometry::Pose2D correction =
+      geometry::Compose(searched, geometry::Inverse(search_odometry_));
   // And it must be found twice: the next search, after more driving, must
   // arrive at the same map -> odom correction. A chance fit (a stretch of
   // corridor the map has fewer walls of, a room like the one the robot is in)
   // moves with the robot; where the robot really is does not.
-  const geometry::Pose2D correction =
-      geometry::Compose(pose, geometry::Inverse(odom_at_last_update_));
   const bool confirmed =
       pending_correction_ &&
       (correction.Translation() - pending_correction_->Translation()).norm() <= kSameCorrectionM &&
@@ -357,10 +400,11 @@ void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {
     return;
   }
   pending_correction_.reset();
+  const geometry::Pose2D pose = geometry::Compose(correction, odom_at_last_update_);
   const geometry::Pose2D before = filter_.Pose();
   out.jump = {pose.x - before.x, pose.y - before.y, geometry::WrapAngle(pose.theta - before.theta)};
   filter_.Reset(pose, options_.InitialCovariance());
-  map_to_odom_ = geometry::Compose(pose, geometry::Inverse(odom_at_last_update_));
+  map_to_odom_ = correction;
   out.reacquired = true;
   out.explained_share = found.best->score;
   low_share_since_ = -1.0;

@@ -230,10 +230,12 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
       pending_pose_.reset();
     }
   }
+  const double cpu0 = ThreadCpuMicroseconds();
   const auto t0 = std::chrono::steady_clock::now();
   const auto outcome = tracker_->ProcessScan(scan.View(), waited_s);
   const double update_us =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  const double update_cpu_us = ThreadCpuMicroseconds() - cpu0;
   if (outcome.verdict == PoseTracker::ScanVerdict::kWaitForOdometry) {
     *wait = true;
     return {};
@@ -255,11 +257,27 @@ ScanReport TrackingSession::Process(const WaitingScan& waiting, double waited_s,
   report.jump = outcome.jump;
   report.odometry = odom;
   report.update_us = update_us;
+  const auto& times = outcome.result->times;
+  auto& t = report.timings;
+  t[Stage::kPrefilter] = times.prefilter_us;
+  t[Stage::kExpectation] = times.expectation_us;
+  t[Stage::kLineFit] = times.line_fit_us;
+  t[Stage::kExtraction] = outcome.result->ExtractUs();
+  t[Stage::kSolve] = times.solve_us;
+  t[Stage::kCheck] = outcome.check_us;
+  t[Stage::kSearch] = outcome.search_us;
+  t.total_us = update_us;
+  t.total_cpu_us = update_cpu_us;
   return report;
 }
 
 void TrackingSession::Anticipate() {
+  const double cpu0 = ThreadCpuMicroseconds();
+  const auto t0 = std::chrono::steady_clock::now();
   if (tracker_ && tracker_->HasInitialPose()) tracker_->Anticipate();
+  anticipate_us_ =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  anticipate_cpu_us_ = ThreadCpuMicroseconds() - cpu0;
 }
 
 std::optional<TrackedPose> TrackingSession::Latest() const {

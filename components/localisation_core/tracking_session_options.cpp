@@ -68,6 +68,10 @@ config::OptionFile<SessionOptions> SessionOptionFile() {
            "how long the share may stay low before a local search");
   t.Number("reacquire_max_radius_m", &S::tracker, &T::reacquire_max_radius_m, Range::Positive(),
            "m", "the local search's largest radius around the tracked pose");
+  t.Number("search_work_per_scan", &S::tracker, &T::search_work_per_scan, Range::Closed(1000, 1e9),
+           "",
+           "the local search's slice between scans, in points looked up (about 10 ns each): "
+           "searching never stalls the tracking");
   t.Number("state_period_s", &S::state_period_s, Range::Positive(), "s",
            "how often the pose is due to be saved");
   t.Number("lost_error_after_s", &S::lost_error_after_s, Range::NonNegative(), "s",

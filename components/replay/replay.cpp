@@ -120,7 +120,10 @@ class Replayer {
     report_.lost_periods = session_->LostPeriods();
     report_.lost_duration_s = session_->LostSeconds();
     report_.longest_lost_s = session_->LongestLostSeconds();
-    report_.corrections_refused = session_->Stats().corrections_refused;
+    const auto stats = session_->Stats();
+    report_.corrections_refused = stats.corrections_refused;
+    report_.visibility_computations = stats.visibility_computations;
+    report_.stale_visibility_updates = stats.stale_visibility_updates;
     report_.log = reader_->Stats();
     if (report_.scans_used == 0) {
       throw std::runtime_error(o_.log_path + ": no scan could be localised, nothing written\n" +
@@ -236,6 +239,9 @@ class Replayer {
     while (auto report = session_->Next(0.0, end)) {
       Handle(*report);
       session_->Anticipate();  // as the component does after publishing
+      if (report->kind == ScanReport::Kind::kTracked && !stage_times_.empty()) {
+        between_us_.push_back({session_->LastAnticipateUs(), session_->LastAnticipateCpuUs()});
+      }
     }
   }
 
@@ -259,6 +265,7 @@ class Replayer {
       ++report_.scans_rejected[RejectionReason(report)];
       return;
     }
+    stage_times_.push_back(report.timings);
     const auto& r = *report.result;
     ++report_.scans_used;
     features_ += r.Matched();
@@ -324,6 +331,7 @@ class Replayer {
         report_.scans_used > 0 ? static_cast<double>(features_) / report_.scans_used : 0.0;
     report_.median_update_us = Percentile(times_us_, 0.5);
     report_.p99_update_us = Percentile(times_us_, 0.99);
+    SummariseStageTimes();
     if (!o_.truth_path.empty()) {
       report_.estimate_error = CompareTrajectories(report_.estimate, truth_);
       report_.odometry_error = CompareTrajectories(odometry_only_, truth_);
@@ -412,6 +420,45 @@ class Replayer {
   std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled
   ReplayReport report_;
   std::vector<double> times_us_;
+  std::vector<localisation_core::StageTimings> stage_times_;
+  // After each tracked scan: the work between scans (Anticipate), wall and CPU.
+  std::vector<std::pair<double, double>> between_us_;
+
+  void SummariseStageTimes() {
+    if (stage_times_.empty()) return;
+    const auto summary = [this](const std::string& what, auto of) {
+      std::vector<double> v;
+      v.reserve(stage_times_.size());
+      for (const auto& t : stage_times_) v.push_back(of(t));
+      double sum = 0.0;
+      for (const double x : v) sum += x;
+      report_.stage_times.push_back({what, Percentile(v, 0.5), Percentile(v, 0.99),
+                                     *std::max_element(v.begin(), v.end()),
+                                     sum / static_cast<double>(v.size())});
+    };
+    for (size_t k = 0; k < localisation_core::kStageNames.size(); ++k) {
+      summary(localisation_core::kStageNames[k], [k](const auto& t) { return t.us[k]; });
+    }
+    summary("update (wall)", [](const auto& t) { return t.total_us; });
+    summary("update (thread CPU)", [](const auto& t) { return t.total_cpu_us; });
+    if (between_us_.size() != stage_times_.size()) return;
+    // What the tracking costs in all, the searches and visibility between
+    // scans included (the lost-mode budget is on its mean).
+    std::vector<double> between, all;
+    for (size_t i = 0; i < between_us_.size(); ++i) {
+      between.push_back(between_us_[i].second);
+      all.push_back(stage_times_[i].total_cpu_us + between_us_[i].second);
+    }
+    const auto add = [this](const std::string& what, std::vector<double> v) {
+      double sum = 0.0;
+      for (const double x : v) sum += x;
+      const double max = *std::max_element(v.begin(), v.end());
+      report_.stage_times.push_back({what, Percentile(v, 0.5), Percentile(v, 0.99), max,
+                                     sum / static_cast<double>(v.size())});
+    };
+    add("between scans (CPU)", between);
+    add("scan + between (CPU)", all);
+  }
   size_t features_ = 0;
   std::vector<Eigen::Vector2d> scan_points_;
   localisation_core::BeamDirections directions_;
@@ -449,6 +496,24 @@ std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts) {
     }
     if (!a.result.reason.empty()) out << "; " << a.result.reason;
     out << std::setprecision(2) << " (" << a.seconds << " s)\n";
+  }
+  return out.str();
+}
+
+std::string FormatStageTimes(const ReplayReport& r) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(1);
+  out << "time per tracked scan, us (" << r.scans_used << " scans; " << r.visibility_computations
+      << " visibilities computed, " << r.stale_visibility_updates
+      << " updates with the one of the place before):\n";
+  out << "  " << std::left << std::setw(22) << "stage" << std::right << std::setw(10) << "median"
+      << std::setw(10) << "p99" << std::setw(10) << "max" << std::setw(10) << "mean"
+      << "\n";
+  for (const auto& t : r.stage_times) {
+    out << "  " << std::left << std::setw(22) << t.what << std::right << std::setw(10)
+        << t.median_us << std::setw(10) << t.p99_us << std::setw(10) << t.max_us << std::setw(10)
+        << t.mean_us << "\n";
   }
   return out.str();
 }

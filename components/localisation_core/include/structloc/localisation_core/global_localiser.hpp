@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -117,6 +118,8 @@ std::vector<Eigen::Vector2d> ScanPointsInLaserFrame(const std::vector<float>& ra
                                                     double angle_min, double angle_increment,
                                                     double min_range_m, double max_range_m);
 
+class GlobalSearch;
+
 class GlobalLocaliser {
  public:
   // Draws the world and computes its distance field. Throws
@@ -147,6 +150,7 @@ class GlobalLocaliser {
   const GlobalLocaliserOptions& Options() const { return options_; }
 
  private:
+  friend class GlobalSearch;
   struct Cells {
     int width = 0;
     int height = 0;
@@ -158,8 +162,9 @@ class GlobalLocaliser {
   static std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, int most);
   static Readings Spread(const Readings& readings, int most);
   Readings UsableReadings(const Readings& readings) const;
+  // `work`, when given, counts the points looked up.
   double FineScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
-                   const geometry::Pose2D& pose) const;
+                   const geometry::Pose2D& pose, uint64_t* work = nullptr) const;
   // seen_from empty: every point seen from the pose itself.
   double RankScore(const std::vector<Eigen::Vector2d>& points,
                    const std::vector<Eigen::Vector2d>& seen_from,
@@ -167,17 +172,103 @@ class GlobalLocaliser {
   bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   bool InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const;
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame
-  geometry::Pose2D Refine(const std::vector<float>& gain,
-                          const std::vector<Eigen::Vector2d>& points, geometry::Pose2D pose,
-                          double step, double turn) const;
+  // Hill climbing on a field, a round at a time (so that a search's slice
+  // can stop between rounds): from `pose` with moves of `step` and `turn`,
+  // halved whenever no move raises the score, until the step is below 5 mm.
+  struct Climb {
+    geometry::Pose2D pose;
+    double score = 0.0, step = 0.0, turn = 0.0;
+    bool Done() const { return !(step > 0.005); }
+  };
+  Climb StartClimb(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
+                   const geometry::Pose2D& pose, double step, double turn, uint64_t* work) const;
+  void ClimbRound(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
+                  Climb& climb, uint64_t* work) const;
+
+  // The indices of the coarse positions within `radius_m` of `centre`, in order.
+  std::vector<size_t> PositionsNear(const Eigen::Vector2d& centre, double radius_m) const;
 
   GlobalLocaliserOptions options_;
   Cells cells_;
-  std::vector<float> fine_gain_;     // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
-  std::vector<float> rank_gain_;     // the same with the ranking truncation
-  std::vector<float> coarse_gain_;   // the same with d shortened by coarse_blur_m
-  std::vector<unsigned char> wall_;  // per cell: a wall or pillar outline passes through
+  // The coarse lattice: where it starts, how many rows, and where each row's
+  // positions (west to east, clear of walls) start in positions_ (one past
+  // the last row: its end).
+  struct Lattice {
+    double x0 = 0.0, y0 = 0.0;
+    int rows = 0;
+    std::vector<size_t> row_first;
+  };
+  Lattice lattice_;
+  std::vector<float> fine_gain_;    // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
+  std::vector<float> rank_gain_;    // the same with the ranking truncation
+  std::vector<float> coarse_gain_;  // the same with d shortened by coarse_blur_m
+  // Per cell: how far (in cells, centre to centre) the nearest cell a wall or
+  // pillar outline passes through is; 0 in such a cell.
+  std::vector<float> wall_distance_;
   std::vector<Eigen::Vector2d> positions_;  // coarse candidate laser positions
+};
+
+// One search of the global localiser, done a slice at a time: a tracker that
+// lost the map, or a component without a pose, searches over several scans
+// instead of stalling one (a search of a building takes 0.1-1 s). Each
+// Advance does about `work` more units (one unit: one scan point looked up in
+// a distance field; a point checked for a beam through a wall counts ten),
+// stopping between positions, candidates or rankings; the result is the same
+// however the work is sliced, and GlobalLocaliser::Locate is one search
+// advanced to its end. The localiser must outlive the search.
+class GlobalSearch {
+ public:
+  // Throws std::invalid_argument as GlobalLocaliser::Locate does.
+  GlobalSearch(const GlobalLocaliser& localiser, const Readings& readings,
+               std::optional<SearchWindow> window = std::nullopt);
+  // Does about `work` units more (at least one step); true when done.
+  bool Advance(uint64_t work);
+  bool Done() const { return phase_ == Phase::kDone; }
+  const GlobalResult& Result() const { return result_; }  // once done
+  uint64_t WorkDone() const { return work_; }
+  // The work a whole search of one scan over `positions` lattice positions
+  // takes at most before its refinement (to size the slices).
+  static uint64_t CoarseWork(const GlobalLocaliserOptions& options, size_t positions);
+
+ private:
+  enum class Phase { kCoarse, kRefine, kRank, kDone };
+  void CoarsePosition(size_t k);
+  void SelectHits();
+  // One round of the climb of hit (candidate) `i`; true when its climb is done.
+  bool RefineHit(size_t i);
+  void ChooseRanked();
+  bool RankCandidate(size_t i);
+  void Decide();
+
+  const GlobalLocaliser& g_;
+  std::optional<SearchWindow> window_;
+  GlobalResult result_;
+  Phase phase_ = Phase::kCoarse;
+  uint64_t work_ = 0;
+  size_t next_ = 0;  // position, hit or candidate next in its phase
+  Readings usable_;
+  std::vector<Eigen::Vector2d> points_;  // spread for the refinement
+  bool earlier_ = false;
+  Readings newest_;
+  int headings_ = 1;
+  double heading_step_ = 0.0;
+  int separation_ = 1;
+  size_t coarse_count_ = 0;
+  std::vector<float> offsets_;  // per heading, per coarse point: x, y in cells
+  // With a window, the coarse positions in it (else every position is tried).
+  std::vector<size_t> window_positions_;
+  size_t PositionCount() const { return window_ ? window_positions_.size() : g_.positions_.size(); }
+  std::vector<float> scores_;
+  struct CoarseHit {
+    float score;
+    int position;
+    int heading;
+  };
+  std::vector<CoarseHit> hits_;
+  size_t keep_ = 0;
+  std::vector<GlobalCandidate> converged_;
+  std::vector<GlobalCandidate> refined_;
+  std::optional<GlobalLocaliser::Climb> climb_;  // of the hit or candidate next_
 };
 
 }  // namespace structloc::localisation_core

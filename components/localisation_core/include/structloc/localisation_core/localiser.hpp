@@ -14,6 +14,7 @@
 #include "structloc/localisation_core/feature_extractor.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/map_error_memory.hpp"
+#include "structloc/localisation_core/visibility_cache.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/visibility.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -38,7 +39,7 @@ enum class LostReason {
 const char* ToString(LostReason reason);
 
 struct StepTimes {
-  double prefilter_us = 0, line_fit_us = 0, solve_us = 0, total_us = 0;
+  double prefilter_us = 0, expectation_us = 0, line_fit_us = 0, solve_us = 0, total_us = 0;
 };  // each feature kind's own time is in FeatureKindResult::extract_us
 
 // What one feature kind found in one scan.
@@ -75,6 +76,7 @@ struct LocalisationResult {
   const FeatureKindResult* Kind(const char* name) const;
   int Expected() const;  // over all kinds
   int Matched() const;
+  double ExtractUs() const;  // over all kinds
 };
 
 class Localiser {
@@ -91,11 +93,17 @@ class Localiser {
   // Update.
   const LocalisationResult& Update(const UpdateInput& input);
 
-  // Between scans, off the path from scan to pose: refreshes which features
-  // are visible from `robot_pose` (the newest estimate) if the next Update
-  // would have to, so that it does not (the refresh is the update's slowest
-  // step). Changes no result: Update refreshes itself when it must.
+  // Between scans, off the path from scan to pose: computes which features
+  // are visible (VisibilityCache) at `robot_pose` (the newest estimate, near
+  // where the next scan is taken) when none computed before holds there. The
+  // update itself computes a visibility only for its very first scan (or a
+  // new view); otherwise it uses one that holds at its prior, else the one it
+  // used last.
   void Anticipate(const geometry::Pose2D& robot_pose);
+  // Updates that used the last visibility although it no longer held (none
+  // computed for their place yet); and visibilities computed in all.
+  uint64_t StaleVisibilityUpdates() const { return stale_visibility_updates_; }
+  uint64_t VisibilityComputations() const { return visibility_cache_.Computations(); }
 
   // The caller fused the last result into its pose (a filter around the
   // localiser): the map errors of its features are in that pose now, and the
@@ -106,12 +114,9 @@ class Localiser {
   const world_model::WorldModel& World() const { return world_; }
 
  private:
-  // Recomputes which features are visible when the sensor has moved or turned
-  // enough, or the scan's geometry differs from the last one's.
+  // Chooses the visibility for a scan seen from `sensor_pose`: one that holds
+  // there, else the last one used.
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
-  // Whether visibility_ is stale for a scan seen with `view` from `sensor_pose`.
-  bool VisibilityStale(const geometry::Pose2D& sensor_pose,
-                       const world_model::VisibilityOptions& view) const;
   // Fades the map-error memory by the travel since the last scan and gives
   // the expected features their factors.
   void ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose);
@@ -132,10 +137,9 @@ class Localiser {
   world_model::Scene scene_;
   std::vector<WallLineModel> lines_;
   std::vector<int> wall_line_of_;
-  world_model::Visibility visibility_;
-  bool visibility_valid_ = false;
-  geometry::Pose2D visibility_pose_;
-  world_model::VisibilityOptions visibility_view_;  // the view visibility_ was computed for
+  VisibilityCache visibility_cache_;
+  int visibility_entry_ = -1;  // the cache entry the last update used
+  uint64_t stale_visibility_updates_ = 0;
 
   BeamDirections directions_;
   ScanPoints points_;

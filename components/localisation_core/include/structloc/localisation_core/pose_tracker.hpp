@@ -65,6 +65,11 @@ struct TrackerOptions {
   double min_share_drop = 0.05;
   double reacquire_after_s = 1.0;
   double reacquire_max_radius_m = 2.0;
+  // The local search runs a slice of about this much work between scans
+  // (GlobalSearch; a unit is one point looked up, about 10 ns), so that a
+  // lost tracker keeps its pace; it searches the scan it started with, and
+  // what it finds is carried to the newest scan by odometry.
+  int search_work_per_scan = 60000;
   void Validate() const;
   // The covariance of a given initial pose (from the initial sigmas).
   Eigen::Matrix3d InitialCovariance() const;
@@ -97,6 +102,10 @@ struct TrackerStats {
   uint64_t scans_not_deskewed = 0;   // processed although odometry did not cover every beam
   uint64_t corrections_refused = 0;  // by the whole-scan check
   uint64_t reacquisitions = 0;       // local searches that moved the pose
+  // Visibilities computed (VisibilityCache), and updates that used the one of
+  // the place before because the place they needed was not computed yet.
+  uint64_t visibility_computations = 0;
+  uint64_t stale_visibility_updates = 0;
   uint64_t Rejected() const;
 };
 
@@ -150,12 +159,16 @@ class PoseTracker {
     double explained_share = -1;  // whole-scan check at the tracked pose (-1: not checked)
     bool reacquired = false;      // a local search moved the pose (jump: by how much)
     geometry::Pose2D jump;
+    double check_us = 0.0;   // the whole-scan check's time
+    double search_us = 0.0;  // the local search's, when one ran
   };
   // `waited_s`: how long the scan has already waited for odometry.
   ScanOutcome ProcessScan(const ScanInput& scan, double waited_s);
 
-  // Between scans: prepares the localiser for the next scan at the newest
-  // pose (Localiser::Anticipate), off the path from scan to pose.
+  // Between scans, off the path from scan to pose: prepares the localiser
+  // for the next scan at the newest pose (Localiser::Anticipate) and runs a
+  // slice of a local search under way (its result is applied at the next
+  // scan once it is done).
   void Anticipate();
 
   // The map -> odom correction and the pose carried forward to the newest odometry.
@@ -164,7 +177,7 @@ class PoseTracker {
   // The odometry calibration learnt so far: distance scale, turn scale, heading
   // drift (rad per metre driven).
   Eigen::Vector3d OdometryCalibration() const { return filter_.Calibration(); }
-  const TrackerStats& Stats() const { return stats_; }
+  TrackerStats Stats() const;
   const OdometryHistory& Odometry() const { return history_; }
   const LocaliserOptions& Options() const { return localiser_.Options(); }
 
@@ -176,9 +189,11 @@ class PoseTracker {
   // explained by the map at robot pose `pose`.
   void CollectCheckPoints(const ScanInput& scan);
   double ExplainedShare(const geometry::Pose2D& pose) const;
-  // Below min_explained_share for long enough: a local search, and the filter
-  // reset where it finds the scan explained.
+  // Below min_explained_share for long enough: a local search, a slice per
+  // scan, and the filter reset where it finds the scan explained.
   void Reacquire(const ScanInput& scan, ScanOutcome& out);
+  // The finished search's result applied (or not) to the tracked pose.
+  void ApplySearch(const GlobalResult& found, ScanOutcome& out);
 
   Localiser localiser_;
   TrackerOptions options_;
@@ -196,6 +211,13 @@ class PoseTracker {
   // The map -> odom correction the last search found, waiting for the next
   // search to find it again before the tracker jumps there.
   std::optional<geometry::Pose2D> pending_correction_;
+  // The search under way: the points of the scan it started with, the
+  // odometry there and the share the tracked pose explained of them.
+  std::optional<GlobalSearch> search_task_;
+  std::vector<Eigen::Vector2d> search_points_;
+  geometry::Pose2D search_odometry_;
+  double search_share_ = 0.0;
+  double search_stamp_ = 0.0;
   double last_scan_stamp_ = -1e300;
   TrackerStats stats_;
 };

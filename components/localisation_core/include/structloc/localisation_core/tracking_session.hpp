@@ -26,6 +26,7 @@
 #include "structloc/localisation_core/pose_tracker.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/session_scan.hpp"
+#include "structloc/localisation_core/stage_timings.hpp"
 #include "structloc/localisation_core/tracking_session_options.hpp"
 
 namespace structloc::localisation_core {
@@ -54,6 +55,7 @@ struct ScanReport {
   // is its time there).
   std::optional<geometry::Pose2D> odometry;
   double update_us = 0.0;
+  StageTimings timings;  // when kTracked: stage by stage, and the update's CPU time
 };
 
 // A saved correction: the map -> odom transform and the pose's variances.
@@ -97,9 +99,12 @@ class TrackingSession {
   std::optional<ScanReport> Next(double now, bool end_of_input = false);
 
   // Between scans, after their poses are out: the work the next scan would
-  // otherwise wait for (which features are visible from the newest pose).
-  // Results are the same with or without it.
+  // otherwise wait for (which features are visible where it will be taken)
+  // and a slice of a local search under way (PoseTracker::Anticipate).
   void Anticipate();
+  // The last Anticipate's wall and thread CPU time.
+  double LastAnticipateUs() const { return anticipate_us_; }
+  double LastAnticipateCpuUs() const { return anticipate_cpu_us_; }
 
   // The odometry pose at `t` from what has arrived (interpolated; the newest
   // beyond it); nullopt before the first sample.
@@ -175,6 +180,8 @@ class TrackingSession {
   std::optional<double> last_state_save_s_;
   std::string last_problem_;
   double last_problem_s_ = 0.0;
+  double anticipate_us_ = 0.0;
+  double anticipate_cpu_us_ = 0.0;
 };
 
 }  // namespace structloc::localisation_core

@@ -77,9 +77,18 @@ struct ReplayReport {
   };
   std::vector<Reacquisition> reacquisitions;
   uint64_t corrections_refused = 0;  // by the whole-scan check
+  uint64_t visibility_computations = 0;
+  uint64_t stale_visibility_updates = 0;
   double mean_features = 0.0;
   double median_update_us = 0.0;
   double p99_update_us = 0.0;
+  // The tracked scans' updates stage by stage (localisation_core::Stage, then
+  // the whole update as wall time and as the thread's CPU time).
+  struct TimeSummary {
+    std::string what;
+    double median_us = 0.0, p99_us = 0.0, max_us = 0.0, mean_us = 0.0;
+  };
+  std::vector<TimeSummary> stage_times;
   geometry::Pose2D sensor_mount;  // derived from the log when it has laser and robot poses
   std::optional<TrajectoryError> estimate_error;
   std::optional<TrajectoryError> odometry_error;
@@ -98,6 +107,8 @@ std::string FormatGlobalAttempts(const std::vector<GlobalAttempt>& attempts);
 
 // The summary as printed by "structloc replay".
 std::string FormatReport(const ReplayReport& report);
+// The table of stage times printed by "structloc replay --timings".
+std::string FormatStageTimes(const ReplayReport& report);
 // Its first part: lines read, malformed lines with their reasons, scans used
 // and rejected by reason (also the explanation when no scan was usable).
 std::string FormatInputSummary(const ReplayReport& report);
