@@ -247,16 +247,19 @@ bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vect
   const int steps = static_cast<int>(length / (0.5 * res));
   if (steps < 2) return false;
   const double spacing = length / steps;
+  // In cells: the start, and the step from one sample to the next.
+  const double fx = (from.x() - cells_.x0) / res, fy = (from.y() - cells_.y0) / res;
+  const double dx = (to.x() - from.x()) / (res * steps), dy = (to.y() - from.y()) / (res * steps);
   // A wall cell's points lie at least (d - sqrt 2) cells from any point of a
   // cell whose centre is d cells from the wall cell's centre (with a margin
   // for the field's rounding).
   constexpr double kCellDiagonal = 1.4142135623730951 + 1e-3;
+  const double width = cells_.width, height = cells_.height;
   for (int i = 1; i < steps;) {
-    const Eigen::Vector2d p = from + (to - from) * (double(i) / steps);
-    const int c = static_cast<int>(std::floor((p.x() - cells_.x0) / res));
-    const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
-    if (c < 0 || r < 0 || c >= cells_.width || r >= cells_.height) return false;
-    const double d = wall_distance_[static_cast<size_t>(r) * cells_.width + c];
+    const double x = fx + dx * i, y = fy + dy * i;
+    if (!(x >= 0.0 && y >= 0.0 && x < width && y < height)) return false;
+    const double d = wall_distance_[static_cast<size_t>(static_cast<int>(y)) * cells_.width +
+                                    static_cast<int>(x)];
     if (d == 0.0) return true;
     const double clear_m = (d - kCellDiagonal) * res;
     i += 1 + (clear_m > spacing ? static_cast<int>(clear_m / spacing) : 0);

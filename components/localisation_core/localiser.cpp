@@ -140,11 +140,19 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
 
 void Localiser::Anticipate(const geometry::Pose2D& robot_pose) {
   if (!visibility_cache_.View() || !geometry::IsFinite(robot_pose)) return;
-  // Where the newest estimate has the sensor (the next scan is taken near
-  // it), when no visibility holds there yet.
+  // Where the next scan will be taken if the robot moves on as it did since
+  // the last call (a robot turning half a radian between scans would
+  // otherwise always find the visibility computed for the last one stale).
   const geometry::Pose2D sensor = geometry::Compose(robot_pose, options_.sensor_mount);
-  if (visibility_entry_ >= 0 && visibility_cache_.Holds(visibility_entry_, sensor)) return;
-  if (visibility_cache_.Find(sensor) < 0) visibility_cache_.Compute(sensor, visibility_entry_);
+  geometry::Pose2D next = sensor;
+  if (last_anticipated_) {
+    next.x += sensor.x - last_anticipated_->x;
+    next.y += sensor.y - last_anticipated_->y;
+    next.theta = geometry::WrapAngle(sensor.theta +
+                                     geometry::WrapAngle(sensor.theta - last_anticipated_->theta));
+  }
+  last_anticipated_ = sensor;
+  if (visibility_cache_.Find(next) < 0) visibility_cache_.Compute(next, visibility_entry_);
 }
 
 void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan) {
@@ -153,11 +161,12 @@ void Localiser::RefreshVisibility(const geometry::Pose2D& sensor_pose, const Sca
   int entry = visibility_cache_.Find(sensor_pose);
   // Nothing to fall back on (the first scan, or a new view): computed here.
   if (entry < 0 && visibility_entry_ < 0) entry = visibility_cache_.Compute(sensor_pose);
-  if (entry >= 0) {
-    visibility_entry_ = entry;
-  } else {
+  if (entry < 0) {
+    // None holds: the newest computed, for the pose nearest this scan's.
+    entry = visibility_cache_.Newest();
     ++stale_visibility_updates_;
   }
+  visibility_entry_ = entry;
 }
 
 void Localiser::ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose) {

@@ -97,6 +97,7 @@ PoseTracker::PoseTracker(const world_model::WorldModel& world,
   if (options_.min_explained_share > 0.0) {
     search_ = std::make_unique<GlobalLocaliser>(world, GlobalLocaliserOptions{});
     check_points_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
+    check_directions_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
   }
   options_.Validate();
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
@@ -315,11 +316,20 @@ void PoseTracker::CollectCheckPoints(const ScanInput& scan) {
   const double hi = std::min(o.max_range_m, scan.range_max > 0 ? scan.range_max : o.max_range_m);
   // As many points as the search's refinement uses: the check runs on every scan.
   const size_t step = std::max<size_t>(1, scan.count / static_cast<size_t>(o.max_points));
-  for (size_t i = 0; i < scan.count; i += step) {
+  // The beams' directions, computed again only when the scan's geometry changes.
+  if (scan.count != check_geometry_.count || scan.angle_min != check_geometry_.angle_min ||
+      scan.angle_increment != check_geometry_.angle_increment) {
+    check_geometry_ = {scan.count, scan.angle_min, scan.angle_increment};
+    check_directions_.clear();
+    for (size_t i = 0; i < scan.count; i += step) {
+      const double a = scan.angle_min + scan.angle_increment * static_cast<double>(i);
+      check_directions_.emplace_back(std::cos(a), std::sin(a));
+    }
+  }
+  for (size_t i = 0, k = 0; i < scan.count; i += step, ++k) {
     const double range = scan.ranges[i];
     if (!std::isfinite(range) || range < lo || range >= hi) continue;
-    const double a = scan.angle_min + scan.angle_increment * static_cast<double>(i);
-    check_points_.emplace_back(range * std::cos(a), range * std::sin(a));
+    check_points_.push_back(range * check_directions_[k]);
   }
 }
 

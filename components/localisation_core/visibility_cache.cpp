@@ -24,6 +24,7 @@ bool VisibilityCache::SetView(const world_model::VisibilityOptions& view) {
   if (view_ && SameView(*view_, view)) return false;
   view_ = view;
   for (auto& e : entries_) e.valid = false;
+  newest_ = -1;
   return true;
 }
 
@@ -73,7 +74,8 @@ int VisibilityCache::Compute(const geometry::Pose2D& sensor, int keep) {
   e.valid = true;
   e.used = ++tick_;
   ++computations_;
-  return static_cast<int>(slot);
+  newest_ = static_cast<int>(slot);
+  return newest_;
 }
 
 }  // namespace structloc::localisation_core

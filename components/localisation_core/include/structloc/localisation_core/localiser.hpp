@@ -94,13 +94,13 @@ class Localiser {
   const LocalisationResult& Update(const UpdateInput& input);
 
   // Between scans, off the path from scan to pose: computes which features
-  // are visible (VisibilityCache) at `robot_pose` (the newest estimate, near
-  // where the next scan is taken) when none computed before holds there. The
-  // update itself computes a visibility only for its very first scan (or a
-  // new view); otherwise it uses one that holds at its prior, else the one it
-  // used last.
+  // are visible (VisibilityCache) where the next scan will be taken (the
+  // newest estimate `robot_pose` moved on as the robot moved since the last
+  // call) when none computed before holds there. The update itself computes
+  // a visibility only for its very first scan (or a new view); otherwise it
+  // uses one that holds at its prior, else the newest one computed.
   void Anticipate(const geometry::Pose2D& robot_pose);
-  // Updates that used the last visibility although it no longer held (none
+  // Updates that used the newest visibility although it did not hold (none
   // computed for their place yet); and visibilities computed in all.
   uint64_t StaleVisibilityUpdates() const { return stale_visibility_updates_; }
   uint64_t VisibilityComputations() const { return visibility_cache_.Computations(); }
@@ -115,7 +115,7 @@ class Localiser {
 
  private:
   // Chooses the visibility for a scan seen from `sensor_pose`: one that holds
-  // there, else the last one used.
+  // there, else the newest one computed.
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
   // Fades the map-error memory by the travel since the last scan and gives
   // the expected features their factors.
@@ -140,6 +140,7 @@ class Localiser {
   VisibilityCache visibility_cache_;
   int visibility_entry_ = -1;  // the cache entry the last update used
   uint64_t stale_visibility_updates_ = 0;
+  std::optional<geometry::Pose2D> last_anticipated_;  // the sensor pose Anticipate last saw
 
   BeamDirections directions_;
   ScanPoints points_;

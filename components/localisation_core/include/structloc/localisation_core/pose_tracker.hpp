@@ -207,6 +207,14 @@ class PoseTracker {
   bool corrected_ = false;
   std::unique_ptr<GlobalLocaliser> search_;  // whole-scan check and re-acquisition
   std::vector<Eigen::Vector2d> check_points_;
+  // The unit directions of the beams the check uses, for the scan geometry
+  // they were computed for.
+  struct CheckGeometry {
+    size_t count = 0;
+    double angle_min = 0.0, angle_increment = 0.0;
+  };
+  CheckGeometry check_geometry_;
+  std::vector<Eigen::Vector2d> check_directions_;
   double low_share_since_ = -1.0;  // stamp the share fell below min_explained_share, or -1
   // The map -> odom correction the last search found, waiting for the next
   // search to find it again before the tracker jumps there.

@@ -6,10 +6,9 @@
 // computed (and, short of a full-circle view, within refresh_angle_rad of its
 // heading), as a visibility refreshed after that much travel always did. The
 // localiser computes one between scans (Localiser::Anticipate) where the
-// newest pose has no visibility that holds, and an update without one uses
-// the one it used last. Entries keep only what is seen (their lists grow to
-// the most seen from one place, then stay) and are replaced least recently
-// used first; a lookup allocates nothing. DDS-free.
+// next scan is due and none holds, and an update without one uses the newest. Entries keep only
+// what is seen (their lists grow to the most seen from one place, then stay) and are replaced least
+// recently used first; a lookup allocates nothing. DDS-free.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +40,8 @@ class VisibilityCache {
   // Computes the visibility at `sensor` (a view must be set), replacing the
   // least recently used entry other than `keep`; returns its index.
   int Compute(const geometry::Pose2D& sensor, int keep = -1);
+  // The entry computed last, or -1.
+  int Newest() const { return newest_; }
   const world_model::Visibility& At(int entry) const {
     return entries_[static_cast<size_t>(entry)].visibility;
   }
@@ -64,6 +65,7 @@ class VisibilityCache {
   world_model::Visibility workspace_;  // ComputeVisibility's, sized for the whole map
   uint64_t tick_ = 0;
   uint64_t computations_ = 0;
+  int newest_ = -1;
 };
 
 }  // namespace structloc::localisation_core
