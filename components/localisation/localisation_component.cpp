@@ -2,7 +2,9 @@
 #include "structloc/localisation/localisation_component.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <iomanip>
 #include <iostream>
 
@@ -105,15 +107,47 @@ LocalisationComponent::~LocalisationComponent() {
   Stop();
 }
 
-void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& scan, double now) {
+void LocalisationComponent::StartSearch(const localisation_core::SessionScan& scan) {
+  if (search_.valid()) return;  // one at a time
+  SearchAnswer answer;
+  answer.generation = search_generation_;
+  answer.stamp = scan.geometry.stamp;
+  if (pose_hint_check_) {
+    if (!session_.OdometryReaches(scan.geometry.stamp)) return;  // the prediction needs it
+    const geometry::Pose2D odometry = *session_.OdometryAt(scan.geometry.stamp);
+    answer.hint_check = *pose_hint_check_;
+    search_ = std::async(std::launch::async, [this, scan, odometry, answer]() mutable {
+      answer.hint = answer.hint_check->Check(*global_, scan, odometry);
+      return answer;
+    });
+    return;
+  }
+  if (!global_ || !session_.OdometryReaches(scan.geometry.stamp)) return;
   // The scans of the last metres count with this one when odometry on both
   // sides of its stamp places it (not the newest sample held beyond it).
   const double t = scan.geometry.stamp;
   const auto odometry =
       session_.OdometryCovers(t) ? session_.OdometryAt(t) : std::optional<geometry::Pose2D>();
-  const auto attempt = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
+  search_ = std::async(std::launch::async, [this, scan, odometry, answer]() mutable {
+    answer.global = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
+    return answer;
+  });
+}
+
+void LocalisationComponent::ApplySearch(const SearchAnswer& answer, double now) {
+  if (answer.generation != search_generation_) return;  // outdated meanwhile
+  if (answer.global) ApplyGlobal(*answer.global, answer.stamp, now);
+  if (answer.hint && pose_hint_check_) {
+    *pose_hint_check_ = *answer.hint_check;  // it counts its attempts
+    ApplyHint(*answer.hint, now);
+  }
+}
+
+void LocalisationComponent::ApplyGlobal(const localisation_core::GlobalStart::Attempt& attempt,
+                                        double stamp, double now) {
   const auto& r = attempt.result;
-  std::cout << std::fixed << std::setprecision(3) << "localisation: global localisation at t=" << t;
+  std::cout << std::fixed << std::setprecision(3)
+            << "localisation: global localisation at t=" << stamp;
   if (r.scans > 1) std::cout << " with " << r.scans - 1 << " scans before it";
   std::cout << ": " << localisation_core::ToString(r.decision);
   if (r.best) {
@@ -131,18 +165,16 @@ void LocalisationComponent::TryGlobally(const localisation_core::SessionScan& sc
   if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
   std::cout << std::endl;
   if (!attempt.found) return;
-  global_->ForgetRecentScans();
+  forget_recent_scans_ = true;
   session_.SetInitialPose(*attempt.found, "global localisation", now);
   const auto& p = attempt.found->pose;
   std::cout << "localisation: initial pose set from global localisation: robot at (" << p.x << ", "
             << p.y << ", " << p.theta << ")" << std::endl;
 }
 
-void LocalisationComponent::CheckPoseHint(const localisation_core::SessionScan& scan, double now) {
-  if (!session_.OdometryReaches(scan.geometry.stamp)) return;  // the prediction needs it
-  const auto odometry = session_.OdometryAt(scan.geometry.stamp);
+void LocalisationComponent::ApplyHint(const localisation_core::PoseHintCheck::Outcome& outcome,
+                                      double now) {
   using Verdict = localisation_core::PoseHintCheck::Verdict;
-  const auto outcome = pose_hint_check_->Check(*global_, scan, *odometry);
   const auto& q = outcome.predicted;
   std::cout << std::fixed << std::setprecision(3);
   const std::string& source = pose_hint_check_->Source();
@@ -178,11 +210,13 @@ void LocalisationComponent::TakeBackAsHint() {
   session_.ForgetPose();
   pose_hint_check_.emplace(hint, given_pose_source_, hint_check_options_);
   given_pose_source_.clear();
+  ++search_generation_;  // a search under way was for what came before
 }
 
 void LocalisationComponent::Stop() {
   inbox_.Stop();
   if (worker_.joinable()) worker_.join();
+  if (search_.valid()) search_.wait();  // it uses global_
 }
 
 void LocalisationComponent::Worker() {
@@ -194,20 +228,31 @@ void LocalisationComponent::Worker() {
     tf2_msgs::msg::TFMessage tf;
     structloc_msgs::msg::ScanFeatures features;
     structloc_msgs::msg::LocalisationStatus status;
+    std::optional<localisation_core::ScanReport> report;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
+      if (search_.valid() &&
+          search_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        ApplySearch(search_.get(), now);
+      }
       if (relocalise_requested_.exchange(false) && global_) {
         session_.ForgetPose();
         pose_hint_check_.reset();
         given_pose_source_.clear();
-        global_->ForgetRecentScans();  // the robot may have been carried away
+        forget_recent_scans_ = true;  // the robot may have been carried away
+        ++search_generation_;
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
+      }
+      if (forget_recent_scans_ && !search_.valid() && global_) {
+        global_->ForgetRecentScans();
+        forget_recent_scans_ = false;
       }
       std::optional<localisation_core::SessionScan> scan = std::move(inputs.scan);
       inputs.scan.reset();
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         pose_hint_check_.reset();  // a pose published outranks an older hint
+        ++search_generation_;
         if (global_) given_pose_source_ = "the pose on " + dds_common::topics::kInitialPose.name;
         std::cout << "localisation: initial pose "
                   << (session_.HasInitialPose() ? "set" : "held for the first odometry") << " from "
@@ -215,16 +260,12 @@ void LocalisationComponent::Worker() {
                   << (global_ ? "; a search around it confirms it" : "") << std::endl;
       }
       if (!given_pose_source_.empty() && session_.HasInitialPose()) TakeBackAsHint();
-      if (scan && pose_hint_check_ && session_.WaitingForInitialPose()) {
-        CheckPoseHint(*scan, now);
-      } else if (scan && global_ && session_.WaitingForInitialPose() &&
-                 session_.OdometryReaches(scan->geometry.stamp)) {
-        TryGlobally(*scan, now);
+      if (scan && session_.WaitingForInitialPose() && (pose_hint_check_ || global_)) {
+        StartSearch(*scan);
       }
       if (scan) session_.AddScan(std::move(*scan), inputs.scan_arrived_s);
-      const auto report = session_.Next(now);
+      report = session_.Next(now);
       if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;
-      const auto& r = *report->result;
       if (report->reacquired) {
         const auto& p = report->pose.pose;
         std::cout << "localisation: re-acquired at t=" << report->stamp << " s: (" << p.x << ", "
@@ -233,14 +274,19 @@ void LocalisationComponent::Worker() {
       }
       pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
       tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
+    }
+    // Published outside every lock: neither the DDS threads delivering scans
+    // and odometry nor the main thread wait for these writes. The pose first:
+    // the features and the status are made after it is out.
+    pose_.Write(pose);
+    tf_.Write(tf);
+    {
+      std::lock_guard<std::mutex> lock(session_mutex_);
+      const auto& r = *report->result;
       features = ToScanFeatures(r, report->stamp, options_.frames);
       status = ToStatus(r, report->lost ? report->lost_reason : "", session_.Stats(),
                         session_.Dropped(), report->stamp, options_.frames);
     }
-    // Published outside every lock: neither the DDS threads delivering scans
-    // and odometry nor the main thread wait for these writes.
-    pose_.Write(pose);
-    tf_.Write(tf);
     features_.Write(features);
     status_.Write(status);
     std::lock_guard<std::mutex> lock(session_mutex_);

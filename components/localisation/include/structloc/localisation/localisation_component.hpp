@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -51,11 +52,25 @@ class LocalisationComponent : public dds_common::Component {
  private:
   void Worker();
   void PublishDiagnostics(double now);
-  // Without a pose: the scan against the whole map; a pose found starts tracking.
-  void TryGlobally(const localisation_core::SessionScan& scan, double now);
-  // A pose hint (saved, given or published) checked by a local search
-  // around it before tracking starts.
-  void CheckPoseHint(const localisation_core::SessionScan& scan, double now);
+  // What a search for a robot without a pose found, for the worker to apply.
+  struct SearchAnswer {
+    uint64_t generation = 0;  // search_generation_ when it started
+    double stamp = 0.0;       // of the scan searched
+    std::optional<localisation_core::GlobalStart::Attempt> global;
+    std::optional<localisation_core::PoseHintCheck::Outcome> hint;
+    std::optional<localisation_core::PoseHintCheck> hint_check;  // after the check
+  };
+  // Without a pose, at a scan: starts a search on a thread of its own (the
+  // worker keeps taking scans and odometry meanwhile) when none is running:
+  // the pose hint checked by a local search around it, else the scan against
+  // the whole map.
+  void StartSearch(const localisation_core::SessionScan& scan);
+  // A finished search's answer, applied when nothing it was started for has
+  // changed since (a pose given, a relocalisation asked for).
+  void ApplySearch(const SearchAnswer& answer, double now);
+  void ApplyGlobal(const localisation_core::GlobalStart::Attempt& attempt, double stamp,
+                   double now);
+  void ApplyHint(const localisation_core::PoseHintCheck::Outcome& outcome, double now);
   // A given pose that just started tracking, taken back as a hint.
   void TakeBackAsHint();
 
@@ -82,6 +97,11 @@ class LocalisationComponent : public dds_common::Component {
   std::optional<localisation_core::PoseHintCheck> pose_hint_check_;
   localisation_core::PoseHintCheckOptions hint_check_options_;
   std::atomic<bool> relocalise_requested_{false};
+  // The search under way (global_ and a copy of the hint check are its own
+  // until it ends), and the generation that outdates its answer.
+  std::future<SearchAnswer> search_;
+  uint64_t search_generation_ = 0;
+  bool forget_recent_scans_ = false;  // once no search uses global_
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed
   std::thread worker_;
