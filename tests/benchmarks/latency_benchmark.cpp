@@ -1,5 +1,5 @@
-// structloc_latency_benchmark [SECONDS] [RATE_HZ] [CSV]: latency and load of the
-// localisation component over DDS on one host. It starts the real component,
+// structloc_latency_benchmark [SECONDS] [RATE_HZ] [CSV] [lost]: latency and
+// load of the localisation component over DDS on one host. It starts the real component,
 // publishes the office scenario's 1081-beam scans (default 40 Hz) and
 // odometry in real time from the simulation core, and prints scan-published
 // -> pose-received latency (median, p99, max) in the steady state, from the
@@ -10,7 +10,11 @@
 // from /proc); with CSV, also each scan's stamp, latency and update time
 // (to see when the slow ones come). Before and after the run it measures how
 // often the machine itself stops a runnable thread (platform_stalls.hpp), the
-// floor under any latency tail. Figures only: it asserts nothing.
+// floor under any latency tail. With "lost", the component gets the office map
+// with three walls of every four left out and the SICK preset (whole-scan check
+// on): the map explains too little of the scans, the tracker keeps searching
+// locally, and the latency is that of a searching tracker (CSV "" for none).
+// Figures only: it asserts nothing.
 #include <unistd.h>
 
 #include <algorithm>
@@ -64,8 +68,9 @@ int main(int argc, char** argv) {
       node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)};
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
-  std::map<double, double> latency_at;  // by scan stamp
-  std::map<double, double> update_ms;   // the localiser's update, by scan stamp
+  std::map<double, double> latency_at;      // by scan stamp
+  std::map<double, double> update_ms;       // the localiser's update, by scan stamp
+  std::map<std::string, int> lost_reasons;  // of the statuses that said lost
   const auto pose_subscription =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
           dds_common::topics::kPose, [&](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
@@ -82,11 +87,28 @@ int main(int argc, char** argv) {
           dds_common::topics::kStatus, [&](const structloc_msgs::msg::LocalisationStatus& m) {
             std::lock_guard<std::mutex> lock(mutex);
             update_ms[dds_common::FromRosTime(m.header().stamp())] = 1e-3 * m.timings().total_us();
+            if (m.lost()) ++lost_reasons[m.lost_reason()];
           });
   const auto& p = scenario.initial_pose;
-  process::ChildProcess loc(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-                            {"--domain", std::to_string(domain), "--qos", options.qos_file,
-                             "--initial-pose", structloc::testing::PoseArgument(p)});
+  std::vector<std::string> args = {"--domain",       std::to_string(domain),
+                                   "--qos",          options.qos_file,
+                                   "--initial-pose", structloc::testing::PoseArgument(p)};
+  const bool lost = argc > 4 && std::string(argv[4]) == "lost";
+  const std::string half_map =
+      "/tmp/structloc_latency_half_map_" + std::to_string(getpid()) + ".xml";
+  if (lost) {
+    // Three walls of every four of the office left out.
+    std::ifstream in(source + "/maps/office_floor.xml");
+    std::ofstream out(half_map);
+    int walls = 0;
+    for (std::string line; std::getline(in, line);) {
+      if (line.find("<wall ") != std::string::npos && walls++ % 4 != 0) continue;
+      out << line << "\n";
+    }
+    args.insert(args.end(),
+                {"--map", half_map, "--params", source + "/maps/params/sick_lms2xx.xml"});
+  }
+  process::ChildProcess loc(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation", args);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -102,6 +124,7 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   const double cpu = structloc::testing::CpuSeconds(loc.Pid()) - cpu_start;
   loc.Stop(std::chrono::seconds(5));
+  if (lost) std::remove(half_map.c_str());
   const auto stalls_after = structloc::testing::MeasurePlatformStalls(kStallProbeS);
   std::lock_guard<std::mutex> lock(mutex);
   if (latency_at.empty()) {
@@ -112,7 +135,7 @@ int main(int argc, char** argv) {
   // goes (the localiser's update, and everything else); with CSV, every
   // scan's figures (update -1 when its status was not received).
   std::ofstream csv;
-  if (argc > 3) {
+  if (argc > 3 && *argv[3] != '\0') {
     csv.open(argv[3]);
     csv << "stamp_s,latency_ms,update_ms\n" << std::fixed;
   }
@@ -145,6 +168,11 @@ int main(int argc, char** argv) {
   quantiles(update, "  of the steady state, the localiser's update");
   quantiles(rest, "  of the steady state, transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
+  std::printf("statuses received: %zu", update_ms.size());
+  for (const auto& [reason, count] : lost_reasons) {
+    std::printf(", %d lost (%s)", count, reason.c_str());
+  }
+  std::printf("\n");
   structloc::testing::PrintPlatformStalls("before", stalls_before);
   structloc::testing::PrintPlatformStalls("after", stalls_after);
   return 0;

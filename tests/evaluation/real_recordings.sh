@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The evaluation on real recordings (issue 12), one command: localises the two
 # SLAM-corrected recordings of ../shared/data (Freiburg 079, Intel) with the
-# SICK LMS 2xx preset and prints position RMSE, max, heading RMSE, lost time and
-# time per scan against the corrected poses, for
+# SICK LMS 2xx preset and prints position RMSE, max, heading RMSE, lost time,
+# the update's thread CPU time (median / p99 / max) and the mean CPU per scan
+# with the work between scans, against the corrected poses, for
 #   odometry  perfect (the corrected poses) and perturbed (1.5 % scale error,
 #             0.3 deg/m heading drift, 5 mm and 0.1 deg noise per sqrt(m));
 #   maps      shipped  maps/real/NAME.xml, built from the whole recording;
@@ -35,16 +36,20 @@ row() {
   local report
   report=$("$structloc" replay --map "$5" --log "$6" --truth "$7" --params "$params" \
     --initial-pose "$(first_pose "$7")" --out "$out/$1_$2_$3_${4// /_}.tum" \
-    --plot "$out/$1_$2_$3_${4// /_}.png" 2>&1)
-  local error lost time
+    --plot "$out/$1_$2_$3_${4// /_}.png" --timings 2>&1)
+  local error lost update all
   error=$(sed -n 's/^estimate vs truth: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm, heading RMSE \([0-9.]*\) deg.*/\1 | \2 | \3/p' <<<"$report")
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
-  time=$(sed -n 's/^time per update: median \([0-9.]*\) us.*/\1/p' <<<"$report")
-  printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$1" "$2" "$4" "$3" "$error" "$lost" "$time"
+  # The update's thread CPU time (median / p99 / max), and the mean CPU per
+  # scan with the work between scans (visibility ahead, search slices).
+  update=$(awk '/update \(thread CPU\)/ { print $4 " / " $5 " / " $6 }' <<<"$report")
+  all=$(awk '/scan \+ between \(CPU\)/ { print $8 }' <<<"$report")
+  printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$1" "$2" "$4" "$3" "$error" "$lost" \
+    "$update" "$all"
 }
 
-echo "| recording | scans localised | map | odometry | RMSE mm | max mm | heading RMSE deg | longest lost s | median us/scan |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| recording | scans localised | map | odometry | RMSE mm | max mm | heading RMSE deg | longest lost s | update us (median / p99 / max) | CPU per scan, mean us |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for name in freiburg_079 intel; do
   log="$data/${name//_/-}-corrected.log.gz"
   restamp=()
