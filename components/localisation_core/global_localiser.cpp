@@ -267,6 +267,19 @@ bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vect
   return false;
 }
 
+double GlobalLocaliser::RankGain(const Eigen::Vector2d& origin, const Eigen::Vector2d& q) const {
+  // A point no surface explains adds nothing, whether its beam crossed a wall or not.
+  const double gain = Gain(rank_gain_, q.x(), q.y());
+  if (gain <= 0.0) return 0.0;
+  const double range = (q - origin).norm();
+  if (range > options_.see_through_margin_m) {
+    const Eigen::Vector2d short_end =
+        origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
+    if (CrossesWall(origin, short_end)) return 0.0;
+  }
+  return gain;
+}
+
 double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
                                   const std::vector<Eigen::Vector2d>& seen_from,
                                   const geometry::Pose2D& pose) const {
@@ -275,19 +288,38 @@ double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
   for (size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d origin =
         seen_from.empty() ? pose.Translation() : pose.Apply(seen_from[i]);
-    const Eigen::Vector2d q = pose.Apply(points[i]);
-    // A point no surface explains adds nothing, whether its beam crossed a wall or not.
-    const double gain = Gain(rank_gain_, q.x(), q.y());
-    if (gain <= 0.0) continue;
-    const double range = (q - origin).norm();
-    if (range > options_.see_through_margin_m) {
-      const Eigen::Vector2d short_end =
-          origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
-      if (CrossesWall(origin, short_end)) continue;
-    }
-    sum += gain;
+    sum += RankGain(origin, pose.Apply(points[i]));
   }
   return sum / static_cast<double>(points.size());
+}
+
+std::vector<Eigen::Vector2d> GlobalLocaliser::FitPoints(const std::vector<Eigen::Vector2d>& points,
+                                                        int most) const {
+  return Spread(UsableReadings(OneScan(points)).points, std::max(1, most));
+}
+
+geometry::Pose2D GlobalLocaliser::Polish(const std::vector<Eigen::Vector2d>& fit_points,
+                                         const geometry::Pose2D& laser_pose) const {
+  auto climb = StartClimb(rank_gain_, fit_points, laser_pose, 0.05, 0.01, nullptr);
+  while (!climb.Done()) ClimbRound(rank_gain_, fit_points, climb, nullptr);
+  return climb.pose;
+}
+
+GlobalLocaliser::Fit GlobalLocaliser::FitAt(const std::vector<Eigen::Vector2d>& fit_points,
+                                            const geometry::Pose2D& laser_pose,
+                                            double unexplained_likelihood) const {
+  Fit fit;
+  if (fit_points.empty()) return fit;
+  const double u = std::clamp(unexplained_likelihood, 1e-6, 1.0);
+  for (const auto& p : fit_points) {
+    const double gain = RankGain(laser_pose.Translation(), laser_pose.Apply(p));
+    fit.share += gain;
+    fit.mean_log_likelihood += std::log((1.0 - u) * gain + u);
+  }
+  const double n = static_cast<double>(fit_points.size());
+  fit.share /= n;
+  fit.mean_log_likelihood /= n;
+  return fit;
 }
 
 double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,

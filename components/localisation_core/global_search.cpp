@@ -295,6 +295,11 @@ void GlobalSearch::Decide() {
   }
   result_.best = refined_.front();
   if (rival) result_.runner_up = refined_[*rival];
+  for (const auto& r : refined_) {
+    const bool distinct = std::all_of(result_.candidates.begin(), result_.candidates.end(),
+                                      [&](const auto& c) { return Distinct(r.pose, c.pose, o); });
+    if (distinct) result_.candidates.push_back(r);
+  }
   const auto too_little = [&](double share, const char* of) {
     return "the best pose explains only " + std::to_string(static_cast<int>(100 * share)) +
            " % of " + of + " (at least " + std::to_string(static_cast<int>(100 * o.min_score)) +

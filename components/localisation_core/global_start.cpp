@@ -7,8 +7,12 @@ namespace structloc::localisation_core {
 
 GlobalStart::GlobalStart(const world_model::WorldModel& world, const geometry::Pose2D& sensor_mount,
                          const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options,
-                         const RecentScansOptions& recent)
-    : search_(world, options), mount_(sensor_mount), covariance_(covariance), recent_(recent) {}
+                         const RecentScansOptions& recent, const HypothesisOptions& hypotheses)
+    : search_(world, options),
+      mount_(sensor_mount),
+      covariance_(covariance),
+      recent_(recent),
+      hypotheses_(search_, sensor_mount, hypotheses) {}
 
 namespace {
 
@@ -26,8 +30,28 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
 }
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::Pose2D& odometry) {
-  return Decide(scan, search_.Locate(recent_.WithScan(LaserPoints(scan),
-                                                      geometry::Compose(odometry, mount_))));
+  const auto points = LaserPoints(scan);
+  const auto readings = recent_.WithScan(points, geometry::Compose(odometry, mount_));
+  if (hypotheses_.Holding()) {
+    Attempt attempt;
+    attempt.searched = false;
+    const auto verdict = hypotheses_.Update(points, odometry);
+    attempt.hypotheses = hypotheses_.Hypotheses();
+    attempt.seeded = hypotheses_.Seeded();
+    if (verdict == HypothesisTracker::Verdict::kCommitted) {
+      attempt.found =
+          InitialPoseInput{scan.geometry.stamp, hypotheses_.Committed()->pose, covariance_};
+      attempt.travel_m = hypotheses_.TravelM();
+      hypotheses_.Clear();
+    }
+    if (verdict != HypothesisTracker::Verdict::kSearch) return attempt;
+  }
+  Attempt attempt = Decide(scan, search_.Locate(readings));
+  if (attempt.result.decision == GlobalDecision::kAmbiguous && geometry::IsFinite(odometry)) {
+    attempt.seeded = hypotheses_.Seed(attempt.result, points, odometry);
+    attempt.hypotheses = hypotheses_.Hypotheses();
+  }
+  return attempt;
 }
 
 GlobalStart::Attempt GlobalStart::TryNear(const SessionScan& scan,
@@ -56,8 +80,7 @@ std::optional<InitialPoseInput> GlobalStart::NearestOfTie(const SessionScan& sca
     }
   }
   if (!nearest) return std::nullopt;
-  return InitialPoseInput{scan.geometry.stamp,
-                          geometry::Compose(*nearest, geometry::Inverse(mount_)), covariance_};
+  return RobotPoseAt(scan, *nearest);
 }
 
 GlobalStart::Attempt GlobalStart::Locate(const SessionScan& scan,
@@ -68,12 +91,14 @@ GlobalStart::Attempt GlobalStart::Locate(const SessionScan& scan,
 GlobalStart::Attempt GlobalStart::Decide(const SessionScan& scan, GlobalResult result) const {
   Attempt attempt;
   attempt.result = std::move(result);
-  if (attempt.result.decision == GlobalDecision::kFound) {
-    attempt.found = InitialPoseInput{
-        scan.geometry.stamp,
-        geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount_)), covariance_};
-  }
+  if (attempt.result.decision == GlobalDecision::kFound)
+    attempt.found = RobotPoseAt(scan, attempt.result.best->pose);
   return attempt;
+}
+
+InitialPoseInput GlobalStart::RobotPoseAt(const SessionScan& scan,
+                                          const geometry::Pose2D& laser) const {
+  return {scan.geometry.stamp, geometry::Compose(laser, geometry::Inverse(mount_)), covariance_};
 }
 
 }  // namespace structloc::localisation_core

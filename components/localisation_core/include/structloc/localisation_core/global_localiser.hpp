@@ -107,6 +107,10 @@ struct GlobalResult {
   // The distinct pose that made the answer "ambiguous", else the best pose
   // distinct from `best`.
   std::optional<GlobalCandidate> runner_up;
+  // Every ranked pose distinct from those before it (GlobalLocaliserOptions'
+  // distinct_distance_m / distinct_heading_rad), best first: the hypotheses
+  // a robot that cannot tell them apart from one scan keeps alive.
+  std::vector<GlobalCandidate> candidates;
   size_t scans = 1;  // scans searched together: the newest and those before it
   size_t points_used = 0;
   std::string reason;  // why not found or ambiguous, for the user
@@ -146,6 +150,29 @@ class GlobalLocaliser {
     return RankScore(usable_points, {}, laser_pose);
   }
 
+  // The points of a scan (laser frame) that a pose is fitted with and
+  // weighed by: those within the options' range limits, evenly thinned to at
+  // most `most`.
+  std::vector<Eigen::Vector2d> FitPoints(const std::vector<Eigen::Vector2d>& points,
+                                         int most) const;
+  // The laser pose near `laser_pose` that explains FitPoints best: the
+  // polishing climb of the ranking (moves of 5 cm and 0.01 rad, halved down
+  // to 5 mm), on the sharp field.
+  geometry::Pose2D Polish(const std::vector<Eigen::Vector2d>& fit_points,
+                          const geometry::Pose2D& laser_pose) const;
+  // How well FitPoints fit at `laser_pose`, for weighing hypotheses: the
+  // share explained (as ranked) and the mean log-likelihood per point under a
+  // likelihood-field model, log((1 - u) g + u) with g the ranking field's gain
+  // at the point (0 when its beam passes through a wall) and u
+  // `unexplained_likelihood`, the likelihood of a reading the map does not
+  // explain (a person, a box).
+  struct Fit {
+    double share = 0.0;
+    double mean_log_likelihood = 0.0;
+  };
+  Fit FitAt(const std::vector<Eigen::Vector2d>& fit_points, const geometry::Pose2D& laser_pose,
+            double unexplained_likelihood) const;
+
   size_t CandidatePositions() const { return positions_.size(); }
   const GlobalLocaliserOptions& Options() const { return options_; }
 
@@ -169,6 +196,9 @@ class GlobalLocaliser {
   double RankScore(const std::vector<Eigen::Vector2d>& points,
                    const std::vector<Eigen::Vector2d>& seen_from,
                    const geometry::Pose2D& pose) const;
+  // A point's gain in the ranking field at `pose`, 0 when its beam from
+  // `origin` (map frame) passes through a wall before it.
+  double RankGain(const Eigen::Vector2d& origin, const Eigen::Vector2d& point_in_map) const;
   bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   bool InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const;
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame

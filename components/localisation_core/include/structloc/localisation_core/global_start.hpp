@@ -1,9 +1,13 @@
 // Where a robot without a pose is (no initial pose given, no saved state, or
 // a request to relocalise): each incoming scan goes to the global localiser
-// until one gives a "found" pose, never an ambiguous or unfound one; that pose
-// (the laser's, turned into the robot's with the sensor mount) becomes the
+// until one gives a "found" pose, never an unfound one; that pose (the
+// laser's, turned into the robot's with the sensor mount) becomes the
 // initial pose at the scan's stamp. With the robot's odometry, each scan is
-// searched together with those taken on the last metres (RecentScans).
+// searched together with those taken on the last metres (RecentScans), and
+// an "ambiguous" answer (a symmetric building) starts several hypotheses
+// that the following scans weigh until one is committed
+// (HypothesisTracker); no search runs while they are held. The
+// localisation component and replay both start a robot through this class.
 // TryNear searches only around a pose the robot is believed to be near (a
 // pose hint: PoseHintCheck). The localisation component runs it; DDS-free.
 #pragma once
@@ -11,6 +15,7 @@
 #include <optional>
 
 #include "structloc/localisation_core/global_localiser.hpp"
+#include "structloc/localisation_core/hypothesis_tracker.hpp"
 #include "structloc/localisation_core/recent_scans.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/session_scan.hpp"
@@ -22,19 +27,30 @@ class GlobalStart {
   // `covariance`: of a pose found (the tracker's initial covariance).
   GlobalStart(const world_model::WorldModel& world, const geometry::Pose2D& sensor_mount,
               const Eigen::Matrix3d& covariance, const GlobalLocaliserOptions& options = {},
-              const RecentScansOptions& recent = {});
+              const RecentScansOptions& recent = {}, const HypothesisOptions& hypotheses = {});
 
   struct Attempt {
-    GlobalResult result;                    // laser poses
+    bool searched = true;  // a global search ran (else the hypotheses held were weighed)
+    GlobalResult result;   // laser poses (when searched)
     std::optional<InitialPoseInput> found;  // the robot's initial pose, when found
+    std::vector<Hypothesis> hypotheses;     // held after this scan (robot poses), best first
+    // When found through hypotheses: the odometric travel from the search
+    // that started them, and how many there were.
+    std::optional<double> travel_m;
+    size_t seeded = 0;
   };
   Attempt Try(const SessionScan& scan) const;
   // The same together with the scans given here before, placed by the
   // robot's odometric pose at each (`odometry`, at this scan's stamp); the
   // scan alone when that pose is not finite.
   Attempt Try(const SessionScan& scan, const geometry::Pose2D& odometry);
-  // Forgets those scans: the robot was carried away, or has a pose.
-  void ForgetRecentScans() { recent_.Clear(); }
+  // Forgets those scans and the hypotheses held: the robot was carried
+  // away, or has a pose.
+  void ForgetRecentScans() {
+    recent_.Clear();
+    hypotheses_.Clear();
+  }
+  bool HoldingHypotheses() const { return hypotheses_.Holding(); }
   // The same, over robot positions within `radius_m` of `robot_pose` and
   // headings within `heading_rad` of its heading.
   Attempt TryNear(const SessionScan& scan, const geometry::Pose2D& robot_pose, double radius_m,
@@ -50,10 +66,13 @@ class GlobalStart {
   Attempt Locate(const SessionScan& scan, const SearchWindow* window) const;
   Attempt Decide(const SessionScan& scan, GlobalResult result) const;
 
+  InitialPoseInput RobotPoseAt(const SessionScan& scan, const geometry::Pose2D& laser) const;
+
   GlobalLocaliser search_;
   geometry::Pose2D mount_;
   Eigen::Matrix3d covariance_;
   RecentScans recent_;
+  HypothesisTracker hypotheses_;
 };
 
 }  // namespace structloc::localisation_core

@@ -1,0 +1,206 @@
+// Global localisation without an initial pose on simulated symmetric floors
+// (issue 38): the scenario is simulated once; from START random scans of its
+// first loop of the tour, a robot without a pose is started (GlobalStart, as
+// the localisation component and replay start one) and given the scans of one
+// more loop to commit. Counts the right commits (within 0.2 m and 5 deg of
+// the truth at that scan), the wrong ones and the starts that never
+// committed, and prints the median odometric travel to the commit and the
+// CPU time per scan while hypotheses were held.
+//   structloc_global_start_evaluation SCENARIO.xml [STARTS=100] [--seed N] [--check]
+// --check exits 1 on any wrong commit or when fewer than 98 % of the starts
+// committed.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "structloc/localisation_core/global_start.hpp"
+#include "structloc/simulation_core/scenario.hpp"
+#include "structloc/simulation_core/simulation.hpp"
+
+namespace {
+
+using namespace structloc;
+
+double ThreadCpuUs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
+}
+
+std::vector<simulation_core::SimScan> Simulate(const simulation_core::Scenario& scenario) {
+  simulation_core::Simulation sim(scenario);
+  std::vector<simulation_core::SimScan> scans;
+  while (!sim.Finished()) {
+    sim.Step();
+    if (auto scan = sim.TakeScan()) scans.push_back(std::move(*scan));
+  }
+  return scans;
+}
+
+// The scans of the tour's first loop: up to where the robot is back at its
+// start after having left it.
+size_t LoopScans(const std::vector<simulation_core::SimScan>& scans,
+                 const geometry::Pose2D& start) {
+  bool left = false;
+  for (size_t i = 0; i < scans.size(); ++i) {
+    const double d = std::hypot(scans[i].truth.x - start.x, scans[i].truth.y - start.y);
+    left = left || d > 2.0;
+    if (left && d < 0.3) return i;
+  }
+  return scans.size() / 2;
+}
+
+localisation_core::SessionScan ToSessionScan(const simulation_core::SimScan& s) {
+  localisation_core::SessionScan scan;
+  scan.geometry.stamp = s.stamp;
+  scan.geometry.angle_min = s.angle_min;
+  scan.geometry.angle_increment = s.angle_increment;
+  scan.geometry.time_increment = s.time_increment;
+  scan.geometry.range_min = s.range_min;
+  scan.geometry.range_max = s.range_max;
+  scan.ranges = s.ranges;
+  scan.odometry = s.odometry;
+  return scan;
+}
+
+struct Trial {
+  enum class Outcome { kRight, kWrong, kNone } outcome = Outcome::kNone;
+  double travel_m = 0.0;  // odometric path from the start to the commit
+  double error_m = 0.0, error_deg = 0.0;
+  size_t searches = 0, held_scans = 0, most_hypotheses = 0;
+  double held_cpu_us = 0.0;
+};
+
+Trial Run(const world_model::WorldModel& world, const simulation_core::Scenario& scenario,
+          const std::vector<simulation_core::SimScan>& scans, size_t first, size_t count) {
+  localisation_core::GlobalStart start(world, scenario.laser.mount,
+                                       Eigen::Matrix3d::Identity() * 0.01);
+  Trial trial;
+  for (size_t k = first; k < std::min(scans.size(), first + count); ++k) {
+    const auto& s = scans[k];
+    if (k > first) {
+      const auto& p = scans[k - 1].odometry;
+      trial.travel_m += std::hypot(s.odometry.x - p.x, s.odometry.y - p.y);
+    }
+    const bool holding = start.HoldingHypotheses();
+    const double t0 = ThreadCpuUs();
+    const auto attempt = start.Try(ToSessionScan(s), s.odometry);
+    if (holding) {
+      trial.held_cpu_us += ThreadCpuUs() - t0;
+      ++trial.held_scans;
+    }
+    trial.searches += attempt.searched ? 1 : 0;
+    trial.most_hypotheses = std::max(trial.most_hypotheses, attempt.hypotheses.size());
+    if (std::getenv("STRUCTLOC_TRACE")) {
+      std::printf("    scan %zu truth (%.2f %.2f %.1f)%s:", k, s.truth.x, s.truth.y,
+                  s.truth.theta * 180 / geometry::kPi, attempt.searched ? " searched" : "");
+      for (const auto& h : attempt.hypotheses)
+        std::printf(" [%.2f %.2f %.1f L%.1f s%.2f]", h.pose.x, h.pose.y,
+                    h.pose.theta * 180 / geometry::kPi, h.log_likelihood, h.share);
+      if (attempt.found)
+        std::printf(" FOUND (%.2f %.2f)", attempt.found->pose.x, attempt.found->pose.y);
+      std::printf("\n");
+    }
+    if (!attempt.found) continue;
+    const auto& p = attempt.found->pose;
+    trial.error_m = std::hypot(p.x - s.truth.x, p.y - s.truth.y);
+    trial.error_deg =
+        std::abs(geometry::WrapAngle(p.theta - s.truth.theta)) * 180.0 / geometry::kPi;
+    trial.outcome = trial.error_m <= 0.2 && trial.error_deg <= 5.0 ? Trial::Outcome::kRight
+                                                                   : Trial::Outcome::kWrong;
+    return trial;
+  }
+  return trial;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr,
+                 "usage: structloc_global_start_evaluation SCENARIO.xml [STARTS=100] [--seed N] "
+                 "[--check]\n");
+    return 2;
+  }
+  size_t starts = 100;
+  unsigned seed = 1;
+  bool check = false;
+  for (int i = 2; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--check") == 0) {
+      check = true;
+    } else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
+      seed = static_cast<unsigned>(std::stoul(argv[++i]));
+    } else {
+      starts = std::stoul(argv[i]);
+    }
+  }
+  try {
+    const auto scenario = simulation_core::LoadScenario(argv[1]);
+    const auto scans = Simulate(scenario);
+    const size_t loop = LoopScans(scans, scenario.initial_pose);
+    Eigen::AlignedBox2d extent;
+    for (const auto& s : scans) extent.extend(s.truth.Translation());
+    std::printf(
+        "%s: %zu scans, one loop of the tour %zu scans, the robot within x %.1f..%.1f m, y "
+        "%.1f..%.1f m; %zu starts (seed %u)\n",
+        scenario.name.c_str(), scans.size(), loop, extent.min().x(), extent.max().x(),
+        extent.min().y(), extent.max().y(), starts, seed);
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<size_t> pick(0, loop - 1);
+    size_t right = 0, wrong = 0, none = 0, held_scans = 0;
+    double held_cpu = 0.0;
+    std::vector<double> travel;
+    for (size_t i = 0; i < starts; ++i) {
+      const size_t first = pick(rng);
+      const auto t = Run(*scenario.world, scenario, scans, first, loop);
+      held_scans += t.held_scans;
+      held_cpu += t.held_cpu_us;
+      const char* what = "never committed";
+      if (t.outcome == Trial::Outcome::kRight) {
+        ++right;
+        travel.push_back(t.travel_m);
+        what = "right";
+      } else if (t.outcome == Trial::Outcome::kWrong) {
+        ++wrong;
+        what = "WRONG";
+      } else {
+        ++none;
+      }
+      std::printf(
+          "  start at scan %5zu (%.2f, %.2f, %.0f deg): %s after %.1f m, %zu searches, at most "
+          "%zu hypotheses (error %.3f m, %.2f deg)\n",
+          first, scans[first].truth.x, scans[first].truth.y,
+          scans[first].truth.theta * 180.0 / geometry::kPi, what, t.travel_m, t.searches,
+          t.most_hypotheses, t.error_m, t.error_deg);
+    }
+    const double share = static_cast<double>(right) / static_cast<double>(starts);
+    std::printf(
+        "%s: right %zu of %zu (%.1f %%), wrong %zu, never committed %zu; median travel to the "
+        "commit %.1f m; CPU per scan while hypotheses were held %.0f us (%zu scans)\n",
+        scenario.name.c_str(), right, starts, 100.0 * share, wrong, none, Median(travel),
+        held_scans ? held_cpu / static_cast<double>(held_scans) : 0.0, held_scans);
+    if (check && (wrong > 0 || share < 0.98)) {
+      std::printf("FAILED: the bar is >= 98 %% right and no wrong commit\n");
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "structloc_global_start_evaluation: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
