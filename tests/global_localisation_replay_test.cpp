@@ -50,14 +50,20 @@ TEST(GlobalLocalisationReplay, TracksWithoutAnInitialPoseAsWellAsWithOne) {
   const auto global = replay::RunReplay(Options(dir, "global"));
 
   ASSERT_FALSE(global.global_attempts.empty());
-  const auto& found = global.global_attempts.back();
-  ASSERT_EQ(found.result.decision, localisation_core::GlobalDecision::kFound);
   std::printf("%s", replay::FormatGlobalAttempts(global.global_attempts).c_str());
   // The corridor repeats every 6 m (doors at the same places): the first
-  // scans fit two places equally and are "ambiguous" until the robot sees
-  // more (found at scan 29 with the scans before it, 23 with single scans;
-  // 40 scans are some 3 m of driving).
-  EXPECT_LE(global.global_attempts.size(), 40u);
+  // scans fit two places equally and are "ambiguous"; the hypotheses they
+  // start are told apart as the robot sees more (issue 38), or a later
+  // search finds the robot without a doubt. Either within 40 scans, some
+  // 3 m of driving (at 36dc199, with single searches only: found at scan 29).
+  const bool found =
+      global.global_attempts.back().result.decision == localisation_core::GlobalDecision::kFound;
+  ASSERT_TRUE(found || global.commit.has_value());
+  const size_t located_at =
+      global.commit ? global.commit->scan : global.global_attempts.back().scan;
+  std::printf("located at scan %zu (%s)\n", located_at,
+              global.commit ? "hypotheses committed" : "found by a search");
+  EXPECT_LE(located_at, 40u);
   EXPECT_EQ(global.scans_lost, 0u);
   ASSERT_GT(global.estimate.size(), 500u);
 

@@ -7,12 +7,16 @@
 // Real processes on a real Fast DDS domain.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "dds_test_support.hpp"
+#include "geometry_msgs/msg/PoseArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "live_accuracy.hpp"
 #include "std_msgs/msg/EmptyPubSubTypes.h"
@@ -21,6 +25,7 @@
 #include "structloc/evaluation/live_evaluator.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
+#include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
 
 namespace structloc {
@@ -89,17 +94,47 @@ TEST(LocalisationGlobalStart, LocatesTheRobotWithoutAPoseAndAgainWhenAsked) {
   auto& localisation = run.localisation;
   auto request = run.observer.CreateWriter<std_msgs::msg::EmptyPubSubType>(
       dds_common::topics::kReinitializeGlobalLocalization);
+  // What it says while it weighs hypotheses (issue 38).
+  std::mutex seen_mutex;
+  size_t most_poses = 0, holding_statuses = 0;
+  bool weights_fit = true;
+  auto hypotheses = run.observer.Subscribe<geometry_msgs::msg::PoseArrayPubSubType>(
+      dds_common::topics::kHypotheses, [&](const geometry_msgs::msg::PoseArray& m) {
+        std::lock_guard<std::mutex> lock(seen_mutex);
+        if (m.header().frame_id() == "map") most_poses = std::max(most_poses, m.poses().size());
+      });
+  auto statuses = run.observer.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
+      dds_common::topics::kStatus, [&](const structloc_msgs::msg::LocalisationStatus& m) {
+        if (m.phase() != "holding") return;
+        std::lock_guard<std::mutex> lock(seen_mutex);
+        ++holding_statuses;
+        double sum = 0.0;
+        for (double w : m.hypothesis_weights()) sum += w;
+        weights_fit = weights_fit && m.hypothesis_weights().size() >= 2 && std::abs(sum - 1) < 1e-9;
+      });
   ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > 40; }, 60s))
       << localisation.CapturedOutput();
   const std::string started = localisation.CapturedOutput();
   EXPECT_NE(started.find("no initial pose: locating the robot globally"), std::string::npos)
       << started;
   EXPECT_NE(started.find("global localisation at t="), std::string::npos) << started;
-  // The robot drives from the start: later attempts search with the scans
-  // before them, placed by odometry.
-  EXPECT_NE(started.find("scans before it"), std::string::npos) << started;
+  // The robot drives from the start along a corridor that repeats: an
+  // ambiguous first search starts hypotheses that its driving tells apart
+  // (issue 38), or a later attempt searches with the scans before it,
+  // placed by odometry.
+  EXPECT_TRUE(started.find("committed to one of") != std::string::npos ||
+              started.find("scans before it") != std::string::npos)
+      << started;
   EXPECT_NE(started.find("initial pose set from global localisation"), std::string::npos)
       << started;
+  if (started.find("committed to one of") != std::string::npos) {
+    std::lock_guard<std::mutex> lock(seen_mutex);
+    std::printf("hypotheses committed: at most %zu on %s, %zu statuses holding\n", most_poses,
+                dds_common::topics::kHypotheses.name.c_str(), holding_statuses);
+    EXPECT_GE(most_poses, 2u);
+    EXPECT_GT(holding_statuses, 0u);
+    EXPECT_TRUE(weights_fit);
+  }
   // Tracking from the first pose found on, after a second to settle.
   run.ExpectAccurateAfter(evaluator.Estimate().front().stamp, "located globally");
 

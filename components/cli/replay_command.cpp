@@ -35,8 +35,8 @@ int ReplayCommand(const Invocation& inv) {
        "\"X Y THETA\": map pose of the robot at the first laser line (default: located "
        "globally from the first scans)"},
       {"global-attempts", true,
-       "without --initial-pose: scans tried against the whole map before giving up (default " +
-           std::to_string(replay::ReplayOptions{}.global_attempts) + ")"},
+       "without --initial-pose: scans tried before giving up (default: none, until the log "
+       "ends)"},
       {"out", true, "TUM trajectory to write (one line per scan)"},
       {"params", true, "localisation parameter file (default: built-in Table 6 defaults)"},
       {"truth", true, "TUM ground truth: adds RMSE, max and heading errors"},
@@ -76,7 +76,8 @@ int ReplayCommand(const Invocation& inv) {
     o.limits.max_beams = Limit(cli, "max-beams", o.limits.max_beams, 10000000);
     o.limits.max_lines = Limit(cli, "max-lines", o.limits.max_lines, 1000000000000);
     o.world_limits.max_walls = Limit(cli, "max-walls", o.world_limits.max_walls, 100000000);
-    o.global_attempts = Limit(cli, "global-attempts", o.global_attempts, 100000);
+    if (cli.Has("global-attempts"))
+      o.global_attempts = Limit(cli, "global-attempts", 1, 1000000000);
     if (cli.Has("initial-pose")) {
       const std::string pose_text = cli.Required("initial-pose");
       const auto pose = config::ParseNumberList(pose_text, 3);

@@ -59,6 +59,7 @@ LiveEvaluator::LiveEvaluator(dds_common::Node& node, const geometry::Pose2D& ini
       }));
   subscriptions_.push_back(node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
       dds_common::topics::kStatus, [this](const structloc_msgs::msg::LocalisationStatus& s) {
+        if (s.phase() != "tracking") return;  // no pose yet: searching or weighing hypotheses
         std::lock_guard<std::mutex> lock(mutex_);
         snapshot_.matched_features = 0;
         snapshot_.expected_features = 0;

@@ -28,6 +28,8 @@ LocalisationComponent::LocalisationComponent(
           dds_common::topics::kFeatures)),
       status_(node.CreateWriter<structloc_msgs::msg::LocalisationStatusPubSubType>(
           dds_common::topics::kStatus)),
+      hypotheses_(node.CreateWriter<geometry_msgs::msg::PoseArrayPubSubType>(
+          dds_common::topics::kHypotheses)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
           dds_common::topics::kDiagnostics)),
       node_(node),
@@ -145,31 +147,47 @@ void LocalisationComponent::ApplySearch(const SearchAnswer& answer, double now) 
 
 void LocalisationComponent::ApplyGlobal(const localisation_core::GlobalStart::Attempt& attempt,
                                         double stamp, double now) {
-  const auto& r = attempt.result;
-  std::cout << std::fixed << std::setprecision(3)
-            << "localisation: global localisation at t=" << stamp;
-  if (r.scans > 1) std::cout << " with " << r.scans - 1 << " scans before it";
-  std::cout << ": " << localisation_core::ToString(r.decision);
-  if (r.best) {
-    std::cout << ", best laser pose (" << r.best->pose.x << ", " << r.best->pose.y << ", "
-              << r.best->pose.theta << ") explains " << static_cast<int>(100 * r.best->score)
-              << " %";
-    if (r.best->newest_score)
-      std::cout << " (" << static_cast<int>(100 * *r.best->newest_score) << " % of this scan)";
+  std::cout << std::fixed << std::setprecision(3);
+  if (attempt.searched) {
+    const auto& r = attempt.result;
+    std::cout << "localisation: global localisation at t=" << stamp;
+    if (r.scans > 1) std::cout << " with " << r.scans - 1 << " scans before it";
+    std::cout << ": " << localisation_core::ToString(r.decision);
+    if (r.best) {
+      std::cout << ", best laser pose (" << r.best->pose.x << ", " << r.best->pose.y << ", "
+                << r.best->pose.theta << ") explains " << static_cast<int>(100 * r.best->score)
+                << " %";
+      if (r.best->newest_score)
+        std::cout << " (" << static_cast<int>(100 * *r.best->newest_score) << " % of this scan)";
+    }
+    if (r.runner_up) {
+      std::cout << ", runner-up (" << r.runner_up->pose.x << ", " << r.runner_up->pose.y << ", "
+                << r.runner_up->pose.theta << ") " << static_cast<int>(100 * r.runner_up->score)
+                << " %";
+    }
+    if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
+    if (!attempt.hypotheses.empty())
+      std::cout << "; weighing " << attempt.hypotheses.size() << " hypotheses as the robot moves";
+    std::cout << std::endl;
+  } else if (!attempt.found && attempt.hypotheses.size() != held_hypotheses_) {
+    std::cout << "localisation: " << attempt.hypotheses.size() << " hypotheses left at t=" << stamp
+              << std::endl;
   }
-  if (r.runner_up) {
-    std::cout << ", runner-up (" << r.runner_up->pose.x << ", " << r.runner_up->pose.y << ", "
-              << r.runner_up->pose.theta << ") " << static_cast<int>(100 * r.runner_up->score)
-              << " %";
+  held_hypotheses_ = attempt.found ? 0 : attempt.hypotheses.size();
+  if (!attempt.found) {
+    start_up_out_ = StartUpMessages{ToPoseArray(attempt.hypotheses, stamp, options_.frames),
+                                    ToStartUpStatus(attempt.hypotheses, stamp, options_.frames)};
+    return;
   }
-  if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
-  std::cout << std::endl;
-  if (!attempt.found) return;
   forget_recent_scans_ = true;
   session_.SetInitialPose(*attempt.found, "global localisation", now);
   const auto& p = attempt.found->pose;
   std::cout << "localisation: initial pose set from global localisation: robot at (" << p.x << ", "
-            << p.y << ", " << p.theta << ")" << std::endl;
+            << p.y << ", " << p.theta << ")";
+  if (attempt.travel_m)
+    std::cout << ", committed to one of " << attempt.seeded << " hypotheses after "
+              << *attempt.travel_m << " m of travel";
+  std::cout << std::endl;
 }
 
 void LocalisationComponent::ApplyHint(const localisation_core::PoseHintCheck::Outcome& outcome,
@@ -229,6 +247,8 @@ void LocalisationComponent::Worker() {
     structloc_msgs::msg::ScanFeatures features;
     structloc_msgs::msg::LocalisationStatus status;
     std::optional<localisation_core::ScanReport> report;
+    std::optional<StartUpMessages> start_up;
+    bool tracked = false;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
       if (search_.valid() &&
@@ -264,17 +284,25 @@ void LocalisationComponent::Worker() {
         StartSearch(*scan);
       }
       if (scan) session_.AddScan(std::move(*scan), inputs.scan_arrived_s);
+      start_up.swap(start_up_out_);
       report = session_.Next(now);
-      if (!report || report->kind != localisation_core::ScanReport::Kind::kTracked) continue;
-      if (report->reacquired) {
+      tracked = report && report->kind == localisation_core::ScanReport::Kind::kTracked;
+      if (tracked && report->reacquired) {
         const auto& p = report->pose.pose;
         std::cout << "localisation: re-acquired at t=" << report->stamp << " s: (" << p.x << ", "
                   << p.y << ", " << p.theta << "), a jump of (" << report->jump.x << ", "
                   << report->jump.y << ", " << report->jump.theta << ")" << std::endl;
       }
-      pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
-      tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
+      if (tracked) {
+        pose = ToPoseWithCovarianceStamped(report->pose, options_.frames);
+        tf = ToMapToOdomTf(session_.Tracker()->MapToOdom(), report->stamp, options_.frames);
+      }
     }
+    if (start_up) {
+      hypotheses_.Write(start_up->poses);
+      status_.Write(start_up->status);
+    }
+    if (!tracked) continue;
     // Published outside every lock: neither the DDS threads delivering scans
     // and odometry nor the main thread wait for these writes. The pose first:
     // the features and the status are made after it is out.
@@ -325,14 +353,24 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   in.odometry_topic = dds_common::topics::kOdom.name;
   in.initial_pose_topic = dds_common::topics::kInitialPose.name;
   dds_common::HealthReport report;
+  std::string start_up;
   {
     std::lock_guard<std::mutex> lock(session_mutex_);
     report = ToHealthReport(localisation_core::AssessHealth(session_, in));
+    if (!session_.WaitingForInitialPose())
+      start_up = "tracking";
+    else if (pose_hint_check_)
+      start_up = "confirming " + pose_hint_check_->Source();
+    else if (held_hypotheses_ > 0)
+      start_up = "holding " + std::to_string(held_hypotheses_) + " hypotheses";
+    else
+      start_up = global_ ? "searching the map" : "waiting for an initial pose";
   }
   if (const uint64_t overflow = inbox_.OdometryOverflow()) {
     report.values.emplace_back("odometry_dropped", std::to_string(overflow));
   }
   for (const auto& peer : node_.PeerProblems()) report.values.emplace_back("peer", peer);
+  report.values.emplace_back("start_up", start_up);
   // A log line whenever the headline changes kind (not its running seconds).
   const std::string state = std::to_string(static_cast<int>(report.level)) + " " +
                             report.message.substr(0, report.message.find(" for "));

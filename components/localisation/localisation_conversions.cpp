@@ -1,6 +1,9 @@
 // Message conversions of the localisation component (see header).
 #include "structloc/localisation/localisation_conversions.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "structloc/dds_common/ros_conversions.hpp"
 
 namespace structloc::localisation {
@@ -124,6 +127,7 @@ structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::Locali
   s.header().stamp(dds_common::ToRosTime(stamp));
   s.header().frame_id(frames.map);
   s.quality(r.quality);
+  s.phase("tracking");
   const bool lost = lost_reason != nullptr && lost_reason[0] != '\0';
   s.lost(lost);
   s.lost_reason(lost ? lost_reason : "");
@@ -148,6 +152,41 @@ structloc_msgs::msg::LocalisationStatus ToStatus(const localisation_core::Locali
   }
   t.solve_us(r.times.solve_us);
   t.total_us(r.times.total_us);
+  return s;
+}
+
+geometry_msgs::msg::PoseArray ToPoseArray(
+    const std::vector<localisation_core::Hypothesis>& hypotheses, double stamp,
+    const dds_common::FrameIds& frames) {
+  geometry_msgs::msg::PoseArray msg;
+  msg.header().stamp(dds_common::ToRosTime(stamp));
+  msg.header().frame_id(frames.map);
+  for (const auto& h : hypotheses) {
+    geometry_msgs::msg::Pose p;
+    p.position().x(h.pose.x);
+    p.position().y(h.pose.y);
+    p.orientation(dds_common::ToQuaternion(h.pose.theta));
+    msg.poses().push_back(p);
+  }
+  return msg;
+}
+
+structloc_msgs::msg::LocalisationStatus ToStartUpStatus(
+    const std::vector<localisation_core::Hypothesis>& hypotheses, double stamp,
+    const dds_common::FrameIds& frames) {
+  structloc_msgs::msg::LocalisationStatus s;
+  s.header().stamp(dds_common::ToRosTime(stamp));
+  s.header().frame_id(frames.map);
+  s.lost(true);
+  s.phase(hypotheses.empty() ? "searching" : "holding");
+  s.lost_reason(hypotheses.empty()
+                    ? "no pose yet: searching the map"
+                    : "no pose yet: weighing " + std::to_string(hypotheses.size()) + " hypotheses");
+  double best = -INFINITY, sum = 0.0;
+  for (const auto& h : hypotheses) best = std::max(best, h.log_likelihood);
+  for (const auto& h : hypotheses) sum += std::exp(h.log_likelihood - best);
+  for (const auto& h : hypotheses)
+    s.hypothesis_weights().push_back(std::exp(h.log_likelihood - best) / sum);
   return s;
 }
 

@@ -12,9 +12,9 @@
 
 #include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_xml.hpp"
+#include "structloc/localisation_core/global_start.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/prefilter.hpp"
-#include "structloc/localisation_core/recent_scans.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/rendering/map_canvas.hpp"
@@ -45,8 +45,6 @@ class Replayer {
       throw config::ConfigError(
           "--no-map needs --initial-pose \"X Y THETA\" (without a map the "
           "robot cannot be located globally)");
-    if (!o.initial_pose && o.global_attempts == 0)
-      throw config::ConfigError("without --initial-pose at least one scan must be tried");
     const double bound = o.world_limits.max_abs_coordinate_m;
     if (o.initial_pose &&
         (!geometry::IsFinite(*o.initial_pose) || std::abs(o.initial_pose->x) > bound ||
@@ -65,8 +63,8 @@ class Replayer {
       session_options_ = localisation_core::LoadSessionOptions(o.params_path);
     }
     initial_pose_ = o.initial_pose;
-    if (!initial_pose_)
-      global_ = std::make_unique<localisation_core::GlobalLocaliser>(*world_, o.global);
+    // Checked now, built at the first laser line (whose poses give the mount).
+    if (!initial_pose_) localisation_core::CheckHypothesisOptions(o.hypotheses);
     if (!o.truth_path.empty()) {
       truth_ = log_formats::ReadTum(o.truth_path);
       if (truth_.empty()) {
@@ -169,31 +167,37 @@ class Replayer {
     return params_.sensor_mount;
   }
 
-  // Tries the scan against the whole map; true when it gave a "found" pose,
-  // which then becomes the initial pose. Throws when the last allowed
-  // attempt failed.
+  // Tries the scan against the whole map, or weighs the hypotheses held
+  // (GlobalStart, as the component starts a robot); true when a pose was
+  // found or committed, which then becomes the initial pose. Throws when the
+  // last allowed scan gave none.
   bool LocateGlobally(const log_formats::CarmenRecord& r) {
     ++global_scans_;
-    const double max_range = r.max_range > 0.0 ? r.max_range - 1e-3 : INFINITY;
-    const auto points = localisation_core::ScanPointsInLaserFrame(
-        r.ranges, r.start_angle, r.angular_resolution, 0.0, max_range);
+    if (!global_) {
+      global_ = std::make_unique<localisation_core::GlobalStart>(
+          *world_, SensorMount(&r), Eigen::Matrix3d::Identity(), o_.global,
+          localisation_core::RecentScansOptions{}, o_.hypotheses);
+    }
+    if (global_->HoldingHypotheses()) ++held_scans_;
     const auto t0 = std::chrono::steady_clock::now();
-    // With the log's odometry, the scans of the last metres count with this one.
-    GlobalAttempt attempt{global_scans_, r.line, r.stamp,
-                          r.robot_pose
-                              ? global_->Locate(recent_.WithScan(
-                                    points, geometry::Compose(*r.robot_pose, SensorMount(&r))))
-                              : global_->Locate(points),
-                          0.0};
-    attempt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    report_.global_attempts.push_back(attempt);
-    if (attempt.result.decision == localisation_core::GlobalDecision::kFound) {
-      const geometry::Pose2D mount = SensorMount(&r);
-      initial_pose_ = geometry::Compose(attempt.result.best->pose, geometry::Inverse(mount));
+    const auto scan = ToSessionScan(r);
+    auto attempt = r.robot_pose ? global_->Try(scan, *r.robot_pose) : global_->Try(scan);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (attempt.searched) {
+      report_.global_attempts.push_back(
+          {global_scans_, r.line, r.stamp, std::move(attempt.result), seconds});
+    }
+    if (attempt.found) {
+      initial_pose_ = attempt.found->pose;
+      if (attempt.travel_m) {
+        report_.commit = ReplayReport::Commit{global_scans_,     r.line,         r.stamp,
+                                              *attempt.travel_m, attempt.seeded, held_scans_};
+      }
       return true;
     }
     ++report_.scans_rejected["before the global localisation found the robot"];
-    if (global_scans_ >= o_.global_attempts) {
+    if (o_.global_attempts > 0 && global_scans_ >= o_.global_attempts) {
       report_.log = reader_->Stats();
       throw std::runtime_error(
           o_.log_path + ": none of the first " + std::to_string(global_scans_) +
@@ -412,9 +416,9 @@ class Replayer {
   localisation_core::SessionOptions session_options_;
   std::unique_ptr<TrackingSession> session_;      // from the first (located) laser line on
   std::optional<geometry::Pose2D> initial_pose_;  // given, or found by global_
-  std::unique_ptr<localisation_core::GlobalLocaliser> global_;  // without an initial pose
-  localisation_core::RecentScans recent_;                       // of the global localisation
-  size_t global_scans_ = 0;                                     // scans it has tried
+  std::unique_ptr<localisation_core::GlobalStart> global_;  // without an initial pose
+  size_t global_scans_ = 0;  // scans it has tried (searched or weighed hypotheses with)
+  size_t held_scans_ = 0;    // of them, with hypotheses held
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
   std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled
@@ -539,6 +543,13 @@ std::string FormatReport(const ReplayReport& r) {
   out.setf(std::ios::fixed);
   out.precision(1);
   out << FormatGlobalAttempts(r.global_attempts);
+  if (r.commit) {
+    out << std::setprecision(1) << "committed to one of " << r.commit->hypotheses
+        << " hypotheses at scan " << r.commit->scan << " (line " << r.commit->line
+        << ", t = " << std::setprecision(2) << r.commit->stamp << " s) after "
+        << std::setprecision(1) << r.commit->travel_m << " m of travel and " << r.commit->held_scans
+        << " scans weighing them; the scans before it are not tracked and not scored\n";
+  }
   if (!r.global_attempts.empty()) {
     out << std::setprecision(2) << "tracking started from robot pose (" << r.initial_pose.x
         << " m, " << r.initial_pose.y << " m, " << r.initial_pose.theta << " rad)\n"

@@ -41,6 +41,8 @@ inline const TopicSpec kReinitializeGlobalLocalization{"rt/reinitialize_global_l
 inline const TopicSpec kTf{"rt/tf", qos_profiles::kReliableState};
 inline const TopicSpec kFeatures{"rt/structloc/features", qos_profiles::kSensorData};
 inline const TopicSpec kStatus{"rt/structloc/status", qos_profiles::kReliableState};
+// A robot without a pose: the poses it is still weighing (geometry_msgs/PoseArray).
+inline const TopicSpec kHypotheses{"rt/structloc/hypotheses", qos_profiles::kReliableState};
 // Calibration output: late subscribers still get the last result.
 inline const TopicSpec kCalibration{"rt/structloc/calibration", qos_profiles::kLatchedResult};
 // Every component's health.

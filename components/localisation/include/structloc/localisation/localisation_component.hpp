@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "geometry_msgs/msg/PoseArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
@@ -80,6 +81,7 @@ class LocalisationComponent : public dds_common::Component {
   dds_common::TopicWriter<tf2_msgs::msg::TFMessagePubSubType> tf_;
   dds_common::TopicWriter<structloc_msgs::msg::ScanFeaturesPubSubType> features_;
   dds_common::TopicWriter<structloc_msgs::msg::LocalisationStatusPubSubType> status_;
+  dds_common::TopicWriter<geometry_msgs::msg::PoseArrayPubSubType> hypotheses_;
   dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
   const dds_common::Node& node_;
   const double started_s_;
@@ -102,6 +104,14 @@ class LocalisationComponent : public dds_common::Component {
   std::future<SearchAnswer> search_;
   uint64_t search_generation_ = 0;
   bool forget_recent_scans_ = false;  // once no search uses global_
+  // Hypotheses held after the last global attempt applied (diagnostics), and
+  // the messages saying so, for the worker to publish outside the lock.
+  size_t held_hypotheses_ = 0;
+  struct StartUpMessages {
+    geometry_msgs::msg::PoseArray poses;
+    structloc_msgs::msg::LocalisationStatus status;
+  };
+  std::optional<StartUpMessages> start_up_out_;
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed
   std::thread worker_;

@@ -4,11 +4,13 @@
 
 #include <string>
 
+#include "geometry_msgs/msg/PoseArray.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStamped.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "sensor_msgs/msg/LaserScan.h"
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/dds_common/topics.hpp"
+#include "structloc/localisation_core/hypothesis_tracker.hpp"
 #include "structloc/localisation_core/pose_tracker.hpp"
 #include "structloc/localisation_core/session_health.hpp"
 #include "structloc/localisation_core/session_scan.hpp"
@@ -43,6 +45,16 @@ structloc_msgs::msg::ScanFeatures ToScanFeatures(
 structloc_msgs::msg::LocalisationStatus ToStatus(
     const localisation_core::LocalisationResult& result, const char* lost_reason,
     const localisation_core::TrackerStats& stats, uint64_t dropped, double stamp,
+    const dds_common::FrameIds& frames);
+
+// The hypotheses of a robot without a pose, best first, in the map frame.
+geometry_msgs::msg::PoseArray ToPoseArray(
+    const std::vector<localisation_core::Hypothesis>& hypotheses, double stamp,
+    const dds_common::FrameIds& frames);
+// The status while no pose is tracked: `phase` "searching" or "holding"
+// (with the hypotheses' weights, their likelihoods normalised to sum 1).
+structloc_msgs::msg::LocalisationStatus ToStartUpStatus(
+    const std::vector<localisation_core::Hypothesis>& hypotheses, double stamp,
     const dds_common::FrameIds& frames);
 
 // The core's health assessment as the DDS layer's diagnostics report.

@@ -9,13 +9,15 @@
 // written to temporary files renamed only when the run succeeded, and never
 // over an input. A run that localises no scan is an error.
 //
-// Without an initial pose the robot is first located globally: the first
-// scans are tried one after the other against the whole map
-// (localisation_core::GlobalLocaliser), each with the scans of the last
-// metres placed by the log's odometry (localisation_core::RecentScans), until
-// one gives a "found" pose, which then starts the tracking exactly as
-// --initial-pose would; if none of the first global_attempts scans does, the
-// run is an error.
+// Without an initial pose the robot is first located globally as the
+// localisation component locates it (localisation_core::GlobalStart): the
+// scans are tried one after the other against the whole map, each with the
+// scans of the last metres placed by the log's odometry, until one gives a
+// "found" pose; an ambiguous answer starts hypotheses that the following
+// scans weigh until one is committed. That pose starts the tracking exactly
+// as --initial-pose would. Scans before it are not tracked (nor scored); a
+// log that ends first, or global_attempts scans when that limit is set, is
+// an error.
 #pragma once
 
 #include <functional>
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "structloc/localisation_core/global_localiser.hpp"
+#include "structloc/localisation_core/hypothesis_tracker.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/replay/trajectory_error.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -36,8 +39,9 @@ struct ReplayOptions {
   std::string log_path;                          // CARMEN log (plain or .gz)
   std::optional<geometry::Pose2D> initial_pose;  // map pose of the first laser line's robot;
                                                  // none: located globally
-  size_t global_attempts = 50;  // without initial_pose: scans tried before giving up
+  size_t global_attempts = 0;  // without initial_pose: scans tried before giving up (0: none)
   localisation_core::GlobalLocaliserOptions global;
+  localisation_core::HypothesisOptions hypotheses;
   std::string out_tum;      // estimate, one line per scan
   std::string params_path;  // localisation parameters (default: built-in defaults)
   std::string truth_path;   // optional TUM ground truth
@@ -93,8 +97,18 @@ struct ReplayReport {
   std::optional<TrajectoryError> estimate_error;
   std::optional<TrajectoryError> odometry_error;
   std::vector<log_formats::StampedPose> estimate;
-  std::vector<GlobalAttempt> global_attempts;  // empty when an initial pose was given
-  geometry::Pose2D initial_pose;               // robot pose tracking started from
+  std::vector<GlobalAttempt> global_attempts;  // the searches; empty when an initial pose was given
+  // When the pose came from hypotheses: where one was committed.
+  struct Commit {
+    size_t scan = 0;  // laser line number, from 1
+    size_t line = 0;
+    double stamp = 0.0;
+    double travel_m = 0.0;  // odometric path from the search that started them
+    size_t hypotheses = 0;  // started by that search
+    size_t held_scans = 0;  // scans that weighed them
+  };
+  std::optional<Commit> commit;
+  geometry::Pose2D initial_pose;  // robot pose tracking started from
 };
 
 // Throws std::runtime_error (or config::ConfigError) with a message a user can
