@@ -33,23 +33,77 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::P
   const auto points = LaserPoints(scan);
   const auto readings = recent_.WithScan(points, geometry::Compose(odometry, mount_));
   if (hypotheses_.Holding()) {
-    Attempt attempt;
-    attempt.searched = false;
     const auto verdict = hypotheses_.Update(points, odometry);
-    attempt.hypotheses = hypotheses_.Hypotheses();
-    attempt.seeded = hypotheses_.Seeded();
-    if (verdict == HypothesisTracker::Verdict::kCommitted) {
-      attempt.found =
-          InitialPoseInput{scan.geometry.stamp, hypotheses_.Committed()->pose, covariance_};
-      attempt.travel_m = hypotheses_.TravelM();
-      hypotheses_.Clear();
+    if (verdict == HypothesisTracker::Verdict::kHolding) {
+      Attempt attempt;
+      attempt.searched = false;
+      attempt.hypotheses = hypotheses_.Hypotheses();
+      attempt.seeded = hypotheses_.Seeded();
+      return attempt;
     }
-    if (verdict != HypothesisTracker::Verdict::kSearch) return attempt;
+    travel_before_m_ += hypotheses_.TravelM();
+    if (verdict == HypothesisTracker::Verdict::kCommitted)
+      return Verify(scan, readings, points, odometry, *hypotheses_.Committed());
   }
+  return SearchAndSeed(scan, readings, points, odometry);
+}
+
+GlobalStart::Attempt GlobalStart::SearchAndSeed(const SessionScan& scan, const Readings& readings,
+                                                const std::vector<Eigen::Vector2d>& points,
+                                                const geometry::Pose2D& odometry) {
   Attempt attempt = Decide(scan, search_.Locate(readings));
-  if (attempt.result.decision == GlobalDecision::kAmbiguous && geometry::IsFinite(odometry)) {
+  if (attempt.found) {
+    travel_before_m_ = 0.0;
+    hypotheses_.Clear();
+  } else if (attempt.result.decision == GlobalDecision::kAmbiguous &&
+             geometry::IsFinite(odometry)) {
     attempt.seeded = hypotheses_.Seed(attempt.result, points, odometry);
     attempt.hypotheses = hypotheses_.Hypotheses();
+  } else {
+    hypotheses_.Clear();
+  }
+  return attempt;
+}
+
+// The hypothesis left standing is committed only if a search of the whole
+// map with the scans of the last metres does not put the robot elsewhere
+// with a better fit: the hypotheses came from one search, which can miss the
+// true pose (more look-alike places than hypotheses, or a near-identical
+// hit crowding it out), and then the least wrong one would be left standing.
+GlobalStart::Attempt GlobalStart::Verify(const SessionScan& scan, const Readings& readings,
+                                         const std::vector<Eigen::Vector2d>& points,
+                                         const geometry::Pose2D& odometry,
+                                         const Hypothesis& standing) {
+  const geometry::Pose2D laser = geometry::Compose(standing.pose, mount_);
+  const GlobalResult check = search_.Locate(readings);
+  const auto& o = search_.Options();
+  const bool elsewhere =
+      check.best && (std::hypot(check.best->pose.x - laser.x, check.best->pose.y - laser.y) >
+                         o.distinct_distance_m ||
+                     std::abs(geometry::WrapAngle(check.best->pose.theta - laser.theta)) >
+                         o.distinct_heading_rad);
+  if (!elsewhere || search_.Score(readings, laser) >= check.best->score) {
+    Attempt attempt;
+    attempt.result = check;
+    attempt.found = InitialPoseInput{scan.geometry.stamp, standing.pose, covariance_};
+    attempt.travel_m = travel_before_m_;
+    attempt.seeded = hypotheses_.Seeded();
+    attempt.hypotheses = {standing};
+    travel_before_m_ = 0.0;
+    hypotheses_.Clear();
+    return attempt;
+  }
+  Attempt attempt = Decide(scan, check);
+  attempt.refused = standing;
+  if (attempt.found) {
+    attempt.travel_m = travel_before_m_;
+    travel_before_m_ = 0.0;
+    hypotheses_.Clear();
+  } else if (check.decision == GlobalDecision::kAmbiguous) {
+    attempt.seeded = hypotheses_.Seed(check, points, odometry);
+    attempt.hypotheses = hypotheses_.Hypotheses();
+  } else {
+    hypotheses_.Clear();
   }
   return attempt;
 }

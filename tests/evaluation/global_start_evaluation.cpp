@@ -7,6 +7,8 @@
 // committed, and prints the median odometric travel to the commit and the
 // CPU time per scan while hypotheses were held.
 //   structloc_global_start_evaluation SCENARIO.xml [STARTS=100] [--seed N] [--check]
+//                                     [--start SCAN]  (every start there; with
+//                                     STRUCTLOC_TRACE set, each scan's hypotheses)
 // --check exits 1 on any wrong commit or when fewer than 98 % of the starts
 // committed.
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -76,8 +79,10 @@ struct Trial {
   enum class Outcome { kRight, kWrong, kNone } outcome = Outcome::kNone;
   double travel_m = 0.0;  // odometric path from the start to the commit
   double error_m = 0.0, error_deg = 0.0;
-  size_t searches = 0, held_scans = 0, most_hypotheses = 0;
-  double held_cpu_us = 0.0;
+  size_t searches = 0, held_scans = 0, most_hypotheses = 0, refused = 0, scans = 0;
+  double held_cpu_us = 0.0;    // weighing hypotheses, the scans without a search
+  double search_cpu_us = 0.0;  // the scans with a search (to start, or to check a commit)
+  double cpu_us = 0.0;         // every scan up to the commit
 };
 
 Trial Run(const world_model::WorldModel& world, const simulation_core::Scenario& scenario,
@@ -94,10 +99,15 @@ Trial Run(const world_model::WorldModel& world, const simulation_core::Scenario&
     const bool holding = start.HoldingHypotheses();
     const double t0 = ThreadCpuUs();
     const auto attempt = start.Try(ToSessionScan(s), s.odometry);
-    if (holding) {
-      trial.held_cpu_us += ThreadCpuUs() - t0;
+    const double cpu_us = ThreadCpuUs() - t0;
+    trial.cpu_us += cpu_us;
+    ++trial.scans;
+    if (attempt.searched) trial.search_cpu_us += cpu_us;
+    if (holding && !attempt.searched) {
+      trial.held_cpu_us += cpu_us;
       ++trial.held_scans;
     }
+    trial.refused += attempt.refused ? 1 : 0;
     trial.searches += attempt.searched ? 1 : 0;
     trial.most_hypotheses = std::max(trial.most_hypotheses, attempt.hypotheses.size());
     if (std::getenv("STRUCTLOC_TRACE")) {
@@ -140,9 +150,12 @@ int main(int argc, char** argv) {
   size_t starts = 100;
   unsigned seed = 1;
   bool check = false;
+  std::optional<size_t> only_start;  // one start at this scan (with STRUCTLOC_TRACE: traced)
   for (int i = 2; i < argc; ++i) {
     if (std::strcmp(argv[i], "--check") == 0) {
       check = true;
+    } else if (std::strcmp(argv[i], "--start") == 0 && i + 1 < argc) {
+      only_start = std::stoul(argv[++i]);
     } else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
       seed = static_cast<unsigned>(std::stoul(argv[++i]));
     } else {
@@ -162,14 +175,20 @@ int main(int argc, char** argv) {
         extent.min().y(), extent.max().y(), starts, seed);
     std::mt19937 rng(seed);
     std::uniform_int_distribution<size_t> pick(0, loop - 1);
-    size_t right = 0, wrong = 0, none = 0, held_scans = 0;
-    double held_cpu = 0.0;
+    size_t right = 0, wrong = 0, none = 0, held_scans = 0, all_scans = 0, searches = 0,
+           refused = 0;
+    double held_cpu = 0.0, search_cpu = 0.0, all_cpu = 0.0;
     std::vector<double> travel;
     for (size_t i = 0; i < starts; ++i) {
-      const size_t first = pick(rng);
+      const size_t first = only_start ? *only_start : pick(rng);
       const auto t = Run(*scenario.world, scenario, scans, first, loop);
       held_scans += t.held_scans;
       held_cpu += t.held_cpu_us;
+      all_scans += t.scans;
+      all_cpu += t.cpu_us;
+      searches += t.searches;
+      search_cpu += t.search_cpu_us;
+      refused += t.refused;
       const char* what = "never committed";
       if (t.outcome == Trial::Outcome::kRight) {
         ++right;
@@ -183,17 +202,21 @@ int main(int argc, char** argv) {
       }
       std::printf(
           "  start at scan %5zu (%.2f, %.2f, %.0f deg): %s after %.1f m, %zu searches, at most "
-          "%zu hypotheses (error %.3f m, %.2f deg)\n",
+          "%zu hypotheses, %zu commits refused (error %.3f m, %.2f deg)\n",
           first, scans[first].truth.x, scans[first].truth.y,
           scans[first].truth.theta * 180.0 / geometry::kPi, what, t.travel_m, t.searches,
-          t.most_hypotheses, t.error_m, t.error_deg);
+          t.most_hypotheses, t.refused, t.error_m, t.error_deg);
     }
     const double share = static_cast<double>(right) / static_cast<double>(starts);
+    auto per = [](double us, size_t n) { return n ? us / static_cast<double>(n) : 0.0; };
     std::printf(
         "%s: right %zu of %zu (%.1f %%), wrong %zu, never committed %zu; median travel to the "
-        "commit %.1f m; CPU per scan while hypotheses were held %.0f us (%zu scans)\n",
+        "commit %.1f m\n  CPU: %.0f us per scan weighing hypotheses (%zu scans), %.0f ms per "
+        "search (%zu, %zu of them checks that refused a commit), %.0f us per scan over all scans "
+        "up to the commit (%zu)\n",
         scenario.name.c_str(), right, starts, 100.0 * share, wrong, none, Median(travel),
-        held_scans ? held_cpu / static_cast<double>(held_scans) : 0.0, held_scans);
+        per(held_cpu, held_scans), held_scans, 1e-3 * per(search_cpu, searches), searches,
+        refused, per(all_cpu, all_scans), all_scans);
     if (check && (wrong > 0 || share < 0.98)) {
       std::printf("FAILED: the bar is >= 98 %% right and no wrong commit\n");
       return 1;

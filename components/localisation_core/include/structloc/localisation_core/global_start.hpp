@@ -5,8 +5,10 @@
 // initial pose at the scan's stamp. With the robot's odometry, each scan is
 // searched together with those taken on the last metres (RecentScans), and
 // an "ambiguous" answer (a symmetric building) starts several hypotheses
-// that the following scans weigh until one is committed
-// (HypothesisTracker); no search runs while they are held. The
+// that the following scans weigh (HypothesisTracker); no search runs while
+// they are held. The one left standing is committed once a search with the
+// last metres' scans does not put the robot elsewhere with a better fit;
+// otherwise hypotheses start afresh from that search. The
 // localisation component and replay both start a robot through this class.
 // TryNear searches only around a pose the robot is believed to be near (a
 // pose hint: PoseHintCheck). The localisation component runs it; DDS-free.
@@ -35,9 +37,13 @@ class GlobalStart {
     std::optional<InitialPoseInput> found;  // the robot's initial pose, when found
     std::vector<Hypothesis> hypotheses;     // held after this scan (robot poses), best first
     // When found through hypotheses: the odometric travel from the search
-    // that started them, and how many there were.
+    // that first started them, and how many the last such search started.
     std::optional<double> travel_m;
     size_t seeded = 0;
+    // The hypothesis left standing that a search with the last metres'
+    // scans refused (it put the robot elsewhere, with a better fit); the
+    // hypotheses are then started afresh from that search.
+    std::optional<Hypothesis> refused;
   };
   Attempt Try(const SessionScan& scan) const;
   // The same together with the scans given here before, placed by the
@@ -49,6 +55,7 @@ class GlobalStart {
   void ForgetRecentScans() {
     recent_.Clear();
     hypotheses_.Clear();
+    travel_before_m_ = 0.0;
   }
   bool HoldingHypotheses() const { return hypotheses_.Holding(); }
   // The same, over robot positions within `radius_m` of `robot_pose` and
@@ -66,6 +73,12 @@ class GlobalStart {
   Attempt Locate(const SessionScan& scan, const SearchWindow* window) const;
   Attempt Decide(const SessionScan& scan, GlobalResult result) const;
 
+  Attempt SearchAndSeed(const SessionScan& scan, const Readings& readings,
+                        const std::vector<Eigen::Vector2d>& points,
+                        const geometry::Pose2D& odometry);
+  Attempt Verify(const SessionScan& scan, const Readings& readings,
+                 const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& odometry,
+                 const Hypothesis& standing);
   InitialPoseInput RobotPoseAt(const SessionScan& scan, const geometry::Pose2D& laser) const;
 
   GlobalLocaliser search_;
@@ -73,6 +86,7 @@ class GlobalStart {
   Eigen::Matrix3d covariance_;
   RecentScans recent_;
   HypothesisTracker hypotheses_;
+  double travel_before_m_ = 0.0;  // by hypotheses given up since the first was started
 };
 
 }  // namespace structloc::localisation_core
