@@ -39,6 +39,8 @@ LocalisationComponent::LocalisationComponent(
   if (world_) {
     global_ = std::make_unique<localisation_core::GlobalStart>(
         *world_, localiser_options.sensor_mount, session_options.tracker.InitialCovariance());
+    kidnap_watch_ = std::make_unique<localisation_core::KidnapWatch>(
+        global_->Localiser(), localiser_options.sensor_mount);
   }
   hint_check_options_.radius_m = session_options.tracker.reacquire_max_radius_m;
   hint_check_options_.max_radius_m =
@@ -138,6 +140,10 @@ void LocalisationComponent::StartSearch(const localisation_core::SessionScan& sc
 
 void LocalisationComponent::ApplySearch(const SearchAnswer& answer, double now) {
   if (answer.generation != search_generation_) return;  // outdated meanwhile
+  if (answer.tracked) {
+    ApplyKidnapSearch(answer, now);
+    return;
+  }
   if (answer.global) ApplyGlobal(*answer.global, answer.stamp, now);
   if (answer.hint && pose_hint_check_) {
     *pose_hint_check_ = *answer.hint_check;  // it counts its attempts
@@ -261,6 +267,7 @@ void LocalisationComponent::Worker() {
         given_pose_source_.clear();
         forget_recent_scans_ = true;  // the robot may have been carried away
         ++search_generation_;
+        EndKidnapDoubt();
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
       }
@@ -273,6 +280,7 @@ void LocalisationComponent::Worker() {
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         pose_hint_check_.reset();  // a pose published outranks an older hint
         ++search_generation_;
+        EndKidnapDoubt();
         if (global_) given_pose_source_ = "the pose on " + dds_common::topics::kInitialPose.name;
         std::cout << "localisation: initial pose "
                   << (session_.HasInitialPose() ? "set" : "held for the first odometry") << " from "
@@ -319,7 +327,70 @@ void LocalisationComponent::Worker() {
     status_.Write(status);
     std::lock_guard<std::mutex> lock(session_mutex_);
     session_.Anticipate();
+    WatchForKidnapping(*report);
   }
+}
+
+void LocalisationComponent::WatchForKidnapping(const localisation_core::ScanReport& report) {
+  if (!kidnap_watch_ || pose_hint_check_) return;
+  const auto& g = report.scan.geometry;
+  SearchAnswer answer;
+  answer.points = localisation_core::ScanPointsInLaserFrame(
+      report.scan.ranges, g.angle_min, g.angle_increment, g.range_min,
+      g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY);
+  const bool due =
+      kidnap_watch_->Observe(answer.points, report.stamp, report.pose.pose, report.lost);
+  if (!kidnap_watch_->InDoubt()) {
+    if (kidnap_doubt_) forget_recent_scans_ = true;
+    EndKidnapDoubt();
+    return;
+  }
+  if (!kidnap_doubt_) {
+    std::cout << "localisation: the tracked pose has not explained the scans for "
+              << kidnap_watch_->Options().after_s
+              << " s: searching the whole map in case the robot was carried away" << std::endl;
+  }
+  kidnap_doubt_ = true;
+  if ((!due && kidnap_hypotheses_ == 0) || search_.valid() ||
+      !session_.OdometryCovers(report.stamp))
+    return;
+  const geometry::Pose2D odometry = *session_.OdometryAt(report.stamp);
+  answer.generation = search_generation_;
+  answer.stamp = report.stamp;
+  answer.tracked = report.pose.pose;
+  search_ = std::async(std::launch::async, [this, scan = report.scan, odometry, answer]() mutable {
+    answer.global = global_->Try(scan, odometry);
+    return answer;
+  });
+}
+
+void LocalisationComponent::EndKidnapDoubt() {
+  if (kidnap_watch_) kidnap_watch_->Clear();
+  kidnap_doubt_ = false;
+  kidnap_hypotheses_ = 0;
+}
+
+void LocalisationComponent::ApplyKidnapSearch(const SearchAnswer& answer, double now) {
+  const auto& attempt = *answer.global;
+  kidnap_hypotheses_ = attempt.found ? 0 : attempt.hypotheses.size();
+  if (!attempt.found || session_.WaitingForInitialPose()) return;
+  forget_recent_scans_ = true;
+  const auto kidnapping =
+      kidnap_watch_->Jumped(answer.stamp, answer.points, attempt.found->pose, *answer.tracked);
+  if (!kidnapping) return;
+  ++kidnappings_;
+  session_.SetInitialPose(*attempt.found, "the search for a kidnapped robot", now);
+  const auto& f = kidnapping->from;
+  const auto& t = kidnapping->to;
+  std::cout << std::fixed << std::setprecision(3)
+            << "localisation: kidnapped: at t=" << answer.stamp << ", after " << kidnapping->doubt_s
+            << " s of scans the tracked pose did not explain, the robot was found at (" << t.x
+            << ", " << t.y << ", " << t.theta << "), not at (" << f.x << ", " << f.y << ", "
+            << f.theta << "); tracking goes on from there" << std::endl;
+  session_.NoteProblem("kidnapped: the robot was found " +
+                           std::to_string(std::hypot(t.x - f.x, t.y - f.y)) +
+                           " m from where it was tracked",
+                       now);
 }
 
 void LocalisationComponent::Step() {
@@ -354,11 +425,15 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   in.initial_pose_topic = dds_common::topics::kInitialPose.name;
   dds_common::HealthReport report;
   std::string start_up;
+  size_t kidnappings = 0;
   {
     std::lock_guard<std::mutex> lock(session_mutex_);
     report = ToHealthReport(localisation_core::AssessHealth(session_, in));
+    kidnappings = kidnappings_;
     if (!session_.WaitingForInitialPose())
-      start_up = "tracking";
+      start_up = kidnap_doubt_ ? "tracking, in doubt: searching the map in case the robot was "
+                                 "carried away"
+                               : "tracking";
     else if (pose_hint_check_)
       start_up = "confirming " + pose_hint_check_->Source();
     else if (held_hypotheses_ > 0)
@@ -371,6 +446,7 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   }
   for (const auto& peer : node_.PeerProblems()) report.values.emplace_back("peer", peer);
   report.values.emplace_back("start_up", start_up);
+  report.values.emplace_back("kidnappings", std::to_string(kidnappings));
   // A log line whenever the headline changes kind (not its running seconds).
   const std::string state = std::to_string(static_cast<int>(report.level)) + " " +
                             report.message.substr(0, report.message.find(" for "));

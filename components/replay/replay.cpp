@@ -13,6 +13,7 @@
 #include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/kidnap_watch.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/prefilter.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
@@ -64,7 +65,8 @@ class Replayer {
     }
     initial_pose_ = o.initial_pose;
     // Checked now, built at the first laser line (whose poses give the mount).
-    if (!initial_pose_) localisation_core::CheckHypothesisOptions(o.hypotheses);
+    localisation_core::CheckHypothesisOptions(o.hypotheses);
+    localisation_core::CheckKidnapOptions(o.kidnap);
     if (!o.truth_path.empty()) {
       truth_ = log_formats::ReadTum(o.truth_path);
       if (truth_.empty()) {
@@ -279,11 +281,54 @@ class Replayer {
       report_.reacquisitions.push_back({report.stamp, report.pose.pose, report.jump});
     }
     Emit(scan, report.pose.pose);
+    WatchForKidnapping(scan, report);
     // A fix for calibration only where the scan alone pinned every direction.
     if (fixes_ && !report.lost && !r.lost) {
       const auto& c = report.pose.covariance;
       fixes_->Fix(report.stamp, report.pose.pose, c(0, 0), c(1, 1), c(2, 2));
     }
+  }
+
+  // After a tracked scan: a robot whose scans the tracked pose has not
+  // explained for a while is searched for on the whole map, as the component
+  // does (KidnapWatch, GlobalStart); found far away, the tracking jumps there
+  // and the kidnapping is reported.
+  void WatchForKidnapping(const localisation_core::SessionScan& scan, const ScanReport& report) {
+    if (!report.odometry) return;
+    if (!watch_) {
+      if (!global_) {
+        global_ = std::make_unique<localisation_core::GlobalStart>(
+            *world_, report_.sensor_mount, Eigen::Matrix3d::Identity(), o_.global,
+            localisation_core::RecentScansOptions{}, o_.hypotheses);
+      }
+      global_->ForgetRecentScans();
+      watch_ = std::make_unique<localisation_core::KidnapWatch>(global_->Localiser(),
+                                                                report_.sensor_mount, o_.kidnap);
+    }
+    const auto& g = scan.geometry;
+    const auto points = localisation_core::ScanPointsInLaserFrame(
+        scan.ranges, g.angle_min, g.angle_increment, 0.0,
+        g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY);
+    const bool due = watch_->Observe(points, report.stamp, report.pose.pose, report.lost);
+    if (!watch_->InDoubt()) {
+      if (doubting_) global_->ForgetRecentScans();
+      doubting_ = false;
+      return;
+    }
+    doubting_ = true;
+    if (!due && !global_->HoldingHypotheses()) return;
+    ++report_.kidnap_searches;
+    const auto attempt = global_->Try(scan, *report.odometry);
+    if (!attempt.found) return;
+    if (const auto kidnapping =
+            watch_->Jumped(report.stamp, points, attempt.found->pose, report.pose.pose)) {
+      report_.kidnappings.push_back(*kidnapping);
+      session_->SetInitialPose(
+          {report.stamp, kidnapping->to, session_options_.tracker.InitialCovariance()},
+          "the search for a kidnapped robot", report.stamp);
+    }
+    global_->ForgetRecentScans();
+    doubting_ = false;
   }
 
   void PassThrough(const localisation_core::SessionScan& scan, const ScanReport& report,
@@ -419,6 +464,8 @@ class Replayer {
   std::unique_ptr<localisation_core::GlobalStart> global_;  // without an initial pose
   size_t global_scans_ = 0;  // scans it has tried (searched or weighed hypotheses with)
   size_t held_scans_ = 0;    // of them, with hypotheses held
+  std::unique_ptr<localisation_core::KidnapWatch> watch_;  // once tracking
+  bool doubting_ = false;  // the watch was in doubt at the last tracked scan
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
   std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled
@@ -568,6 +615,17 @@ std::string FormatReport(const ReplayReport& r) {
     out << "corrections refused by the whole-scan check: " << r.corrections_refused << "\n";
   }
   out << "re-acquired: " << r.reacquisitions.size() << " times\n";
+  if (r.kidnap_searches > 0) {
+    out << "searched the whole map at " << r.kidnap_searches
+        << " scans the tracked pose did not explain (in case the robot was carried away)\n";
+  }
+  for (const auto& k : r.kidnappings) {
+    out << std::setprecision(2) << "kidnapped: at t = " << k.stamp << " s, after " << k.doubt_s
+        << " s of scans the tracked pose did not explain, the robot was found at (" << k.to.x
+        << " m, " << k.to.y << " m, " << k.to.theta << " rad), not at (" << k.from.x << " m, "
+        << k.from.y << " m, " << k.from.theta << " rad)\n"
+        << std::setprecision(1);
+  }
   out.precision(3);
   const size_t shown = std::min<size_t>(r.reacquisitions.size(), 10);
   for (size_t i = 0; i < shown; ++i) {

@@ -25,6 +25,7 @@
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
 #include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/kidnap_watch.hpp"
 #include "structloc/localisation_core/pose_hint_check.hpp"
 #include "structloc/localisation_core/session_inbox.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
@@ -60,6 +61,10 @@ class LocalisationComponent : public dds_common::Component {
     std::optional<localisation_core::GlobalStart::Attempt> global;
     std::optional<localisation_core::PoseHintCheck::Outcome> hint;
     std::optional<localisation_core::PoseHintCheck> hint_check;  // after the check
+    // A search for a tracked robot that may have been carried away: the
+    // pose tracked at the scan and the scan's laser-frame points.
+    std::optional<geometry::Pose2D> tracked;
+    std::vector<Eigen::Vector2d> points;
   };
   // Without a pose, at a scan: starts a search on a thread of its own (the
   // worker keeps taking scans and odometry meanwhile) when none is running:
@@ -72,6 +77,10 @@ class LocalisationComponent : public dds_common::Component {
   void ApplyGlobal(const localisation_core::GlobalStart::Attempt& attempt, double stamp,
                    double now);
   void ApplyHint(const localisation_core::PoseHintCheck::Outcome& outcome, double now);
+  // After a tracked scan: the kidnap watch, and its search when one is due.
+  void WatchForKidnapping(const localisation_core::ScanReport& report);
+  void ApplyKidnapSearch(const SearchAnswer& answer, double now);
+  void EndKidnapDoubt();
   // A given pose that just started tracking, taken back as a hint.
   void TakeBackAsHint();
 
@@ -112,6 +121,12 @@ class LocalisationComponent : public dds_common::Component {
     structloc_msgs::msg::LocalisationStatus status;
   };
   std::optional<StartUpMessages> start_up_out_;
+  // Whether the tracked robot was carried away (with global_); in doubt, and
+  // hypotheses held by its searches (searched again at every scan).
+  std::unique_ptr<localisation_core::KidnapWatch> kidnap_watch_;
+  bool kidnap_doubt_ = false;
+  size_t kidnap_hypotheses_ = 0;
+  size_t kidnappings_ = 0;
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;  // the diagnostics headline last printed
   std::thread worker_;

@@ -58,6 +58,7 @@ class GlobalStart {
     travel_before_m_ = 0.0;
   }
   bool HoldingHypotheses() const { return hypotheses_.Holding(); }
+  const GlobalLocaliser& Localiser() const { return search_; }
   // The same, over robot positions within `radius_m` of `robot_pose` and
   // headings within `heading_rad` of its heading.
   Attempt TryNear(const SessionScan& scan, const geometry::Pose2D& robot_pose, double radius_m,

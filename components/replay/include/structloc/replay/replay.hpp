@@ -28,6 +28,7 @@
 
 #include "structloc/localisation_core/global_localiser.hpp"
 #include "structloc/localisation_core/hypothesis_tracker.hpp"
+#include "structloc/localisation_core/kidnap_watch.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/replay/trajectory_error.hpp"
 #include "structloc/world_model/world_model.hpp"
@@ -42,11 +43,12 @@ struct ReplayOptions {
   size_t global_attempts = 0;  // without initial_pose: scans tried before giving up (0: none)
   localisation_core::GlobalLocaliserOptions global;
   localisation_core::HypothesisOptions hypotheses;
-  std::string out_tum;      // estimate, one line per scan
-  std::string params_path;  // localisation parameters (default: built-in defaults)
-  std::string truth_path;   // optional TUM ground truth
-  std::string plot_path;    // optional picture (.png)
-  std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
+  localisation_core::KidnapOptions kidnap;  // a tracked robot carried elsewhere
+  std::string out_tum;                      // estimate, one line per scan
+  std::string params_path;                  // localisation parameters (default: built-in defaults)
+  std::string truth_path;                   // optional TUM ground truth
+  std::string plot_path;                    // optional picture (.png)
+  std::string fixes_path;                   // optional fixes.csv (pose + variances) for calibration
   bool no_map = false;
   log_formats::CarmenLimits limits;       // beams per scan and lines per log
   world_model::WorldLimits world_limits;  // walls per map, coordinate bounds
@@ -108,6 +110,9 @@ struct ReplayReport {
     size_t held_scans = 0;  // scans that weighed them
   };
   std::optional<Commit> commit;
+  // Where the tracked robot was found carried elsewhere (odometry saw nothing).
+  std::vector<localisation_core::Kidnapping> kidnappings;
+  size_t kidnap_searches = 0;     // global searches (or hypothesis updates) made in doubt
   geometry::Pose2D initial_pose;  // robot pose tracking started from
 };
 

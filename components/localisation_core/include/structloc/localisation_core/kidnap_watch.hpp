@@ -1,0 +1,87 @@
+// Whether a tracked robot may have been carried elsewhere (kidnapped: lifted,
+// pushed, towed, its odometry seeing nothing). The tracker then follows a
+// pose the scans no longer fit, and a local search around it finds nothing.
+// After each tracked scan the watch asks how much of the scan the map
+// explains at the tracked pose (GlobalLocaliser::FitAt, every
+// check_period_s); when the tracker says "lost", or the share stays below
+// unexplained_share, for `after_s` of scans in a row, it asks for a global
+// search (at most every search_period_s while the doubt lasts). The caller
+// searches (GlobalStart) and moves the robot only if the pose found or
+// committed is far from the tracked one and explains the scan clearly better
+// (Jumped); a search that finds the robot where it is tracked ends the
+// doubt. DDS-free.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+#include "structloc/localisation_core/global_localiser.hpp"
+
+namespace structloc::localisation_core {
+
+struct KidnapOptions {
+  // Below: the tracked pose does not explain the scan (a pose explaining
+  // less than half of it is not one the global search would call found).
+  double unexplained_share = 0.5;
+  double after_s = 3.0;          // lost or unexplained this long: search the whole map
+  double check_period_s = 0.5;   // the share is computed this often (off the latency path)
+  double search_period_s = 2.0;  // while in doubt, a search at most this often
+  // A pose found this far from the tracked one is a kidnapping (nearer: the
+  // tracker was right, or its own local search will do).
+  double min_jump_m = 1.0;
+  double min_jump_rad = 30.0 * geometry::kPi / 180.0;
+  // ... and explaining at least this much more of the scan than the tracked
+  // one, and no less than this much below what the tracked pose explained
+  // while all was well (its running mean outside doubt): a map of part of a
+  // building explains little where the robot goes beyond it, and a place
+  // elsewhere that fits the scan a little better is no place to jump to.
+  double min_share_gain = 0.15;
+  double max_share_below_normal = 0.1;
+  int fit_points = 90;  // scan points the share is computed with
+};
+
+// Throws std::invalid_argument naming the option when one is out of range.
+void CheckKidnapOptions(const KidnapOptions& options);
+
+// A kidnapping found: when, where the tracker had the robot and where it is.
+struct Kidnapping {
+  double stamp = 0.0;
+  geometry::Pose2D from;  // robot pose tracked then (map frame)
+  geometry::Pose2D to;    // robot pose found
+  double doubt_s = 0.0;   // how long the scans were unexplained before it was found
+};
+
+class KidnapWatch {
+ public:
+  // `localiser` must outlive the watch; `sensor_mount`: the laser on the robot.
+  KidnapWatch(const GlobalLocaliser& localiser, const geometry::Pose2D& sensor_mount,
+              const KidnapOptions& options = {});
+
+  // After a tracked scan (laser-frame points) at `stamp`, with the robot's
+  // tracked pose and the tracker's lost verdict. True when a global search
+  // is due now.
+  bool Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
+               const geometry::Pose2D& tracked, bool lost);
+  // What a global search for the scan at `stamp` (its laser-frame points)
+  // found (a found or committed robot pose), with the pose tracked then: the
+  // kidnapping if far from it and explaining the scan clearly better;
+  // nullopt (and the doubt ended) otherwise.
+  std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
+                                   const geometry::Pose2D& found, const geometry::Pose2D& tracked);
+  bool InDoubt() const { return doubt_since_.has_value() && doubt_s_ >= options_.after_s; }
+  std::optional<double> LastShare() const { return last_share_; }
+  std::optional<double> NormalShare() const { return normal_share_; }
+  const KidnapOptions& Options() const { return options_; }
+  void Clear();
+
+ private:
+  const GlobalLocaliser& localiser_;
+  geometry::Pose2D mount_;
+  KidnapOptions options_;
+  std::optional<double> last_check_s_, last_search_s_, doubt_since_, last_share_;
+  std::optional<double> normal_share_;  // running mean of the share outside doubt
+  double doubt_s_ = 0.0;
+};
+
+}  // namespace structloc::localisation_core
