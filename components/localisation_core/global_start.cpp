@@ -30,7 +30,11 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
 }
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::Pose2D& odometry) {
-  const auto points = LaserPoints(scan);
+  return Try(LaserPoints(scan), scan.geometry.stamp, odometry);
+}
+
+GlobalStart::Attempt GlobalStart::Try(const std::vector<Eigen::Vector2d>& points, double stamp,
+                                      const geometry::Pose2D& odometry) {
   const auto readings = recent_.WithScan(points, geometry::Compose(odometry, mount_));
   if (hypotheses_.Holding()) {
     const auto verdict = hypotheses_.Update(points, odometry);
@@ -43,15 +47,15 @@ GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan, const geometry::P
     }
     travel_before_m_ += hypotheses_.TravelM();
     if (verdict == HypothesisTracker::Verdict::kCommitted)
-      return Verify(scan, readings, points, odometry, *hypotheses_.Committed());
+      return Verify(stamp, readings, points, odometry, *hypotheses_.Committed());
   }
-  return SearchAndSeed(scan, readings, points, odometry);
+  return SearchAndSeed(stamp, readings, points, odometry);
 }
 
-GlobalStart::Attempt GlobalStart::SearchAndSeed(const SessionScan& scan, const Readings& readings,
+GlobalStart::Attempt GlobalStart::SearchAndSeed(double stamp, const Readings& readings,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 const geometry::Pose2D& odometry) {
-  Attempt attempt = Decide(scan, search_.Locate(readings));
+  Attempt attempt = Decide(stamp, search_.Locate(readings));
   if (attempt.found) {
     travel_before_m_ = 0.0;
     hypotheses_.Clear();
@@ -70,7 +74,7 @@ GlobalStart::Attempt GlobalStart::SearchAndSeed(const SessionScan& scan, const R
 // with a better fit: the hypotheses came from one search, which can miss the
 // true pose (more look-alike places than hypotheses, or a near-identical
 // hit crowding it out), and then the least wrong one would be left standing.
-GlobalStart::Attempt GlobalStart::Verify(const SessionScan& scan, const Readings& readings,
+GlobalStart::Attempt GlobalStart::Verify(double stamp, const Readings& readings,
                                          const std::vector<Eigen::Vector2d>& points,
                                          const geometry::Pose2D& odometry,
                                          const Hypothesis& standing) {
@@ -85,7 +89,7 @@ GlobalStart::Attempt GlobalStart::Verify(const SessionScan& scan, const Readings
   if (!elsewhere || search_.Score(readings, laser) >= check.best->score) {
     Attempt attempt;
     attempt.result = check;
-    attempt.found = InitialPoseInput{scan.geometry.stamp, standing.pose, covariance_};
+    attempt.found = InitialPoseInput{stamp, standing.pose, covariance_};
     attempt.travel_m = travel_before_m_;
     attempt.seeded = hypotheses_.Seeded();
     attempt.hypotheses = {standing};
@@ -93,7 +97,7 @@ GlobalStart::Attempt GlobalStart::Verify(const SessionScan& scan, const Readings
     hypotheses_.Clear();
     return attempt;
   }
-  Attempt attempt = Decide(scan, check);
+  Attempt attempt = Decide(stamp, check);
   attempt.refused = standing;
   if (attempt.found) {
     attempt.travel_m = travel_before_m_;
@@ -134,25 +138,24 @@ std::optional<InitialPoseInput> GlobalStart::NearestOfTie(const SessionScan& sca
     }
   }
   if (!nearest) return std::nullopt;
-  return RobotPoseAt(scan, *nearest);
+  return RobotPoseAt(scan.geometry.stamp, *nearest);
 }
 
 GlobalStart::Attempt GlobalStart::Locate(const SessionScan& scan,
                                          const SearchWindow* window) const {
-  return Decide(scan, search_.Locate(LaserPoints(scan), window));
+  return Decide(scan.geometry.stamp, search_.Locate(LaserPoints(scan), window));
 }
 
-GlobalStart::Attempt GlobalStart::Decide(const SessionScan& scan, GlobalResult result) const {
+GlobalStart::Attempt GlobalStart::Decide(double stamp, GlobalResult result) const {
   Attempt attempt;
   attempt.result = std::move(result);
   if (attempt.result.decision == GlobalDecision::kFound)
-    attempt.found = RobotPoseAt(scan, attempt.result.best->pose);
+    attempt.found = RobotPoseAt(stamp, attempt.result.best->pose);
   return attempt;
 }
 
-InitialPoseInput GlobalStart::RobotPoseAt(const SessionScan& scan,
-                                          const geometry::Pose2D& laser) const {
-  return {scan.geometry.stamp, geometry::Compose(laser, geometry::Inverse(mount_)), covariance_};
+InitialPoseInput GlobalStart::RobotPoseAt(double stamp, const geometry::Pose2D& laser) const {
+  return {stamp, geometry::Compose(laser, geometry::Inverse(mount_)), covariance_};
 }
 
 }  // namespace structloc::localisation_core

@@ -50,6 +50,9 @@ class GlobalStart {
   // robot's odometric pose at each (`odometry`, at this scan's stamp); the
   // scan alone when that pose is not finite.
   Attempt Try(const SessionScan& scan, const geometry::Pose2D& odometry);
+  // The same for a scan's points (laser frame) taken at `stamp`.
+  Attempt Try(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
+              const geometry::Pose2D& odometry);
   // Forgets those scans and the hypotheses held: the robot was carried
   // away, or has a pose.
   void ForgetRecentScans() {
@@ -72,15 +75,14 @@ class GlobalStart {
 
  private:
   Attempt Locate(const SessionScan& scan, const SearchWindow* window) const;
-  Attempt Decide(const SessionScan& scan, GlobalResult result) const;
+  Attempt Decide(double stamp, GlobalResult result) const;
 
-  Attempt SearchAndSeed(const SessionScan& scan, const Readings& readings,
+  Attempt SearchAndSeed(double stamp, const Readings& readings,
                         const std::vector<Eigen::Vector2d>& points,
                         const geometry::Pose2D& odometry);
-  Attempt Verify(const SessionScan& scan, const Readings& readings,
-                 const std::vector<Eigen::Vector2d>& points, const geometry::Pose2D& odometry,
-                 const Hypothesis& standing);
-  InitialPoseInput RobotPoseAt(const SessionScan& scan, const geometry::Pose2D& laser) const;
+  Attempt Verify(double stamp, const Readings& readings, const std::vector<Eigen::Vector2d>& points,
+                 const geometry::Pose2D& odometry, const Hypothesis& standing);
+  InitialPoseInput RobotPoseAt(double stamp, const geometry::Pose2D& laser) const;
 
   GlobalLocaliser search_;
   geometry::Pose2D mount_;
