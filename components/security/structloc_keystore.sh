@@ -20,8 +20,8 @@
 #                 diagnostics; subscribes cmd_vel (a laser or robot driver
 #                 takes this identity on a real robot)
 #   localisation  publishes pose, tf, structloc/status, structloc/features,
-#                 diagnostics; subscribes scan, odom, initialpose,
-#                 reinitialize_global_localization
+#                 structloc/hypotheses, diagnostics; subscribes scan, odom,
+#                 initialpose, reinitialize_global_localization
 #   calibration   publishes structloc/calibration, diagnostics; subscribes
 #                 wheel_encoders, pose
 #   operator      publishes initialpose, cmd_vel,
@@ -229,7 +229,7 @@ PERM
 }
 
 enclave simulator "scan odom wheel_encoders ground_truth diagnostics" "cmd_vel"
-enclave localisation "pose tf structloc/status structloc/features diagnostics" \
+enclave localisation "pose tf structloc/status structloc/features structloc/hypotheses diagnostics" \
   "scan odom initialpose reinitialize_global_localization"
 enclave calibration "structloc/calibration diagnostics" "wheel_encoders pose"
 enclave operator "initialpose cmd_vel reinitialize_global_localization" "*"
