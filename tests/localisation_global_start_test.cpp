@@ -39,13 +39,23 @@ constexpr int kDomain = testing::domains::kLocalisationGlobalStart;
 // (the simulator) starts with it unless the test starts it later.
 struct RunWithoutPose {
   enum class Robot { kStarted, kLater };
-  explicit RunWithoutPose(const std::string& observer_name, Robot robot = Robot::kStarted)
-      : scenario(simulation_core::LoadScenario(scenario_path)),
+  // `scenario_file` under maps/scenarios; `extra`: more localisation arguments.
+  explicit RunWithoutPose(const std::string& observer_name, Robot robot = Robot::kStarted,
+                          const std::string& scenario_file = "office_people.xml",
+                          std::vector<std::string> extra = {})
+      : scenario_path(testing::SourcePath("maps/scenarios/" + scenario_file)),
+        scenario(simulation_core::LoadScenario(scenario_path)),
         observer(testing::TestNodeOptions(observer_name, kDomain)),
         evaluator(observer, scenario.initial_pose),
         localisation(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-                     {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos()}) {
+                     Arguments(std::move(extra))) {
     if (robot == Robot::kStarted) StartRobot();
+  }
+  static std::vector<std::string> Arguments(std::vector<std::string> extra) {
+    std::vector<std::string> args = {"--domain", std::to_string(kDomain), "--qos",
+                                     testing::ShippedQos()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
   }
   void StartRobot() {
     simulator.emplace(
@@ -65,7 +75,7 @@ struct RunWithoutPose {
     EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0);
   }
 
-  const std::string scenario_path = testing::SourcePath("maps/scenarios/office_people.xml");
+  const std::string scenario_path;
   const simulation_core::Scenario scenario;
   dds_common::Node observer;
   evaluation::LiveEvaluator evaluator;
@@ -205,6 +215,35 @@ TEST(LocalisationGlobalStart, AnOperatorsPoseBeforeAnyOdometryIsConfirmedToo) {
       << run.localisation.CapturedOutput();
   run.ExpectAccurateAfter(run.evaluator.Estimate().front().stamp,
                           "a pose given 0.81 m and 3 deg off before any odometry");
+  run.Stop();
+}
+
+// A robot carried away while tracked (maps/scenarios/office_kidnap.xml: at
+// 20 s lifted from the corridor's east part and put down 17 m west, its
+// odometry seeing nothing; issue 38): the component finds out by itself that
+// the scans no longer fit, searches the whole map, moves the tracking to
+// where the robot is and reports the kidnapping; from then on it tracks as
+// well as ever.
+TEST(LocalisationGlobalStart, AKidnappedRobotIsFoundAgainWithoutARequest) {
+  RunWithoutPose run("kidnap_observer", RunWithoutPose::Robot::kStarted, "office_kidnap.xml",
+                     {"--initial-pose", "2.0 6.5 0"});
+  auto& localisation = run.localisation;
+  const std::string marker = "localisation: kidnapped: at t=";
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return localisation.CapturedOutput().find(marker) != std::string::npos; }, 90s))
+      << localisation.CapturedOutput();
+  const std::string out = localisation.CapturedOutput();
+  const double found_at = std::stod(out.substr(out.find(marker) + marker.size()));
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return run.evaluator.Estimate().back().stamp > found_at + 8.0; }, 60s));
+  run.ExpectAccurateAfter(found_at, "found again after the kidnapping");
+  // The first pose after the teleport (20 s after the first scan) is where
+  // the robot was put down, not where it was lifted.
+  const auto truth = run.evaluator.Truth();
+  ASSERT_FALSE(truth.empty());
+  EXPECT_GT(found_at, truth.front().stamp + 20.0);
+  EXPECT_LT(found_at, truth.front().stamp + 20.0 + 10.0) << "found again within 10 s";
+  std::printf("kidnapped at %.1f s, found again at %.1f s\n", 20.0, found_at - truth.front().stamp);
   run.Stop();
 }
 

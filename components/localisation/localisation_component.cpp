@@ -342,7 +342,8 @@ void LocalisationComponent::WatchForKidnapping(const localisation_core::ScanRepo
       kidnap_watch_->Observe(answer.points, report.stamp, report.pose.pose, report.lost);
   if (!kidnap_watch_->InDoubt()) {
     if (kidnap_doubt_) forget_recent_scans_ = true;
-    EndKidnapDoubt();
+    kidnap_doubt_ = false;
+    kidnap_hypotheses_ = 0;
     return;
   }
   if (!kidnap_doubt_) {

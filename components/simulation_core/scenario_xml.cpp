@@ -1,6 +1,7 @@
 // Scenario XML reader (see scenario.hpp; schema in maps/scenarios/README.md).
 // The elements' attributes are declared in scenario_options.cpp; lists and
 // file references are read here.
+#include <cmath>
 #include <filesystem>
 
 #include "structloc/config/strict_xml.hpp"
@@ -72,7 +73,8 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
   const auto file = XmlFile::Load(path);
   const auto& root = file.Root("scenario");
   config::RequireChildNames(
-      file, root, {"world", "robot", "true_robot", "initial_pose", "laser", "path", "obstacles"});
+      file, root,
+      {"world", "robot", "true_robot", "initial_pose", "laser", "path", "obstacles", "teleport"});
   Scenario s;
   ScenarioAttributes(limits).Load(file, root, s);
   {
@@ -121,6 +123,24 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
     if (s.path.mode != PathSpec::Mode::kCmdVel && s.path.waypoints.empty()) {
       file.Fail(e, "needs at least one <waypoint>");
     }
+  }
+  for (const auto* t = root.FirstChildElement("teleport"); t != nullptr;
+       t = t->NextSiblingElement("teleport")) {
+    AttributeReader a(file, *t);
+    Teleport teleport;
+    teleport.at_s = a.DoubleIn("at_s", 0.0, s.duration_s);
+    teleport.pose = {Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits),
+                     a.DoubleIn("theta", -geometry::kPi, geometry::kPi)};
+    const double next = a.DoubleIn("next_waypoint", 0.0, 1e6);
+    a.Finish();
+    if (next != std::floor(next) || next >= static_cast<double>(s.path.waypoints.size())) {
+      file.Fail(*t, "next_waypoint must be the index of one of the path's " +
+                        std::to_string(s.path.waypoints.size()) + " waypoints");
+    }
+    teleport.next_waypoint = static_cast<size_t>(next);
+    if (!s.teleports.empty() && teleport.at_s <= s.teleports.back().at_s)
+      file.Fail(*t, "teleports must be in time order");
+    s.teleports.push_back(teleport);
   }
   if (const auto* obstacles = root.FirstChildElement("obstacles")) {
     config::RequireChildNames(file, *obstacles, {"box", "cylinder", "person"});

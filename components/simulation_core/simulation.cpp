@@ -158,6 +158,13 @@ void Simulation::Control(double* wheel_rate, double* steering) {
 }
 
 const SimState& Simulation::Step() {
+  if (next_teleport_ < scenario_.teleports.size() &&
+      state_.time >= scenario_.teleports[next_teleport_].at_s) {
+    const auto& t = scenario_.teleports[next_teleport_++];
+    state_.truth = t.pose;  // carried: the encoders see nothing
+    waypoint_ = t.next_waypoint;
+    segment_start_ = t.pose.Translation();
+  }
   const double dt = scenario_.step_s;
   double wheel_rate = 0.0, steering_cmd = 0.0;
   Control(&wheel_rate, &steering_cmd);

@@ -55,6 +55,14 @@ struct PathSpec {
   std::vector<Eigen::Vector2d> waypoints;
 };
 
+// The robot carried elsewhere at `at_s` (kidnapped: its encoders, and so its
+// odometry, see nothing), then heading for waypoint `next_waypoint`.
+struct Teleport {
+  double at_s = 0.0;
+  geometry::Pose2D pose;  // robot base, map frame
+  size_t next_waypoint = 0;
+};
+
 struct Person {
   double radius_m = 0.25;
   double speed_m_s = 1.0;
@@ -77,6 +85,7 @@ struct Scenario {
   PathSpec path;
   world_model::Scene obstacles;  // static, unmodelled
   std::vector<Person> people;
+  std::vector<Teleport> teleports;  // in time order
 
   kinematics::RobotParameters TrueParameters() const;
 };

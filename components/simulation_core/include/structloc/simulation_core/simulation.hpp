@@ -78,6 +78,7 @@ class Simulation {
   std::mt19937 motion_rng_;
   std::mt19937 laser_rng_;
   size_t waypoint_ = 0;                  // the waypoint the robot heads for
+  size_t next_teleport_ = 0;             // the scenario's next teleport
   Eigen::Vector2d segment_start_{0, 0};  // where the current path segment starts
   double dwell_until_ = -1.0;
   bool path_done_ = false;
