@@ -22,10 +22,10 @@
 #include <random>
 #include <string>
 
+#include "evaluation_odometry.hpp"
 #include "structloc/localisation_core/global_localiser.hpp"
 #include "structloc/localisation_core/recent_scans.hpp"
 #include "structloc/map_building/posed_scans.hpp"
-#include "structloc/simulation_core/odometry_errors.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "test_paths.hpp"
 
@@ -60,13 +60,7 @@ TEST_P(GlobalOnRealLog, LocatesMostRandomScansAndIsNeverConfidentlyWrong) {
   for (auto& index : drawn) index = pick(rng);
   std::sort(drawn.begin(), drawn.end());  // the log is read once, in order
 
-  simulation_core::OdometryErrorModel errors;
-  errors.scale_error = 0.015;
-  errors.heading_drift_rad_per_m = 0.3 * geometry::kPi / 180.0;
-  errors.noise_xy_m_per_sqrt_m = 0.005;
-  errors.noise_theta_rad_per_sqrt_m = 0.1 * geometry::kPi / 180.0;
-  std::mt19937 noise(7);
-  simulation_core::OdometrySynthesiser odometry(errors, noise, log.scans.front().laser_pose);
+  const auto odometry = testing::EvaluationOdometry(log, 7);
   localisation_core::RecentScans recent;
 
   int right = 0, ambiguous = 0, not_found = 0, wrong = 0;
@@ -74,7 +68,7 @@ TEST_P(GlobalOnRealLog, LocatesMostRandomScansAndIsNeverConfidentlyWrong) {
   size_t next = 0, searches = 0;
   for (size_t k = 0; k < log.scans.size() && next < drawn.size(); ++k) {
     const auto& scan = log.scans[k];
-    recent.Add(scan.points, odometry.Next(scan.laser_pose));
+    recent.Add(scan.points, odometry[k]);
     if (drawn[next] != k) continue;
     const auto readings = recent.InNewestFrame();
     const auto t0 = std::chrono::steady_clock::now();

@@ -19,9 +19,9 @@
 #include <random>
 #include <string>
 
+#include "evaluation_odometry.hpp"
 #include "structloc/localisation_core/global_start.hpp"
 #include "structloc/map_building/posed_scans.hpp"
-#include "structloc/simulation_core/odometry_errors.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "test_paths.hpp"
 
@@ -45,15 +45,7 @@ TEST_P(StartOnRealLog, CommitsRightFromRandomStartsAndNeverWrong) {
       testing::SourcePath("../shared/data/") + GetParam().log, map_building::PosedScanOptions{});
   ASSERT_GT(log.scans.size(), 500u);
   // The laser's odometric poses (the robot is the laser here: no mount).
-  simulation_core::OdometryErrorModel errors;
-  errors.scale_error = 0.015;
-  errors.heading_drift_rad_per_m = 0.3 * geometry::kPi / 180.0;
-  errors.noise_xy_m_per_sqrt_m = 0.005;
-  errors.noise_theta_rad_per_sqrt_m = 0.1 * geometry::kPi / 180.0;
-  std::mt19937 noise(7);
-  simulation_core::OdometrySynthesiser synthesiser(errors, noise, log.scans.front().laser_pose);
-  std::vector<geometry::Pose2D> odometry;
-  for (const auto& scan : log.scans) odometry.push_back(synthesiser.Next(scan.laser_pose));
+  const auto odometry = testing::EvaluationOdometry(log, 7);
 
   const char* env = std::getenv("STRUCTLOC_REAL_STARTS");
   const size_t starts = env ? std::stoul(env) : 50;

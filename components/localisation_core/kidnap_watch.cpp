@@ -1,6 +1,7 @@
 // Doubt about a tracked pose, and the kidnapping it may hide (see header).
 #include "structloc/localisation_core/kidnap_watch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,7 @@ void CheckKidnapOptions(const KidnapOptions& o) {
   require(o.check_period_s >= 0.0 && o.check_period_s <= 60.0, "check_period_s", "in [0, 60]");
   require(o.search_period_s >= 0.0 && o.search_period_s <= 600.0, "search_period_s", "in [0, 600]");
   require(o.min_jump_m >= 0.0 && o.min_jump_rad >= 0.0, "min_jump_m / min_jump_rad", "at least 0");
+  require(o.max_share_drop >= 0.0 && o.max_share_drop <= 1.0, "max_share_drop", "in [0, 1]");
   require(o.min_share_gain >= 0.0 && o.min_share_gain <= 1.0, "min_share_gain", "in [0, 1]");
   require(o.max_share_below_normal >= 0.0 && o.max_share_below_normal <= 1.0,
           "max_share_below_normal", "in [0, 1]");
@@ -47,7 +49,9 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
     const auto points = localiser_.FitPoints(laser_points, options_.fit_points);
     last_share_ = localiser_.FitAt(points, geometry::Compose(tracked, mount_), 0.1).share;
   }
-  const bool unexplained = lost || (last_share_ && *last_share_ < options_.unexplained_share);
+  const double floor = std::max(options_.unexplained_share,
+                                normal_share_ ? *normal_share_ - options_.max_share_drop : 0.0);
+  const bool unexplained = lost || (last_share_ && *last_share_ < floor);
   if (!unexplained && checked) {
     normal_share_ = normal_share_ ? 0.9 * *normal_share_ + 0.1 * *last_share_ : *last_share_;
   }

@@ -25,6 +25,7 @@
 
 #include <Eigen/Geometry>
 
+#include "scenario_trials.hpp"
 #include "structloc/localisation_core/global_start.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "structloc/simulation_core/simulation.hpp"
@@ -132,38 +133,20 @@ Trial Run(const world_model::WorldModel& world, const simulation_core::Scenario&
   return trial;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: structloc_global_start_evaluation SCENARIO.xml [STARTS=100] [--seed N] "
-                 "[--check]\n");
-    return 2;
-  }
-  size_t starts = 100;
-  unsigned seed = 1;
-  bool check = false;
-  std::optional<size_t> only_start;  // one start at this scan (with STRUCTLOC_TRACE: traced)
-  for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--check") == 0) {
-      check = true;
-    } else if (std::strcmp(argv[i], "--start") == 0 && i + 1 < argc) {
-      only_start = std::stoul(argv[++i]);
-    } else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
-      seed = static_cast<unsigned>(std::stoul(argv[++i]));
-    } else {
-      starts = std::stoul(argv[i]);
-    }
-  }
+  const auto args = testing::ParseTrialArguments(
+      argc, argv, 100,
+      "structloc_global_start_evaluation SCENARIO.xml [STARTS=100] [--seed N] [--check] "
+      "[--start SCAN]");
+  if (!args) return 2;
+  const size_t starts = args->count;
+  const unsigned seed = args->seed;
+  const bool check = args->check;
+  const auto only_start = args->only_start;
   try {
-    const auto scenario = simulation_core::LoadScenario(argv[1]);
+    const auto scenario = simulation_core::LoadScenario(args->scenario);
     const auto scans = Simulate(scenario);
     const size_t loop = LoopScans(scans, scenario.initial_pose);
     Eigen::AlignedBox2d extent;
@@ -175,8 +158,7 @@ int main(int argc, char** argv) {
         extent.min().y(), extent.max().y(), starts, seed);
     std::mt19937 rng(seed);
     std::uniform_int_distribution<size_t> pick(0, loop - 1);
-    size_t right = 0, wrong = 0, none = 0, held_scans = 0, all_scans = 0, searches = 0,
-           refused = 0;
+    size_t right = 0, wrong = 0, none = 0, held_scans = 0, all_scans = 0, searches = 0, refused = 0;
     double held_cpu = 0.0, search_cpu = 0.0, all_cpu = 0.0;
     std::vector<double> travel;
     for (size_t i = 0; i < starts; ++i) {
@@ -214,9 +196,9 @@ int main(int argc, char** argv) {
         "commit %.1f m\n  CPU: %.0f us per scan weighing hypotheses (%zu scans), %.0f ms per "
         "search (%zu, %zu of them checks that refused a commit), %.0f us per scan over all scans "
         "up to the commit (%zu)\n",
-        scenario.name.c_str(), right, starts, 100.0 * share, wrong, none, Median(travel),
-        per(held_cpu, held_scans), held_scans, 1e-3 * per(search_cpu, searches), searches,
-        refused, per(all_cpu, all_scans), all_scans);
+        scenario.name.c_str(), right, starts, 100.0 * share, wrong, none, testing::Median(travel),
+        per(held_cpu, held_scans), held_scans, 1e-3 * per(search_cpu, searches), searches, refused,
+        per(all_cpu, all_scans), all_scans);
     if (check && (wrong > 0 || share < 0.98)) {
       std::printf("FAILED: the bar is >= 98 %% right and no wrong commit\n");
       return 1;

@@ -4,10 +4,10 @@
 // where it is at b while its odometry saw nothing (odometry goes on from a's
 // pose; the truth jumps). `structloc replay` with the initial pose must find
 // out by itself (KidnapWatch, GlobalStart) and move the tracking to the right
-// place: counted as recovered when a kidnapping is reported after the
-// teleport at a pose within 0.2 m and 5 deg of the truth; a kidnapping
-// reported before the teleport or at a wrong pose is wrong. Prints the
-// median time from the teleport to the recovery.
+// place: counted as recovered when from some moment after the teleport on
+// the estimate stays within 0.2 m and 5 deg of the truth to the end of the
+// log; a kidnapping reported before the teleport or at a pose that is not the
+// robot's is wrong. Prints the median time from the teleport to the recovery.
 //   structloc_kidnap_evaluation SCENARIO.xml [TELEPORTS=50] [--seed N] [--check]
 // --check exits 1 on any wrong kidnapping or a teleport not recovered.
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "scenario_trials.hpp"
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/replay/replay.hpp"
 #include "structloc/simulation_core/recorder.hpp"
@@ -137,33 +138,14 @@ double Teleport(const fs::path& dir, const fs::path& out, double a, double b) {
   return last_a + 0.02;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: structloc_kidnap_evaluation SCENARIO.xml [TELEPORTS=50] [--seed N] "
-                 "[--check]\n");
-    return 2;
-  }
-  size_t teleports = 50;
-  unsigned seed = 1;
-  bool check = false;
-  for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--check") == 0) {
-      check = true;
-    } else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
-      seed = static_cast<unsigned>(std::stoul(argv[++i]));
-    } else {
-      teleports = std::stoul(argv[i]);
-    }
-  }
+  const auto args = testing::ParseTrialArguments(
+      argc, argv, 50,
+      "structloc_kidnap_evaluation SCENARIO.xml [TELEPORTS=50] [--seed N] [--check]");
+  if (!args) return 2;
+  const size_t teleports = args->count;
   char pattern[] = "/tmp/structloc_kidnap_XXXXXX";
   if (!mkdtemp(pattern)) {
     std::perror("mkdtemp");
@@ -172,10 +154,10 @@ int main(int argc, char** argv) {
   const fs::path temp = pattern;
   int code = 0;
   try {
-    const auto scenario = simulation_core::LoadScenario(argv[1]);
+    const auto scenario = simulation_core::LoadScenario(args->scenario);
     simulation_core::RecordScenario(scenario, temp / "recording");
     const double duration = scenario.duration_s;
-    std::mt19937 rng(seed);
+    std::mt19937 rng(args->seed);
     size_t recovered = 0, wrong = 0, missed = 0;
     std::vector<double> recovery_s;
     for (size_t i = 0; i < teleports; ++i) {
@@ -199,20 +181,27 @@ int main(int argc, char** argv) {
         });
         return it->pose;
       };
-      const char* what = "NOT RECOVERED";
-      double when = NAN;
+      // Recovered: from some moment after the teleport on, the estimate stays
+      // within 0.2 m and 5 deg of the truth to the end of the log (by a
+      // kidnapping reported, or by the tracker's own re-acquisition for a
+      // short carry). Wrong: a kidnapping reported before the teleport or to
+      // a pose that is not the robot's.
       bool bad = false;
       for (const auto& k : report.kidnappings) {
         const auto t = truth_at(k.stamp);
-        const bool right =
-            std::hypot(k.to.x - t.x, k.to.y - t.y) <= 0.2 &&
-            std::abs(geometry::WrapAngle(k.to.theta - t.theta)) <= 5.0 * geometry::kPi / 180;
-        if (k.stamp < at || !right) {
-          bad = true;
-        } else if (std::isnan(when)) {
-          when = k.stamp - at;
-        }
+        bad = bad || k.stamp < at || std::hypot(k.to.x - t.x, k.to.y - t.y) > 0.2 ||
+              std::abs(geometry::WrapAngle(k.to.theta - t.theta)) > 5.0 * geometry::kPi / 180;
       }
+      double when = NAN;
+      for (auto it = report.estimate.rbegin(); it != report.estimate.rend(); ++it) {
+        const auto t = truth_at(it->stamp);
+        const bool close =
+            std::hypot(it->pose.x - t.x, it->pose.y - t.y) <= 0.2 &&
+            std::abs(geometry::WrapAngle(it->pose.theta - t.theta)) <= 5.0 * geometry::kPi / 180;
+        if (!close || it->stamp < at) break;
+        when = it->stamp - at;
+      }
+      const char* what = "NOT RECOVERED";
       if (bad) {
         ++wrong;
         what = "WRONG";
@@ -233,8 +222,8 @@ int main(int argc, char** argv) {
     std::printf(
         "%s: %zu teleports: recovered %zu, not recovered %zu, wrong %zu; median time from the "
         "teleport to the recovery %.1f s\n",
-        scenario.name.c_str(), teleports, recovered, missed, wrong, Median(recovery_s));
-    if (check && (wrong > 0 || missed > 0)) {
+        scenario.name.c_str(), teleports, recovered, missed, wrong, testing::Median(recovery_s));
+    if (args->check && (wrong > 0 || missed > 0)) {
       std::printf("FAILED: every teleport recovered and none wrong is the bar\n");
       code = 1;
     }

@@ -22,15 +22,19 @@ namespace structloc::localisation_core {
 
 struct KidnapOptions {
   // Below: the tracked pose does not explain the scan (a pose explaining
-  // less than half of it is not one the global search would call found).
+  // less than half of it is not one the global search would call found) ...
   double unexplained_share = 0.5;
+  // ... nor does it when the share falls this far below its running mean
+  // outside doubt (a robot carried a metre or two keeps a pose that still
+  // explains half of the scan).
+  double max_share_drop = 0.2;
   double after_s = 3.0;          // lost or unexplained this long: search the whole map
   double check_period_s = 0.5;   // the share is computed this often (off the latency path)
   double search_period_s = 2.0;  // while in doubt, a search at most this often
   // A pose found this far from the tracked one is a kidnapping (nearer: the
-  // tracker was right, or its own local search will do).
-  double min_jump_m = 1.0;
-  double min_jump_rad = 30.0 * geometry::kPi / 180.0;
+  // tracker was right).
+  double min_jump_m = 0.3;
+  double min_jump_rad = 10.0 * geometry::kPi / 180.0;
   // ... and explaining at least this much more of the scan than the tracked
   // one, and no less than this much below what the tracked pose explained
   // while all was well (its running mean outside doubt): a map of part of a
