@@ -243,5 +243,55 @@ TEST(Scenarios, BrokenScenarioNamesFileLineAndProblem) {
   }
 }
 
+// A kidnapping in a scenario (issue 38): the true pose jumps, odometry sees
+// nothing; a teleport naming no waypoint of the path, or out of time order,
+// is refused naming the file.
+TEST(Scenarios, ATeleportMovesTheRobotAndNotItsOdometry) {
+  const auto scenario =
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/office_kidnap.xml"));
+  ASSERT_EQ(scenario.teleports.size(), 1u);
+  const auto& teleport = scenario.teleports.front();
+  simulation_core::Simulation sim(scenario);
+  geometry::Pose2D truth_before, odometry_before;
+  while (sim.State().time < teleport.at_s - 1e-9) {
+    truth_before = sim.State().truth;
+    odometry_before = sim.State().odometry;
+    sim.Step();
+  }
+  const auto& after = sim.Step();
+  const auto& t = teleport.pose;
+  EXPECT_LT(std::hypot(after.truth.x - t.x, after.truth.y - t.y), 0.05);
+  EXPECT_GT(std::hypot(after.truth.x - truth_before.x, after.truth.y - truth_before.y), 10.0);
+  EXPECT_LT(std::hypot(after.odometry.x - odometry_before.x, after.odometry.y - odometry_before.y),
+            0.05);
+
+  const testing::TempDir temp;
+  std::ifstream in(testing::SourcePath("maps/scenarios/office_kidnap.xml"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  for (size_t pos; (pos = text.find("file=\"../")) != std::string::npos;) {
+    text.replace(pos, 9, "file=\"" + testing::SourcePath("maps/"));
+  }
+  auto refused = [&](const std::string& from, const std::string& to, const std::string& why) {
+    std::string broken = text;
+    broken.replace(broken.find(from), from.size(), to);
+    const std::string path = temp / "broken.xml";
+    std::ofstream(path) << broken;
+    try {
+      simulation_core::LoadScenario(path);
+      ADD_FAILURE() << "accepted " << to;
+    } catch (const config::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ":"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused("next_waypoint=\"0\"", "next_waypoint=\"11\"", "next_waypoint must be the index");
+  refused("<teleport at_s=\"20\"",
+          "<teleport at_s=\"30\" x=\"1\" y=\"6.5\" theta=\"0\" next_waypoint=\"0\"/>\n"
+          "  <teleport at_s=\"20\"",
+          "time order");
+}
+
 }  // namespace
 }  // namespace structloc
