@@ -120,8 +120,11 @@ void ExpectBars(const std::string& what, const std::string& map, const Evaluatio
   const auto& error = *report.estimate_error;
   std::cout << what << ": RMSE " << 1000 * error.position_rmse_m << " mm, max "
             << 1000 * error.position_max_m << " mm, longest lost " << report.longest_lost_s
-            << " s, re-acquired " << report.reacquisitions.size() << " times" << std::endl;
+            << " s, re-acquired " << report.reacquisitions.size() << " times, "
+            << report.kidnap_searches << " searches in doubt" << std::endl;
   EXPECT_LE(error.position_rmse_m, max_rmse_m) << what;
+  // Nobody carried these robots: a kidnapping reported is a wrong jump.
+  EXPECT_TRUE(report.kidnappings.empty()) << what;
   EXPECT_LE(error.position_max_m, 0.2) << what;
   EXPECT_LE(report.longest_lost_s, 2.0) << what;
 }

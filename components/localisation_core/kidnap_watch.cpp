@@ -18,6 +18,8 @@ void CheckKidnapOptions(const KidnapOptions& o) {
   require(o.after_s >= 0.0 && o.after_s <= 3600.0, "after_s", "in [0, 3600]");
   require(o.check_period_s >= 0.0 && o.check_period_s <= 60.0, "check_period_s", "in [0, 60]");
   require(o.search_period_s >= 0.0 && o.search_period_s <= 600.0, "search_period_s", "in [0, 600]");
+  require(o.max_search_period_s >= o.search_period_s && o.max_search_period_s <= 3600.0,
+          "max_search_period_s", "in [search_period_s, 3600]");
   require(o.min_jump_m >= 0.0 && o.min_jump_rad >= 0.0, "min_jump_m / min_jump_rad", "at least 0");
   require(o.max_share_drop >= 0.0 && o.max_share_drop <= 1.0, "max_share_drop", "in [0, 1]");
   require(o.min_share_gain >= 0.0 && o.min_share_gain <= 1.0, "min_share_gain", "in [0, 1]");
@@ -28,7 +30,10 @@ void CheckKidnapOptions(const KidnapOptions& o) {
 
 KidnapWatch::KidnapWatch(const GlobalLocaliser& localiser, const geometry::Pose2D& sensor_mount,
                          const KidnapOptions& options)
-    : localiser_(localiser), mount_(sensor_mount), options_(options) {
+    : localiser_(localiser),
+      mount_(sensor_mount),
+      options_(options),
+      search_period_s_(options.search_period_s) {
   CheckKidnapOptions(options_);
 }
 
@@ -38,6 +43,7 @@ void KidnapWatch::Clear() {
   doubt_since_.reset();
   last_share_.reset();
   doubt_s_ = 0.0;
+  search_period_s_ = options_.search_period_s;
 }
 
 bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
@@ -59,12 +65,15 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
     doubt_since_.reset();
     doubt_s_ = 0.0;
     last_search_s_.reset();
+    search_period_s_ = options_.search_period_s;
     return false;
   }
   if (!doubt_since_) doubt_since_ = stamp;
   doubt_s_ = stamp - *doubt_since_;
   if (doubt_s_ < options_.after_s) return false;
-  if (last_search_s_ && stamp - *last_search_s_ < options_.search_period_s) return false;
+  if (last_search_s_ && stamp - *last_search_s_ < search_period_s_) return false;
+  if (last_search_s_)
+    search_period_s_ = std::min(2.0 * search_period_s_, options_.max_search_period_s);
   last_search_s_ = stamp;
   return true;
 }
@@ -73,9 +82,8 @@ std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,
                                               const std::vector<Eigen::Vector2d>& laser_points,
                                               const geometry::Pose2D& found,
                                               const geometry::Pose2D& tracked) {
-  const double doubt = doubt_s_;
-  const auto normal = normal_share_;  // kept by Clear
-  Clear();
+  // Not a kidnapping: the doubt goes on (and its searches keep backing off)
+  // for as long as the scans stay unexplained.
   const bool far =
       std::hypot(found.x - tracked.x, found.y - tracked.y) > options_.min_jump_m ||
       std::abs(geometry::WrapAngle(found.theta - tracked.theta)) > options_.min_jump_rad;
@@ -86,8 +94,11 @@ std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,
   };
   const double at_found = share(found);
   if (at_found < share(tracked) + options_.min_share_gain) return std::nullopt;
-  if (normal && at_found < *normal - options_.max_share_below_normal) return std::nullopt;
-  return Kidnapping{stamp, tracked, found, doubt};
+  if (normal_share_ && at_found < *normal_share_ - options_.max_share_below_normal)
+    return std::nullopt;
+  const Kidnapping kidnapping{stamp, tracked, found, doubt_s_};
+  Clear();
+  return kidnapping;
 }
 
 }  // namespace structloc::localisation_core

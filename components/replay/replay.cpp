@@ -317,8 +317,8 @@ class Replayer {
     }
     doubting_ = true;
     if (!due && !global_->HoldingHypotheses()) return;
-    ++report_.kidnap_searches;
     const auto attempt = global_->Try(scan, *report.odometry);
+    report_.kidnap_searches += attempt.searched ? 1 : 0;
     if (!attempt.found) return;
     if (const auto kidnapping =
             watch_->Jumped(report.stamp, points, attempt.found->pose, report.pose.pose)) {

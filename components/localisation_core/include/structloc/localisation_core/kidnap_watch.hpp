@@ -5,11 +5,11 @@
 // explains at the tracked pose (GlobalLocaliser::FitAt, every
 // check_period_s); when the tracker says "lost", or the share stays below
 // unexplained_share, for `after_s` of scans in a row, it asks for a global
-// search (at most every search_period_s while the doubt lasts). The caller
+// search (the waits between them doubling while the doubt lasts). The caller
 // searches (GlobalStart) and moves the robot only if the pose found or
 // committed is far from the tracked one and explains the scan clearly better
-// (Jumped); a search that finds the robot where it is tracked ends the
-// doubt. DDS-free.
+// (Jumped); a search that finds the robot where it is tracked leaves the
+// tracking alone. DDS-free.
 #pragma once
 
 #include <optional>
@@ -28,9 +28,13 @@ struct KidnapOptions {
   // outside doubt (a robot carried a metre or two keeps a pose that still
   // explains half of the scan).
   double max_share_drop = 0.2;
-  double after_s = 3.0;          // lost or unexplained this long: search the whole map
-  double check_period_s = 0.5;   // the share is computed this often (off the latency path)
-  double search_period_s = 2.0;  // while in doubt, a search at most this often
+  double after_s = 3.0;         // lost or unexplained this long: search the whole map
+  double check_period_s = 0.5;  // the share is computed this often (off the latency path)
+  // While in doubt, a search this long after the one before, the wait
+  // doubling after each (a map that explains little of a place, where the
+  // tracking is right, must not keep a search running), up to the longest.
+  double search_period_s = 2.0;
+  double max_search_period_s = 30.0;
   // A pose found this far from the tracked one is a kidnapping (nearer: the
   // tracker was right).
   double min_jump_m = 0.3;
@@ -69,8 +73,8 @@ class KidnapWatch {
                const geometry::Pose2D& tracked, bool lost);
   // What a global search for the scan at `stamp` (its laser-frame points)
   // found (a found or committed robot pose), with the pose tracked then: the
-  // kidnapping if far from it and explaining the scan clearly better;
-  // nullopt (and the doubt ended) otherwise.
+  // kidnapping (and the doubt ended) if far from it and explaining the scan
+  // clearly better; nullopt (the doubt goes on) otherwise.
   std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
                                    const geometry::Pose2D& found, const geometry::Pose2D& tracked);
   bool InDoubt() const { return doubt_since_.has_value() && doubt_s_ >= options_.after_s; }
@@ -86,6 +90,7 @@ class KidnapWatch {
   std::optional<double> last_check_s_, last_search_s_, doubt_since_, last_share_;
   std::optional<double> normal_share_;  // running mean of the share outside doubt
   double doubt_s_ = 0.0;
+  double search_period_s_;  // the wait before the next search in doubt
 };
 
 }  // namespace structloc::localisation_core
