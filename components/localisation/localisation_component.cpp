@@ -132,6 +132,9 @@ void LocalisationComponent::StartSearch(const localisation_core::SessionScan& sc
   const double t = scan.geometry.stamp;
   const auto odometry =
       session_.OdometryCovers(t) ? session_.OdometryAt(t) : std::optional<geometry::Pose2D>();
+  // Hypotheses held are carried by odometry: a scan it does not place yet
+  // waits for the next (no search runs now, so asking global_ is safe).
+  if (!odometry && global_->HoldingHypotheses()) return;
   search_ = std::async(std::launch::async, [this, scan, odometry, answer]() mutable {
     answer.global = odometry ? global_->Try(scan, *odometry) : global_->Try(scan);
     return answer;
@@ -267,6 +270,7 @@ void LocalisationComponent::Worker() {
         given_pose_source_.clear();
         forget_recent_scans_ = true;  // the robot may have been carried away
         ++search_generation_;
+        held_hypotheses_ = 0;
         EndKidnapDoubt();
         std::cout << "localisation: relocalising globally, as asked on "
                   << dds_common::topics::kReinitializeGlobalLocalization.name << std::endl;
@@ -280,6 +284,7 @@ void LocalisationComponent::Worker() {
       if (session_.Apply(inputs, dds_common::topics::kInitialPose.name) > 0) {
         pose_hint_check_.reset();  // a pose published outranks an older hint
         ++search_generation_;
+        held_hypotheses_ = 0;
         EndKidnapDoubt();
         if (global_) given_pose_source_ = "the pose on " + dds_common::topics::kInitialPose.name;
         std::cout << "localisation: initial pose "
@@ -350,12 +355,16 @@ void LocalisationComponent::WatchForKidnapping(const localisation_core::ScanRepo
     std::cout << "localisation: the tracked pose has not explained the scans for "
               << kidnap_watch_->Options().after_s
               << " s: searching the whole map in case the robot was carried away" << std::endl;
+    // What the start-up searched and held is of another time.
+    if (search_.valid()) return;
+    global_->ForgetRecentScans();
   }
   kidnap_doubt_ = true;
   if ((!due && kidnap_hypotheses_ == 0) || search_.valid() ||
       !session_.OdometryCovers(report.stamp))
     return;
   const geometry::Pose2D odometry = *session_.OdometryAt(report.stamp);
+  if (due) kidnap_watch_->Searched(report.stamp);
   answer.generation = search_generation_;
   answer.stamp = report.stamp;
   answer.tracked = report.pose.pose;
@@ -372,6 +381,7 @@ void LocalisationComponent::EndKidnapDoubt() {
 }
 
 void LocalisationComponent::ApplyKidnapSearch(const SearchAnswer& answer, double now) {
+  if (!kidnap_doubt_) return;  // the scans fit again meanwhile: the tracking was right
   const auto& attempt = *answer.global;
   kidnap_hypotheses_ = attempt.found ? 0 : attempt.hypotheses.size();
   if (!attempt.found || session_.WaitingForInitialPose()) return;

@@ -63,7 +63,8 @@ GlobalStart::Attempt GlobalStart::SearchAndSeed(double stamp, const Readings& re
              geometry::IsFinite(odometry)) {
     attempt.seeded = hypotheses_.Seed(attempt.result, points, odometry);
     attempt.hypotheses = hypotheses_.Hypotheses();
-  } else {
+  } else {  // nothing to follow: the next hypotheses start a new count
+    travel_before_m_ = 0.0;
     hypotheses_.Clear();
   }
   return attempt;
@@ -99,6 +100,7 @@ GlobalStart::Attempt GlobalStart::Verify(double stamp, const Readings& readings,
   }
   Attempt attempt = Decide(stamp, check);
   attempt.refused = standing;
+  attempt.seeded = hypotheses_.Seeded();
   if (attempt.found) {
     attempt.travel_m = travel_before_m_;
     travel_before_m_ = 0.0;

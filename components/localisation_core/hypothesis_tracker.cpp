@@ -146,8 +146,9 @@ void HypothesisTracker::MergeAndDrop() {
 }
 
 HypothesisTracker::Verdict HypothesisTracker::Decide() {
-  if (poor_ >= options_.poor_steps) {
-    Clear();
+  if (poor_ >= options_.poor_steps) {  // given up; TravelM() stays until the next Seed
+    tracks_.clear();
+    hypotheses_.clear();
     return Verdict::kSearch;
   }
   if (tracks_.size() == 1 && steps_ > 0 &&

@@ -71,11 +71,13 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   if (!doubt_since_) doubt_since_ = stamp;
   doubt_s_ = stamp - *doubt_since_;
   if (doubt_s_ < options_.after_s) return false;
-  if (last_search_s_ && stamp - *last_search_s_ < search_period_s_) return false;
+  return !last_search_s_ || stamp - *last_search_s_ >= search_period_s_;
+}
+
+void KidnapWatch::Searched(double stamp) {
   if (last_search_s_)
     search_period_s_ = std::min(2.0 * search_period_s_, options_.max_search_period_s);
   last_search_s_ = stamp;
-  return true;
 }
 
 std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,

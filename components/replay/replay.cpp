@@ -317,6 +317,7 @@ class Replayer {
     }
     doubting_ = true;
     if (!due && !global_->HoldingHypotheses()) return;
+    if (due) watch_->Searched(report.stamp);
     const auto attempt = global_->Try(scan, *report.odometry);
     report_.kidnap_searches += attempt.searched ? 1 : 0;
     if (!attempt.found) return;

@@ -20,6 +20,7 @@
 #include <ctime>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,10 @@ int main(int argc, char** argv) {
     const auto scenario = simulation_core::LoadScenario(args->scenario);
     const auto scans = Simulate(scenario);
     const size_t loop = LoopScans(scans, scenario.initial_pose);
+    if (starts == 0 || loop == 0 || (only_start && *only_start >= scans.size()))
+      throw std::runtime_error("nothing to evaluate: " + std::to_string(starts) + " starts, " +
+                               std::to_string(loop) + " scans in a loop, " +
+                               std::to_string(scans.size()) + " scans in all");
     Eigen::AlignedBox2d extent;
     for (const auto& s : scans) extent.extend(s.truth.Translation());
     std::printf(

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,9 @@ int main(int argc, char** argv) {
     const auto scenario = simulation_core::LoadScenario(args->scenario);
     simulation_core::RecordScenario(scenario, temp / "recording");
     const double duration = scenario.duration_s;
+    if (duration < 100.0)
+      throw std::runtime_error(args->scenario + ": the tour is too short for teleports (" +
+                               std::to_string(duration) + " s; at least 100 s)");
     std::mt19937 rng(args->seed);
     size_t recovered = 0, wrong = 0, missed = 0;
     std::vector<double> recovery_s;

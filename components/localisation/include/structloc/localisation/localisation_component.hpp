@@ -109,7 +109,9 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::PoseHintCheckOptions hint_check_options_;
   std::atomic<bool> relocalise_requested_{false};
   // The search under way (global_ and a copy of the hint check are its own
-  // until it ends), and the generation that outdates its answer.
+  // until it ends; the worker then only reads global_->Localiser(), whose
+  // const methods change nothing, for the kidnap watch), and the generation
+  // that outdates its answer.
   std::future<SearchAnswer> search_;
   uint64_t search_generation_ = 0;
   bool forget_recent_scans_ = false;  // once no search uses global_

@@ -83,7 +83,7 @@ class HypothesisTracker {
   bool Holding() const { return !hypotheses_.empty() && !committed_; }
   const std::vector<Hypothesis>& Hypotheses() const { return hypotheses_; }  // best first
   const std::optional<Hypothesis>& Committed() const { return committed_; }
-  double TravelM() const { return travel_m_; }    // odometric path since Seed
+  double TravelM() const { return travel_m_; }    // odometric path since Seed, kept when given up
   size_t Seeded() const { return seeded_; }       // hypotheses started by the last Seed
   size_t StepsCounted() const { return steps_; }  // evidence steps since Seed
   void Clear();

@@ -68,13 +68,18 @@ class KidnapWatch {
 
   // After a tracked scan (laser-frame points) at `stamp`, with the robot's
   // tracked pose and the tracker's lost verdict. True when a global search
-  // is due now.
+  // is due now; the caller says Searched when it starts one.
   bool Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
                const geometry::Pose2D& tracked, bool lost);
+  // A search for the scan at `stamp` was started: the next waits longer.
+  void Searched(double stamp);
   // What a global search for the scan at `stamp` (its laser-frame points)
   // found (a found or committed robot pose), with the pose tracked then: the
   // kidnapping (and the doubt ended) if far from it and explaining the scan
-  // clearly better; nullopt (the doubt goes on) otherwise.
+  // clearly better; nullopt (the doubt goes on) otherwise. The normal share
+  // is not lowered to what a doubted pose explains, even when a search finds
+  // the robot there: in a part of the building the map lacks, a place
+  // elsewhere that fits a little better would then pass for the robot's.
   std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
                                    const geometry::Pose2D& found, const geometry::Pose2D& tracked);
   bool InDoubt() const { return doubt_since_.has_value() && doubt_s_ >= options_.after_s; }
