@@ -294,12 +294,17 @@ class Replayer {
   // does (KidnapWatch, GlobalStart); found far away, the tracking jumps there
   // and the kidnapping is reported.
   void WatchForKidnapping(const localisation_core::SessionScan& scan, const ScanReport& report) {
-    if (!report.odometry) return;
+    if (!report.odometry || !report_.kidnap_watch_off.empty()) return;
     if (!watch_) {
-      if (!global_) {
-        global_ = std::make_unique<localisation_core::GlobalStart>(
-            *world_, report_.sensor_mount, Eigen::Matrix3d::Identity(), o_.global,
-            localisation_core::RecentScansOptions{}, o_.hypotheses);
+      try {
+        if (!global_) {
+          global_ = std::make_unique<localisation_core::GlobalStart>(
+              *world_, report_.sensor_mount, Eigen::Matrix3d::Identity(), o_.global,
+              localisation_core::RecentScansOptions{}, o_.hypotheses);
+        }
+      } catch (const std::invalid_argument& e) {  // a map too large for the search's grid
+        report_.kidnap_watch_off = e.what();
+        return;
       }
       global_->ForgetRecentScans();
       watch_ = std::make_unique<localisation_core::KidnapWatch>(global_->Localiser(),
@@ -616,6 +621,9 @@ std::string FormatReport(const ReplayReport& r) {
     out << "corrections refused by the whole-scan check: " << r.corrections_refused << "\n";
   }
   out << "re-acquired: " << r.reacquisitions.size() << " times\n";
+  if (!r.kidnap_watch_off.empty()) {
+    out << "no watch for a kidnapped robot: " << r.kidnap_watch_off << "\n";
+  }
   if (r.kidnap_searches > 0) {
     out << "searched the whole map at " << r.kidnap_searches
         << " scans the tracked pose did not explain (in case the robot was carried away)\n";

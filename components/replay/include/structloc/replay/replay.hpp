@@ -112,7 +112,8 @@ struct ReplayReport {
   std::optional<Commit> commit;
   // Where the tracked robot was found carried elsewhere (odometry saw nothing).
   std::vector<localisation_core::Kidnapping> kidnappings;
-  size_t kidnap_searches = 0;     // global searches (or hypothesis updates) made in doubt
+  size_t kidnap_searches = 0;     // global searches made in doubt
+  std::string kidnap_watch_off;   // why there was no kidnap watch (empty: there was)
   geometry::Pose2D initial_pose;  // robot pose tracking started from
 };
 
