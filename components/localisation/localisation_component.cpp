@@ -338,11 +338,10 @@ void LocalisationComponent::Worker() {
 
 void LocalisationComponent::WatchForKidnapping(const localisation_core::ScanReport& report) {
   if (!kidnap_watch_ || pose_hint_check_) return;
-  const auto& g = report.scan.geometry;
+  // The points only when the watch uses them (the share, or a search's answer).
   SearchAnswer answer;
-  answer.points = localisation_core::ScanPointsInLaserFrame(
-      report.scan.ranges, g.angle_min, g.angle_increment, g.range_min,
-      g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY);
+  if (kidnap_watch_->CheckDue(report.stamp, report.lost))
+    answer.points = localisation_core::LaserPoints(report.scan);
   const bool due =
       kidnap_watch_->Observe(answer.points, report.stamp, report.pose.pose, report.lost);
   if (!kidnap_watch_->InDoubt()) {
@@ -365,6 +364,7 @@ void LocalisationComponent::WatchForKidnapping(const localisation_core::ScanRepo
     return;
   const geometry::Pose2D odometry = *session_.OdometryAt(report.stamp);
   if (due) kidnap_watch_->Searched(report.stamp);
+  if (answer.points.empty()) answer.points = localisation_core::LaserPoints(report.scan);
   answer.generation = search_generation_;
   answer.stamp = report.stamp;
   answer.tracked = report.pose.pose;

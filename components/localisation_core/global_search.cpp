@@ -12,13 +12,14 @@
 #include "structloc/localisation_core/global_localiser.hpp"
 
 namespace structloc::localisation_core {
-namespace {
 
 bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
               const GlobalLocaliserOptions& o) {
   return std::hypot(a.x - b.x, a.y - b.y) > o.distinct_distance_m ||
          std::abs(geometry::WrapAngle(a.theta - b.theta)) > o.distinct_heading_rad;
 }
+
+namespace {
 
 // A point checked for a beam through a wall (RankScore) costs about ten
 // lookups in a field.

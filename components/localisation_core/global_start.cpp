@@ -14,16 +14,12 @@ GlobalStart::GlobalStart(const world_model::WorldModel& world, const geometry::P
       recent_(recent),
       hypotheses_(search_, sensor_mount, hypotheses) {}
 
-namespace {
-
 std::vector<Eigen::Vector2d> LaserPoints(const SessionScan& scan) {
   const auto& g = scan.geometry;
   const double max_range = g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY;
   return ScanPointsInLaserFrame(scan.ranges, g.angle_min, g.angle_increment, g.range_min,
                                 max_range);
 }
-
-}  // namespace
 
 GlobalStart::Attempt GlobalStart::Try(const SessionScan& scan) const {
   return Locate(scan, nullptr);
@@ -55,18 +51,24 @@ GlobalStart::Attempt GlobalStart::Try(const std::vector<Eigen::Vector2d>& points
 GlobalStart::Attempt GlobalStart::SearchAndSeed(double stamp, const Readings& readings,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 const geometry::Pose2D& odometry) {
-  Attempt attempt = Decide(stamp, search_.Locate(readings));
-  if (attempt.found) {
-    travel_before_m_ = 0.0;
-    hypotheses_.Clear();
-  } else if (attempt.result.decision == GlobalDecision::kAmbiguous &&
-             geometry::IsFinite(odometry)) {
+  return FollowUp(stamp, search_.Locate(readings), points, odometry);
+}
+
+// A search's answer: a pose found ends the start-up, an ambiguous one starts
+// hypotheses, none leaves nothing to follow (the next hypotheses start a new
+// count of travel).
+GlobalStart::Attempt GlobalStart::FollowUp(double stamp, GlobalResult result,
+                                           const std::vector<Eigen::Vector2d>& points,
+                                           const geometry::Pose2D& odometry) {
+  Attempt attempt = Decide(stamp, std::move(result));
+  if (!attempt.found && attempt.result.decision == GlobalDecision::kAmbiguous &&
+      geometry::IsFinite(odometry)) {
     attempt.seeded = hypotheses_.Seed(attempt.result, points, odometry);
     attempt.hypotheses = hypotheses_.Hypotheses();
-  } else {  // nothing to follow: the next hypotheses start a new count
-    travel_before_m_ = 0.0;
-    hypotheses_.Clear();
+    return attempt;
   }
+  travel_before_m_ = 0.0;
+  hypotheses_.Clear();
   return attempt;
 }
 
@@ -80,36 +82,29 @@ GlobalStart::Attempt GlobalStart::Verify(double stamp, const Readings& readings,
                                          const geometry::Pose2D& odometry,
                                          const Hypothesis& standing) {
   const geometry::Pose2D laser = geometry::Compose(standing.pose, mount_);
-  const GlobalResult check = search_.Locate(readings);
-  const auto& o = search_.Options();
-  const bool elsewhere =
-      check.best && (std::hypot(check.best->pose.x - laser.x, check.best->pose.y - laser.y) >
-                         o.distinct_distance_m ||
-                     std::abs(geometry::WrapAngle(check.best->pose.theta - laser.theta)) >
-                         o.distinct_heading_rad);
+  GlobalResult check = search_.Locate(readings);
+  const double travel = travel_before_m_;
+  const size_t seeded = hypotheses_.Seeded();
+  const bool elsewhere = check.best && Distinct(check.best->pose, laser, search_.Options());
   if (!elsewhere || search_.Score(readings, laser) >= check.best->score) {
     Attempt attempt;
-    attempt.result = check;
+    attempt.result = std::move(check);
     attempt.found = InitialPoseInput{stamp, standing.pose, covariance_};
-    attempt.travel_m = travel_before_m_;
-    attempt.seeded = hypotheses_.Seeded();
     attempt.hypotheses = {standing};
     travel_before_m_ = 0.0;
     hypotheses_.Clear();
+    attempt.travel_m = travel;
+    attempt.seeded = seeded;
     return attempt;
   }
-  Attempt attempt = Decide(stamp, check);
+  Attempt attempt = FollowUp(stamp, std::move(check), points, odometry);
   attempt.refused = standing;
-  attempt.seeded = hypotheses_.Seeded();
   if (attempt.found) {
-    attempt.travel_m = travel_before_m_;
-    travel_before_m_ = 0.0;
-    hypotheses_.Clear();
-  } else if (check.decision == GlobalDecision::kAmbiguous) {
-    attempt.seeded = hypotheses_.Seed(check, points, odometry);
-    attempt.hypotheses = hypotheses_.Hypotheses();
-  } else {
-    hypotheses_.Clear();
+    attempt.travel_m = travel;
+    attempt.seeded = seeded;
+  } else if (attempt.hypotheses.empty()) {
+    travel_before_m_ = travel;  // the travel goes on counting to the next hypotheses
+    attempt.seeded = seeded;
   }
   return attempt;
 }

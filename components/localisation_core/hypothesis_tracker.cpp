@@ -40,7 +40,6 @@ HypothesisTracker::HypothesisTracker(const GlobalLocaliser& localiser,
 
 void HypothesisTracker::Clear() {
   tracks_.clear();
-  hypotheses_.clear();
   committed_.reset();
   travel_m_ = step_travel_m_ = step_turn_rad_ = 0.0;
   seeded_ = steps_ = 0;
@@ -141,14 +140,17 @@ void HypothesisTracker::MergeAndDrop() {
     if (!merged) kept.push_back(track);
   }
   tracks_ = std::move(kept);
-  hypotheses_.clear();
-  for (const auto& track : tracks_) hypotheses_.push_back(track.h);
+}
+
+std::vector<Hypothesis> HypothesisTracker::Hypotheses() const {
+  std::vector<Hypothesis> hypotheses;
+  for (const auto& track : tracks_) hypotheses.push_back(track.h);
+  return hypotheses;
 }
 
 HypothesisTracker::Verdict HypothesisTracker::Decide() {
   if (poor_ >= options_.poor_steps) {  // given up; TravelM() stays until the next Seed
     tracks_.clear();
-    hypotheses_.clear();
     return Verdict::kSearch;
   }
   if (tracks_.size() == 1 && steps_ > 0 &&

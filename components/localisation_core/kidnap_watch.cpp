@@ -48,9 +48,8 @@ void KidnapWatch::Clear() {
 
 bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
                           const geometry::Pose2D& tracked, bool lost) {
-  bool checked = false;
-  if (!lost && (!last_check_s_ || stamp - *last_check_s_ >= options_.check_period_s)) {
-    checked = true;
+  const bool checked = CheckDue(stamp, lost);
+  if (checked) {
     last_check_s_ = stamp;
     const auto points = localiser_.FitPoints(laser_points, options_.fit_points);
     last_share_ = localiser_.FitAt(points, geometry::Compose(tracked, mount_), 0.1).share;

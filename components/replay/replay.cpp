@@ -169,17 +169,22 @@ class Replayer {
     return params_.sensor_mount;
   }
 
+  // The robot's start-up and the kidnap watch's search (built once, for the
+  // laser at `mount`; throws std::invalid_argument as GlobalLocaliser does).
+  void StartGlobal(const geometry::Pose2D& mount) {
+    if (global_) return;
+    global_ = std::make_unique<localisation_core::GlobalStart>(
+        *world_, mount, Eigen::Matrix3d::Identity(), o_.global,
+        localisation_core::RecentScansOptions{}, o_.hypotheses);
+  }
+
   // Tries the scan against the whole map, or weighs the hypotheses held
   // (GlobalStart, as the component starts a robot); true when a pose was
   // found or committed, which then becomes the initial pose. Throws when the
   // last allowed scan gave none.
   bool LocateGlobally(const log_formats::CarmenRecord& r) {
     ++global_scans_;
-    if (!global_) {
-      global_ = std::make_unique<localisation_core::GlobalStart>(
-          *world_, SensorMount(&r), Eigen::Matrix3d::Identity(), o_.global,
-          localisation_core::RecentScansOptions{}, o_.hypotheses);
-    }
+    StartGlobal(SensorMount(&r));
     if (global_->HoldingHypotheses()) ++held_scans_;
     const auto t0 = std::chrono::steady_clock::now();
     const auto scan = ToSessionScan(r);
@@ -297,11 +302,7 @@ class Replayer {
     if (!report.odometry || !report_.kidnap_watch_off.empty()) return;
     if (!watch_) {
       try {
-        if (!global_) {
-          global_ = std::make_unique<localisation_core::GlobalStart>(
-              *world_, report_.sensor_mount, Eigen::Matrix3d::Identity(), o_.global,
-              localisation_core::RecentScansOptions{}, o_.hypotheses);
-        }
+        StartGlobal(report_.sensor_mount);
       } catch (const std::invalid_argument& e) {  // a map too large for the search's grid
         report_.kidnap_watch_off = e.what();
         return;
@@ -310,10 +311,9 @@ class Replayer {
       watch_ = std::make_unique<localisation_core::KidnapWatch>(global_->Localiser(),
                                                                 report_.sensor_mount, o_.kidnap);
     }
-    const auto& g = scan.geometry;
-    const auto points = localisation_core::ScanPointsInLaserFrame(
-        scan.ranges, g.angle_min, g.angle_increment, 0.0,
-        g.range_max > 0.0 ? g.range_max - 1e-3 : INFINITY);
+    // The points only when the watch uses them (the share, or a search's answer).
+    std::vector<Eigen::Vector2d> points;
+    if (watch_->CheckDue(report.stamp, report.lost)) points = localisation_core::LaserPoints(scan);
     const bool due = watch_->Observe(points, report.stamp, report.pose.pose, report.lost);
     if (!watch_->InDoubt()) {
       if (doubting_) global_->ForgetRecentScans();
@@ -326,6 +326,7 @@ class Replayer {
     const auto attempt = global_->Try(scan, *report.odometry);
     report_.kidnap_searches += attempt.searched ? 1 : 0;
     if (!attempt.found) return;
+    if (points.empty()) points = localisation_core::LaserPoints(scan);
     if (const auto kidnapping =
             watch_->Jumped(report.stamp, points, attempt.found->pose, report.pose.pose)) {
       report_.kidnappings.push_back(*kidnapping);

@@ -59,6 +59,11 @@ struct GlobalLocaliserOptions {
   double distinct_heading_rad = 10.0 * geometry::kPi / 180.0;  // ... or turned this much
 };
 
+// Whether two laser poses are distinct places for the search (at least
+// distinct_distance_m apart or turned distinct_heading_rad).
+bool Distinct(const geometry::Pose2D& a, const geometry::Pose2D& b,
+              const GlobalLocaliserOptions& options);
+
 enum class GlobalDecision { kFound, kAmbiguous, kNotFound };
 const char* ToString(GlobalDecision decision);
 

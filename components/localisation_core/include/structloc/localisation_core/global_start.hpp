@@ -24,6 +24,10 @@
 
 namespace structloc::localisation_core {
 
+// A scan's points in the laser frame as the searches take them (within its
+// range limits; a reading at range_max is no return).
+std::vector<Eigen::Vector2d> LaserPoints(const SessionScan& scan);
+
 class GlobalStart {
  public:
   // `covariance`: of a pose found (the tracker's initial covariance).
@@ -80,6 +84,8 @@ class GlobalStart {
   Attempt SearchAndSeed(double stamp, const Readings& readings,
                         const std::vector<Eigen::Vector2d>& points,
                         const geometry::Pose2D& odometry);
+  Attempt FollowUp(double stamp, GlobalResult result, const std::vector<Eigen::Vector2d>& points,
+                   const geometry::Pose2D& odometry);
   Attempt Verify(double stamp, const Readings& readings, const std::vector<Eigen::Vector2d>& points,
                  const geometry::Pose2D& odometry, const Hypothesis& standing);
   InitialPoseInput RobotPoseAt(double stamp, const geometry::Pose2D& laser) const;

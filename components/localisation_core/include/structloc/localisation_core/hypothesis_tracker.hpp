@@ -80,8 +80,8 @@ class HypothesisTracker {
   Verdict Update(const std::vector<Eigen::Vector2d>& laser_points,
                  const geometry::Pose2D& odometry);
 
-  bool Holding() const { return !hypotheses_.empty() && !committed_; }
-  const std::vector<Hypothesis>& Hypotheses() const { return hypotheses_; }  // best first
+  bool Holding() const { return !tracks_.empty() && !committed_; }
+  std::vector<Hypothesis> Hypotheses() const;  // best first
   const std::optional<Hypothesis>& Committed() const { return committed_; }
   double TravelM() const { return travel_m_; }    // odometric path since Seed, kept when given up
   size_t Seeded() const { return seeded_; }       // hypotheses started by the last Seed
@@ -103,8 +103,7 @@ class HypothesisTracker {
   const GlobalLocaliser& localiser_;
   geometry::Pose2D mount_;
   HypothesisOptions options_;
-  std::vector<Track> tracks_;
-  std::vector<Hypothesis> hypotheses_;  // tracks_' hypotheses, best first
+  std::vector<Track> tracks_;  // best first after each Seed and Update
   std::optional<Hypothesis> committed_;
   geometry::Pose2D last_odometry_;
   double travel_m_ = 0.0;

@@ -73,6 +73,11 @@ class KidnapWatch {
                const geometry::Pose2D& tracked, bool lost);
   // A search for the scan at `stamp` was started: the next waits longer.
   void Searched(double stamp);
+  // Whether Observe at `stamp` computes the share (and so needs the scan's
+  // points; otherwise it may be given none).
+  bool CheckDue(double stamp, bool lost) const {
+    return !lost && (!last_check_s_ || stamp - *last_check_s_ >= options_.check_period_s);
+  }
   // What a global search for the scan at `stamp` (its laser-frame points)
   // found (a found or committed robot pose), with the pose tracked then: the
   // kidnapping (and the doubt ended) if far from it and explaining the scan
