@@ -296,6 +296,19 @@ TEST(WallFitting, SplitsAtGapsAndJoinsWallsThatNearlyMeet) {
   EXPECT_EQ(JoinCorners(apart, {}), 0u);
 }
 
+// Joining a corner moves a wall's end by up to max_end_distance_m: a 0.35 m
+// wall whose far end is pulled 0.1 m back is then too short to keep.
+TEST(WallFitting, WallsShortenedBelowTheMinimumByAJoinAreDropped) {
+  std::vector<FittedWall> walls{FitWall({{0.0, 0.0}, {0.35, 0.0}}),
+                                FitWall({{0.25, -0.05}, {0.25, 2.0}}),
+                                FitWall({{5.0, 0.0}, {5.0, 3.0}})};
+  EXPECT_EQ(JoinCorners(walls, {}), 1u);
+  EXPECT_NEAR(walls[0].Length(), 0.25, 1e-9);
+  EXPECT_EQ(DropShortWalls(walls, 0.3), 1u);
+  ASSERT_EQ(walls.size(), 2u);
+  for (const auto& w : walls) EXPECT_GE(w.Length(), 0.3);
+}
+
 // JoinCorners tries only the pairs whose ends lie near each other, found by
 // cell as the ends move; it must join exactly what trying every pair in
 // order would: 1500 walls of 0.3-1 m in a 4 m square about the origin (cells

@@ -6,7 +6,7 @@
 // the median distance of the readings near a wall at most 15 mm for the built
 // map and 20 mm for the maps from grids. And `map check --fit-poses` on the
 // shipped maps: each scan fitted alone to the map lies a median 5-25 mm from its
-// corrected pose (21.3 mm on Freiburg 079, 15.9 on Intel: the agreement the
+// corrected pose (21.4 mm on Freiburg 079, 15.9 on Intel: the agreement the
 // README's localisation figures are read against; a fit that never moved
 // would give 0), one CSV row per scan.
 #include <gtest/gtest.h>
@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cli_runner.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
 
@@ -42,6 +43,15 @@ CheckFigures Check(const std::string& map, const std::string& log) {
   if (at != std::string::npos) figures.median_mm = std::stod(out.substr(at + median.size()));
   EXPECT_GE(figures.median_mm, 0.0) << run.output;
   return figures;
+}
+
+// The builder's and the importer's walls are at least 0.3 m long (their
+// min_length_m and min_wall_length_m), also after joining corners moved their ends.
+void ExpectNoShortWalls(const std::string& map) {
+  const auto world = world_model::LoadWorldModel(map);
+  size_t short_walls = 0;
+  for (const auto& wall : world.Walls()) short_walls += wall.Length() < 0.3;
+  EXPECT_EQ(short_walls, 0u) << map;
 }
 
 void RunStep(const std::vector<std::string>& args) {
@@ -78,6 +88,8 @@ TEST_P(CorrectedLog, BuiltAndGridMapsAgreeWithTheRecording) {
   EXPECT_LE(from_log.median_mm, 15.0);
   EXPECT_LE(from_export.median_mm, 20.0);
   EXPECT_LE(from_ray_cast.median_mm, 20.0);
+  for (const std::string& map : {built, dir / "from_export.xml", dir / "from_ray_cast.xml"})
+    ExpectNoShortWalls(map);
 }
 
 TEST_P(CorrectedLog, ScansFittedAloneToTheShippedMapLieNearTheirCorrectedPoses) {

@@ -112,11 +112,12 @@ int MapBuildCommand(const Invocation& inv) {
               << 1000.0 * options.walls.max_rms_m << " mm RMS, " << r.too_short << " shorter than "
               << options.walls.min_length_m << " m, " << result.walls_on_pillars << " on a pillar, "
               << result.shadow_walls << " shadows of longer walls\n  " << world.Walls().size()
-              << " walls, " << result.corners_joined << " corners joined ("
-              << world.Corners().size() << " corners derived), " << world.Cylinders().size()
-              << " pillars (" << result.pillar_report.sightings << " arc sightings, "
-              << result.pillar_report.too_few_scans << " seen too rarely)\n  wrote " << out_path
-              << "\n";
+              << " walls, " << result.corners_joined << " corners joined (then "
+              << result.short_after_joining << " walls shorter than " << options.walls.min_length_m
+              << " m dropped; " << world.Corners().size() << " corners derived), "
+              << world.Cylinders().size() << " pillars (" << result.pillar_report.sightings
+              << " arc sightings, " << result.pillar_report.too_few_scans
+              << " seen too rarely)\n  wrote " << out_path << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
     if (plot) std::cout << "  picture: " << plot_path << "\n";
     return 0;

@@ -173,8 +173,9 @@ int MapImportGridCommand(const Invocation& inv) {
               << result.occupied_cells << " occupied, " << result.face_cells
               << " facing free space in " << result.wall_blobs << " wall blobs\n"
               << "  " << world.Walls().size() << " walls, " << world.Corners().size()
-              << " corners (" << result.corners_joined << " wall ends joined), "
-              << world.Cylinders().size() << " pillars\n"
+              << " corners (" << result.corners_joined << " wall ends joined; "
+              << result.short_after_joining << " walls shorter than " << options.min_wall_length_m
+              << " m after that, dropped), " << world.Cylinders().size() << " pillars\n"
               << "  left out: " << result.blobs_left_out
               << " blobs too small for a wall, alone or with the blobs near them, and not round "
                  "(furniture), "

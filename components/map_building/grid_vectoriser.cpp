@@ -538,6 +538,7 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   CornerJoinOptions corners = options.corners;
   corners.max_end_distance_m = std::max(corners.max_end_distance_m, 3.0 * res);
   out.corners_joined = JoinCorners(out.walls, corners);
+  out.short_after_joining = DropShortWalls(out.walls, options.min_wall_length_m);
   return out;
 }
 

@@ -36,6 +36,7 @@ MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptio
   result.walls.erase(kept, result.walls.end());
   result.shadow_walls = DropShadowWalls(result.walls, options.shadows);
   result.corners_joined = JoinCorners(result.walls, options.corners);
+  result.short_after_joining = DropShortWalls(result.walls, options.walls.min_length_m);
   return result;
 }
 

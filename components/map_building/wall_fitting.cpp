@@ -194,6 +194,15 @@ size_t JoinCorners(std::vector<FittedWall>& walls, const CornerJoinOptions& opti
   return joined;
 }
 
+size_t DropShortWalls(std::vector<FittedWall>& walls, double min_length_m) {
+  const auto kept = std::remove_if(walls.begin(), walls.end(), [min_length_m](const FittedWall& w) {
+    return w.Length() < min_length_m;
+  });
+  const auto dropped = static_cast<size_t>(walls.end() - kept);
+  walls.erase(kept, walls.end());
+  return dropped;
+}
+
 world_model::WorldModel MakeWorld(const std::string& name, const std::vector<FittedWall>& walls,
                                   const std::vector<world_model::Cylinder>& cylinders) {
   std::vector<world_model::Wall> model_walls;

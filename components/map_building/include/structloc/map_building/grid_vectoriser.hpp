@@ -67,13 +67,14 @@ struct GridVectoriseOptions {
 struct GridVectorisation {
   std::vector<FittedWall> walls;
   std::vector<world_model::Cylinder> pillars;
-  size_t cells = 0;            // in the grid
-  size_t occupied_cells = 0;   // at or above occupied_min_value
-  size_t face_cells = 0;       // occupied cells of wall blobs next to free space
-  size_t wall_blobs = 0;       // connected blobs that gave walls
-  size_t blobs_left_out = 0;   // neither wall nor pillar (furniture, clutter)
-  size_t specks_left_out = 0;  // blobs of at most max_speck_cells (noise)
-  size_t corners_joined = 0;   // wall ends pulled onto a corner (JoinCorners)
+  size_t cells = 0;                // in the grid
+  size_t occupied_cells = 0;       // at or above occupied_min_value
+  size_t face_cells = 0;           // occupied cells of wall blobs next to free space
+  size_t wall_blobs = 0;           // connected blobs that gave walls
+  size_t blobs_left_out = 0;       // neither wall nor pillar (furniture, clutter)
+  size_t specks_left_out = 0;      // blobs of at most max_speck_cells (noise)
+  size_t corners_joined = 0;       // wall ends pulled onto a corner (JoinCorners)
+  size_t short_after_joining = 0;  // shortened below min_wall_length_m by that, dropped
 };
 
 // Throws std::invalid_argument when the grid has no occupied cell, when it

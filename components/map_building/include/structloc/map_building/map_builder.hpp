@@ -42,6 +42,8 @@ struct MapBuildResult {
   size_t corners_joined = 0;
   size_t walls_on_pillars = 0;  // chords of a pillar's arc, dropped
   size_t shadow_walls = 0;      // shadows of longer walls, dropped (shadow_walls.hpp)
+  // Shortened below walls.min_length_m by joining their corners, dropped.
+  size_t short_after_joining = 0;
   WallMergeReport wall_report;
   PillarReport pillar_report;
 };

@@ -60,6 +60,10 @@ bool JoinWallEnds(FittedWall& first, FittedWall& second, const CornerJoinOptions
 // were joined.
 size_t JoinCorners(std::vector<FittedWall>& walls, const CornerJoinOptions& options);
 
+// Removes the walls shorter than min_length_m (joining corners shortens
+// walls: an end can move by max_end_distance_m); returns how many.
+size_t DropShortWalls(std::vector<FittedWall>& walls, double min_length_m);
+
 // A world model of the walls (ids 1..n in order) and cylinders (ids 1..m);
 // corners are derived by the world model where wall ends meet.
 world_model::WorldModel MakeWorld(const std::string& name, const std::vector<FittedWall>& walls,
