@@ -38,7 +38,9 @@ int ReplayCommand(const Invocation& inv) {
        "without --initial-pose: scans tried before giving up (default: none, until the log "
        "ends)"},
       {"out", true, "TUM trajectory to write (one line per scan)"},
-      {"params", true, "localisation parameter file (default: built-in Table 6 defaults)"},
+      {"params", true,
+       "localisation parameter file (default: the shipped preset the first scan's geometry "
+       "names, printed in the summary; the built-in Table 6 defaults when none does)"},
       {"truth", true, "TUM ground truth: adds RMSE, max and heading errors"},
       {"plot", true, "PNG of map, scans, truth, odometry and estimate"},
       {"fixes-out", true, "also write the estimate as fixes.csv (with variances) for calibrate"},

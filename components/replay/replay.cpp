@@ -10,10 +10,12 @@
 #include <optional>
 #include <sstream>
 
+#include "structloc/config/install_layout.hpp"
 #include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/localisation_core/global_start.hpp"
 #include "structloc/localisation_core/kidnap_watch.hpp"
+#include "structloc/localisation_core/laser_preset.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/prefilter.hpp"
 #include "structloc/localisation_core/tracking_session.hpp"
@@ -62,6 +64,7 @@ class Replayer {
     if (!o.params_path.empty()) {
       params_ = localisation_core::LoadLocaliserOptions(o.params_path);
       session_options_ = localisation_core::LoadSessionOptions(o.params_path);
+      report_.parameters = o.params_path + " (given)";
     }
     initial_pose_ = o.initial_pose;
     // Checked now, built at the first laser line (whose poses give the mount).
@@ -95,16 +98,8 @@ class Replayer {
       ++records;
       if (r.kind == log_formats::CarmenRecord::Kind::kOdometry) {
         AddOdometry(r.stamp, *r.robot_pose);
-      } else if (!session_ && !initial_pose_) {
-        if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
-        if (LocateGlobally(r)) {
-          StartSession(&r);
-          session_->AddScan(ToSessionScan(r), r.stamp);
-        }
       } else {
-        if (!session_) StartSession(&r);
-        if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
-        session_->AddScan(ToSessionScan(r), r.stamp);
+        AddScan(r);
       }
       Drain(false);
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
@@ -159,6 +154,35 @@ class Replayer {
     }
     early_odometry_.push_back({stamp, pose});
     if (early_odometry_.size() > kMaxEarlyOdometry) early_odometry_.pop_front();
+  }
+
+  // A laser line: the start-up's, or the session's once it started.
+  void AddScan(const log_formats::CarmenRecord& r) {
+    if (report_.parameters.empty()) ChoosePreset(r);
+    if (!session_ && !initial_pose_) {
+      if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
+      if (LocateGlobally(r)) {
+        StartSession(&r);
+        session_->AddScan(ToSessionScan(r), r.stamp);
+      }
+      return;
+    }
+    if (!session_) StartSession(&r);
+    if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
+    session_->AddScan(ToSessionScan(r), r.stamp);
+  }
+
+  // Without a parameter file: the preset the first scan's geometry names,
+  // loaded from structloc's data folder (the built-in defaults when none does).
+  void ChoosePreset(const log_formats::CarmenRecord& first_scan) {
+    const auto choice = localisation_core::ChooseLaserPreset(
+        {first_scan.ranges.size(), first_scan.angular_resolution, first_scan.max_range});
+    report_.parameters = (choice.file.empty() ? std::string("built-in defaults") : choice.file) +
+                         ", chosen from the first scan (" + choice.reason + ")";
+    if (choice.file.empty()) return;
+    const std::string path = config::SharePath(choice.file);
+    params_ = localisation_core::LoadLocaliserOptions(path);
+    session_options_ = localisation_core::LoadSessionOptions(path);
   }
 
   // The laser's mounting on the robot: from the scan's laser and robot poses
@@ -652,6 +676,7 @@ std::string FormatReport(const ReplayReport& r) {
   out << "time per update: median " << r.median_update_us << " us, p99 " << r.p99_update_us
       << " us\n";
   out.precision(2);
+  if (!r.parameters.empty()) out << "parameters: " << r.parameters << "\n";
   out << "sensor mounting used: x " << r.sensor_mount.x << " m, y " << r.sensor_mount.y
       << " m, theta " << r.sensor_mount.theta << " rad\n";
   auto error = [&out](const char* what, const TrajectoryError& e) {

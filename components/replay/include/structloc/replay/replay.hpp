@@ -45,10 +45,11 @@ struct ReplayOptions {
   localisation_core::HypothesisOptions hypotheses;
   localisation_core::KidnapOptions kidnap;  // a tracked robot carried elsewhere
   std::string out_tum;                      // estimate, one line per scan
-  std::string params_path;                  // localisation parameters (default: built-in defaults)
-  std::string truth_path;                   // optional TUM ground truth
-  std::string plot_path;                    // optional picture (.png)
-  std::string fixes_path;                   // optional fixes.csv (pose + variances) for calibration
+  std::string params_path;  // localisation parameters (default: the preset the first
+                            // scan's geometry names, localisation_core::ChooseLaserPreset)
+  std::string truth_path;   // optional TUM ground truth
+  std::string plot_path;    // optional picture (.png)
+  std::string fixes_path;   // optional fixes.csv (pose + variances) for calibration
   bool no_map = false;
   log_formats::CarmenLimits limits;       // beams per scan and lines per log
   world_model::WorldLimits world_limits;  // walls per map, coordinate bounds
@@ -95,6 +96,7 @@ struct ReplayReport {
     double median_us = 0.0, p99_us = 0.0, max_us = 0.0, mean_us = 0.0;
   };
   std::vector<TimeSummary> stage_times;
+  std::string parameters;         // the file used and why (given, or chosen from the scans)
   geometry::Pose2D sensor_mount;  // derived from the log when it has laser and robot poses
   std::optional<TrajectoryError> estimate_error;
   std::optional<TrajectoryError> odometry_error;
