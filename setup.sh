@@ -58,11 +58,20 @@ install_dependencies() {
   as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# Builds every target, or only the targets named (the demo's programs).
 build() {
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build_dir" -j "$jobs"
+  if [ "$#" -gt 0 ]; then
+    cmake --build "$build_dir" -j "$jobs" --target "$@"
+  else
+    cmake --build "$build_dir" -j "$jobs"
+  fi
   echo "setup: built into $build_dir (executables in $build_dir/bin)"
 }
+
+# What "structloc demo" runs: the CLI, which launches the simulator and the
+# localisation component (launch_xml/demo.launch.xml); not the tests.
+demo_targets=(structloc structloc_simulator_main structloc_localisation_main)
 
 run_tests() {
   local exclude=()
@@ -118,7 +127,7 @@ case "${1:-}" in
     run_fuzz_tests || status=$?
     exit "$status"
     ;;
-  demo) install_dependencies; build; run_demo ;;
+  demo) install_dependencies; build "${demo_targets[@]}"; run_demo ;;
   *)
     echo "usage: ./setup.sh demo|test|build|deps" >&2
     exit 2
