@@ -24,6 +24,7 @@ prefix="$work/prefix"
 for f in bin/structloc bin/structloc_simulator bin/structloc_localisation bin/structloc_calibration \
          bin/structloc_check_qos bin/structloc_keystore include/structloc/localisation_core/localiser.hpp \
          lib/cmake/structloc/structlocConfig.cmake lib/cmake/structloc/structlocTargets.cmake \
+         lib/cmake/structloc/opencv_modules.cmake \
          share/structloc/maps/office_floor.xml share/structloc/maps/params/office_sick.xml \
          share/structloc/maps/scenarios/office_people.xml share/structloc/maps/robots/tricycle.xml \
          share/structloc/qos/structloc_qos.xml share/structloc/launch_xml/demo.launch.xml; do
