@@ -3,23 +3,32 @@
 # needs (idempotent, non-interactive; as root or through sudo), configures and
 # builds into build/, then runs what was asked:
 #   ./setup.sh demo    the main job: simulated robot localised live, summary + picture
+#                      (installs and builds only what the demo runs)
 #   ./setup.sh test    every test (ctest, the container test, then short runs of
 #                      the fuzz targets), non-zero exit when one fails
-#   ./setup.sh build   dependencies and build only
-#   ./setup.sh deps    dependencies only
+#   ./setup.sh build   dependencies and build (with the tests) only
+#   ./setup.sh deps    dependencies (with the tests') only
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 build_dir="${STRUCTLOC_BUILD_DIR:-$here/build}"
 jobs="$(nproc 2>/dev/null || echo 2)"
 
+# What the product needs to build and run (all the demo installs).
 packages=(
   build-essential cmake g++ make pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
+  procps openssl
+)
+
+# For building the tests and benchmarks ("./setup.sh build" and "test"):
+# GoogleTest, Google Benchmark, Cyclone DDS for the interoperability tests,
+# ip and iptables for the network-namespace tests.
+test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   cyclonedds-dev cyclonedds-tools
-  iproute2 procps iptables openssl
+  iproute2 iptables
 )
 
 # For the container test (run by "./setup.sh test" after ctest): Docker's
@@ -40,6 +49,7 @@ as_root() {
 
 install_dependencies() {
   local missing=() wanted=("${packages[@]}")
+  if [ "${1:-}" = for-build ] || [ "${1:-}" = for-tests ]; then wanted+=("${test_packages[@]}"); fi
   if [ "${1:-}" = for-tests ]; then
     wanted+=("${fuzz_packages[@]}" "${debug_packages[@]}")
     # Only root can start a Docker engine: others skip the container test.
@@ -58,9 +68,12 @@ install_dependencies() {
   as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-# Builds every target, or only the targets named (the demo's programs).
+# Builds everything with the tests, or (given targets: the demo's programs)
+# only those, configured without the tests.
 build() {
-  cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  local testing=ON
+  [ "$#" -gt 0 ] && testing=OFF
+  cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING="$testing" >/dev/null
   if [ "$#" -gt 0 ]; then
     cmake --build "$build_dir" -j "$jobs" --target "$@"
   else
@@ -116,8 +129,8 @@ run_demo() {
 }
 
 case "${1:-}" in
-  deps) install_dependencies ;;
-  build) install_dependencies; build ;;
+  deps) install_dependencies for-build ;;
+  build) install_dependencies for-build; build ;;
   test)
     install_dependencies for-tests
     build
