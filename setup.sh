@@ -71,14 +71,10 @@ install_dependencies() {
 # Builds everything with the tests, or (given targets: the demo's programs)
 # only those, configured without the tests.
 build() {
-  local testing=ON
-  [ "$#" -gt 0 ] && testing=OFF
+  local testing=ON targets=()
+  if [ "$#" -gt 0 ]; then testing=OFF; targets=(--target "$@"); fi
   cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING="$testing" >/dev/null
-  if [ "$#" -gt 0 ]; then
-    cmake --build "$build_dir" -j "$jobs" --target "$@"
-  else
-    cmake --build "$build_dir" -j "$jobs"
-  fi
+  cmake --build "$build_dir" -j "$jobs" "${targets[@]}"
   echo "setup: built into $build_dir (executables in $build_dir/bin)"
 }
 

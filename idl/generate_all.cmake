@@ -1,25 +1,24 @@
-# Runs fastddsgen once on every IDL below IDL_ROOT (cmake -P script, called
-# from idl/CMakeLists.txt): one Java start instead of one per file (8 s
+# Runs fastddsgen once on the IDL_FILES (below IDL_ROOT; cmake -P script,
+# called from idl/CMakeLists.txt): one Java start instead of one per file (8 s
 # against about 40 s for the 31 files). fastddsgen writes every type flat
 # into its output folder (file names are unique across the packages), so it
 # writes into a private temp folder and each IDL's four files are copied into
 # <OUT_DIR>/<pkg>/msg/, only where they changed; STAMP is touched last.
-foreach(var FASTDDSGEN IDL_ROOT OUT_DIR STAMP)
+foreach(var FASTDDSGEN IDL_ROOT IDL_FILES OUT_DIR STAMP)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "generate_all.cmake: ${var} is not set")
   endif()
 endforeach()
-file(GLOB_RECURSE idl_files "${IDL_ROOT}/*.idl")
 set(tmp "${OUT_DIR}/.tmp")
 file(REMOVE_RECURSE "${tmp}")
 file(MAKE_DIRECTORY "${tmp}")
 execute_process(
-  COMMAND "${FASTDDSGEN}" -cs -typeros2 -replace -d "${tmp}" -I "${IDL_ROOT}" ${idl_files}
+  COMMAND "${FASTDDSGEN}" -cs -typeros2 -replace -d "${tmp}" -I "${IDL_ROOT}" ${IDL_FILES}
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "fastddsgen failed (exit ${rc}):\n${out}\n${err}")
 endif()
-foreach(idl ${idl_files})
+foreach(idl IN LISTS IDL_FILES)
   file(RELATIVE_PATH rel "${IDL_ROOT}" "${idl}")
   get_filename_component(rel_dir "${rel}" DIRECTORY)
   get_filename_component(name "${idl}" NAME_WE)

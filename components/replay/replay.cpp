@@ -156,19 +156,15 @@ class Replayer {
     if (early_odometry_.size() > kMaxEarlyOdometry) early_odometry_.pop_front();
   }
 
-  // A laser line: the start-up's, or the session's once it started.
+  // A laser line: the start-up's until a pose is given or found, then the
+  // session's (odometry before the session waits for it, see AddOdometry).
   void AddScan(const log_formats::CarmenRecord& r) {
-    if (report_.parameters.empty()) ChoosePreset(r);
-    if (!session_ && !initial_pose_) {
-      if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
-      if (LocateGlobally(r)) {
-        StartSession(&r);
-        session_->AddScan(ToSessionScan(r), r.stamp);
-      }
-      return;
-    }
-    if (!session_) StartSession(&r);
+    if (report_.parameters.empty()) ChoosePreset(r);  // given or chosen once
     if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
+    if (!session_) {
+      if (!initial_pose_ && !LocateGlobally(r)) return;
+      StartSession(&r);
+    }
     session_->AddScan(ToSessionScan(r), r.stamp);
   }
 

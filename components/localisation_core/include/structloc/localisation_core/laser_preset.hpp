@@ -1,8 +1,9 @@
 // Which shipped laser preset (maps/params/) suits a scan, chosen from the
 // scan's own geometry, for a run given no parameter file: the laser's field
 // of view, beam spacing and maximum range name its family as well as its
-// datasheet does. A user's --params always wins; this is the default that
-// replay and the localisation component share. DDS-free.
+// datasheet does. A user's --params always wins. Replay's default; the
+// localisation component keeps its own (office_sick.xml), since the scan does
+// not carry the laser's mounting that the simulated robot's file holds. DDS-free.
 #pragma once
 
 #include <cstddef>
