@@ -4,10 +4,13 @@
 # builds into build/, then runs what was asked:
 #   ./setup.sh demo    the main job: simulated robot localised live, summary + picture
 #                      (installs and builds only what the demo runs)
-#   ./setup.sh test    every test (ctest, the container test, then short runs of
-#                      the fuzz targets), non-zero exit when one fails
+#   ./setup.sh test    every test (ctest; beside it the container test and short
+#                      runs of the fuzz targets), non-zero exit when one fails
 #   ./setup.sh build   dependencies and build (with the tests) only
 #   ./setup.sh deps    dependencies (with the tests') only
+#   ./setup.sh container, ./setup.sh fuzz
+#                      the container test, the fuzz targets' short runs (after
+#                      "build"; "test" runs both beside ctest)
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -89,7 +92,10 @@ run_tests() {
     echo "setup: $here/../shared/data is not here: leaving out the tests on real recordings (label shared_data)"
     exclude=(-LE shared_data)
   fi
-  local ctest=(ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" --timeout 600
+  # Tests that compute hold a core each (the "cpus" resource of
+  # build/tests/resources.json); those that wait on DDS traffic and clocks run
+  # beside them, hence four jobs per core (tests/CMakeLists.txt says which is which).
+  local ctest=(ctest --test-dir "$build_dir" --output-on-failure -j "$((4 * jobs))" --timeout 600
     "${exclude[@]}")
   if [ "$(id -u)" -eq 0 ] && unshare --net true 2>/dev/null; then
     # As root the tests run in a network namespace of their own with only a
@@ -120,6 +126,31 @@ run_fuzz_tests() {
   ctest --test-dir "$fuzz_dir" -L fuzz --output-on-failure -j "$jobs"
 }
 
+# The container test (mostly waiting on its containers) and the fuzz build and
+# runs (at the lowest CPU priority, on what ctest leaves idle) run beside
+# ctest, each with its output in a log that is printed when it ends.
+background_pids=()
+start_beside_ctest() {
+  local name="$1" log="$build_dir/logs/$1.log"
+  shift
+  mkdir -p "$build_dir/logs"
+  echo "setup: $name runs beside ctest (output: $log)"
+  setsid "$@" >"$log" 2>&1 &
+  background_pids+=("$!")
+}
+wait_beside_ctest() {
+  local name="$1" pid="$2" status=0
+  wait "$pid" || status=$?
+  echo "setup: ---- $name (exit $status) ----"
+  cat "$build_dir/logs/$name.log"
+  return "$status"
+}
+stop_beside_ctest() {
+  local pid
+  for pid in "${background_pids[@]}"; do kill -TERM -- "-$pid" 2>/dev/null; done
+  return 0
+}
+
 run_demo() {
   "$build_dir/bin/structloc" demo --out "$build_dir/demo/fig44_office.png"
 }
@@ -131,14 +162,19 @@ case "${1:-}" in
     install_dependencies for-tests
     build
     status=0
+    trap stop_beside_ctest INT TERM
+    start_beside_ctest container_test "$here/setup.sh" container
+    start_beside_ctest fuzz_tests nice -n 19 "$here/setup.sh" fuzz
     run_tests || status=$?
-    run_container_test || status=$?
-    run_fuzz_tests || status=$?
+    wait_beside_ctest container_test "${background_pids[0]}" || status=$?
+    wait_beside_ctest fuzz_tests "${background_pids[1]}" || status=$?
     exit "$status"
     ;;
   demo) install_dependencies; build "${demo_targets[@]}"; run_demo ;;
+  container) run_container_test ;;
+  fuzz) run_fuzz_tests ;;
   *)
-    echo "usage: ./setup.sh demo|test|build|deps" >&2
+    echo "usage: ./setup.sh demo|test|build|deps|container|fuzz" >&2
     exit 2
     ;;
 esac

@@ -32,7 +32,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-constexpr int kDomain = testing::domains::kRepeatedFaults;
 constexpr int kKills = 20;
 constexpr auto kRestartBar = 5s;
 constexpr auto kUnmatchBar = 4s;  // the shipped profile's 3 s lease + 1 s
@@ -51,6 +50,13 @@ size_t FastDdsShmEntries() {
     }
   }
   return count;
+}
+
+// Each component's run has a domain of its own, so the three run side by side.
+int DomainOf(const std::string& victim) {
+  if (victim == "localisation") return testing::domains::kRepeatedFaultsLocalisation;
+  if (victim == "calibration") return testing::domains::kRepeatedFaultsCalibration;
+  return testing::domains::kRepeatedFaults;
 }
 
 double Seconds(Clock::duration d) {
@@ -77,8 +83,8 @@ std::vector<log_formats::StampedPose> PosesSettledAfter(
 // exists from its start) and every component's diagnostics.
 class Observer {
  public:
-  Observer()
-      : node_(testing::TestNodeOptions("fault_observer", kDomain)),
+  explicit Observer(int domain)
+      : node_(testing::TestNodeOptions("fault_observer", domain)),
         scans_(node_.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
             dds_common::topics::kScan, [this](const auto&) { Heard("simulator"); })),
         status_(node_.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
@@ -145,7 +151,7 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
   // long the twenty kills take; the localisation resumes from the pose it
   // saves.
   std::unique_ptr<process::ChildProcess> Start(const std::string& component, bool first) {
-    std::vector<std::string> args = {"--domain", std::to_string(kDomain), "--qos",
+    std::vector<std::string> args = {"--domain", std::to_string(domain_), "--qos",
                                      testing::ShippedQos()};
     if (component == "simulator") {
       args.insert(args.end(), {"--scenario", looped_scenario_, "--wait-for-subscribers", "2"});
@@ -185,6 +191,7 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
     return temp_.Write("office_looped.xml", xml);
   }
 
+  const int domain_ = DomainOf(GetParam());
   testing::TempDir temp_;
   std::string state_file_ = temp_ / "pose_state";
   std::string looped_scenario_ = LoopedScenario();  // written once, for every start
@@ -193,8 +200,8 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
 TEST_P(RepeatedFaults, PeersSurviveAndTheRestartedComponentIsBackWithinFiveSeconds) {
   const std::string victim = GetParam();
   const size_t shm_before = FastDdsShmEntries();
-  Observer observer;
-  dds_common::Node judge_node(testing::TestNodeOptions("fault_judge", kDomain));
+  Observer observer(domain_);
+  dds_common::Node judge_node(testing::TestNodeOptions("fault_judge", domain_));
   evaluation::LiveEvaluator judge(judge_node, geometry::Pose2D{2.0, 6.5, 0.0});
   std::map<std::string, std::unique_ptr<process::ChildProcess>> running;
   for (const auto& c : kComponents) running[c] = Start(c, true);

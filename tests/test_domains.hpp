@@ -35,7 +35,11 @@ inline constexpr int kInstallTest = 82;
 inline constexpr int kDdsSecurity = 83;
 // tests/security/secure_demo_test.sh (a script: tests/CMakeLists.txt passes it 84).
 inline constexpr int kSecureDemo = 84;
+// tests/repeated_faults_test.cpp: the simulator's kills on 85, the
+// localisation's on 88, the calibration's on 89.
 inline constexpr int kRepeatedFaults = 85;
+inline constexpr int kRepeatedFaultsLocalisation = 88;
+inline constexpr int kRepeatedFaultsCalibration = 89;
 // tests/multihost/netns_packet_loss_test.sh (a script: tests/CMakeLists.txt passes it 87).
 inline constexpr int kPacketLoss = 87;
 // tests/multihost/netns_multihost_test.sh (a script: tests/CMakeLists.txt passes it 78).
@@ -73,6 +77,8 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kDdsSecurity,
                                     kSecureDemo,
                                     kRepeatedFaults,
+                                    kRepeatedFaultsLocalisation,
+                                    kRepeatedFaultsCalibration,
                                     kPacketLoss,
                                     kNetnsMultihost,
                                     kCycloneInterop,

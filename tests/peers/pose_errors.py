@@ -6,10 +6,16 @@ evaluator for both localisers, so that MRPT's figures and structloc's are comput
 the same way on the same truth poses.
 
   pose_errors.py tum EST.tum TRUTH.tum       estimate given as TUM, matched by stamp
-  pose_errors.py mrpt-log PF.out TRUTH.tum [--tum-out EST.tum]
+  pose_errors.py mrpt-log PF.out TRUTH.tum [--skip N] [--shift DX DY] [--tum-out EST.tum]
                                              estimate = the "PDF estimation: (x,y,phi deg)"
-                                             lines pf-localization logs, one per scan, in
-                                             scan order, which is the truth's order
+                                             lines pf-localization logs, one per rawlog entry,
+                                             in scan order, which is the truth's order;
+                                             --skip N drops the first N of them (the script's
+                                             rawlog starts with a lead-in pair: pf-localization
+                                             runs no filter step on its first entry);
+                                             --shift DX DY is subtracted from every estimate
+                                             (the grid's origin as MRPT rounded it minus the
+                                             map_server origin)
 
 Prints one line: "<n> <rmse_m> <max_m> <heading_rmse_deg>". Exits 1 on unusable input.
 """
@@ -39,13 +45,13 @@ def read_tum(path):
 ESTIMATE = re.compile(r"PDF estimation: \(([-0-9.eE+]+),([-0-9.eE+]+),([-0-9.eE+]+)deg\)")
 
 
-def read_mrpt_log(path, truth):
+def read_mrpt_log(path, truth, skip=0, shift=(0.0, 0.0)):
     with open(path, errors="replace") as f:
-        found = [m.groups() for m in map(ESTIMATE.search, f) if m]
+        found = [m.groups() for m in map(ESTIMATE.search, f) if m][skip:]
     if len(found) != len(truth):
-        sys.exit(f"{path}: {len(found)} pose estimates for {len(truth)} truth poses; "
-                 "pf-localization did not run through the whole rawlog")
-    return [(t[0], float(x), float(y), math.radians(float(phi)))
+        sys.exit(f"{path}: {len(found)} pose estimates (after skipping {skip}) for {len(truth)} truth "
+                 "poses; pf-localization did not run through the whole rawlog")
+    return [(t[0], float(x) - shift[0], float(y) - shift[1], math.radians(float(phi)))
             for t, (x, y, phi) in zip(truth, found)]
 
 
@@ -79,11 +85,26 @@ def main(argv):
         sys.exit(__doc__)
     truth = read_tum(argv[3])
     if argv[1] == "tum":
+        if len(argv) != 4:
+            sys.exit(__doc__)
         estimate = read_tum(argv[2])
     else:
-        estimate = read_mrpt_log(argv[2], truth)
-        if len(argv) == 6 and argv[4] == "--tum-out":
-            write_tum(argv[5], estimate)
+        skip, shift, tum_out, rest = 0, (0.0, 0.0), None, argv[4:]
+        try:
+            while rest:
+                if rest[0] == "--skip":
+                    skip, rest = int(rest[1]), rest[2:]
+                elif rest[0] == "--shift":
+                    shift, rest = (float(rest[1]), float(rest[2])), rest[3:]
+                elif rest[0] == "--tum-out":
+                    tum_out, rest = rest[1], rest[2:]
+                else:
+                    sys.exit(__doc__)
+        except (IndexError, ValueError):
+            sys.exit(__doc__)
+        estimate = read_mrpt_log(argv[2], truth, skip, shift)
+        if tum_out:
+            write_tum(tum_out, estimate)
     n, rmse, worst, heading = errors(estimate, truth)
     print(f"{n} {rmse:.4f} {worst:.4f} {heading:.3f}")
 
