@@ -508,12 +508,14 @@ bool Running(pid_t pid) {
 
 TEST(BadInputConfig, L7_KillingTheLauncherStopsItsNodes) {
   TempDir dir;
-  const auto path = dir.Write("one.launch.xml",
-                              "<launch>\n<node pkg=\"structloc\" exec=\"structloc_localisation\" "
-                              "name=\"loc\">\n<param name=\"domain\" value=\"" +
-                                  std::to_string(testing::domains::kBadInputConfig) +
-                                  "\"/>\n</node>\n"
-                                  "</launch>\n");
+  const auto path =
+      dir.Write("one.launch.xml",
+                "<launch>\n<node pkg=\"structloc\" exec=\"structloc_localisation\" "
+                "name=\"loc\">\n<param name=\"domain\" value=\"" +
+                    std::to_string(testing::domains::kBadInputConfig) +
+                    "\"/>\n<param name=\"params\" value=\"" + testing::SimulatedRobotParams() +
+                    "\"/>\n</node>\n"
+                    "</launch>\n");
   process::ChildProcess launcher(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                  {"launch", path, "--duration", "60"});
   pid_t node = -1;

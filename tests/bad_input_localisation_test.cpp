@@ -18,6 +18,7 @@
 #include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
+#include "test_paths.hpp"
 
 namespace structloc {
 namespace {
@@ -62,8 +63,9 @@ struct TrackerFixture {
 };
 
 process::ChildProcess StartLocalisation(std::vector<std::string> extra, int domain = kDomain) {
-  std::vector<std::string> args = {"--domain", std::to_string(domain), "--qos",
-                                   testing::ShippedQos()};
+  std::vector<std::string> args = {"--domain", std::to_string(domain),
+                                   "--qos",    testing::ShippedQos(),
+                                   "--params", testing::SimulatedRobotParams()};
   args.insert(args.end(), extra.begin(), extra.end());
   return process::ChildProcess(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation", args);
 }

@@ -70,7 +70,8 @@ LiveRun RunLive(
   const auto& p = scenario.initial_pose;
   process::ChildProcess calibration(bin + "/structloc_calibration", args(calibration_args));
   process::ChildProcess localisation(bin + "/structloc_localisation",
-                                     args({"--initial-pose", testing::PoseArgument(p)}));
+                                     args({"--initial-pose", testing::PoseArgument(p), "--params",
+                                           testing::SimulatedRobotParams()}));
   process::ChildProcess simulator(
       bin + "/structloc_simulator",
       args({"--scenario", testing::SourcePath(scenario_file), "--time-scale", "8",

@@ -85,6 +85,30 @@ TEST(Components, ExchangeSamplesAndStopCleanly) {
       << report;
   EXPECT_NE(report.find("publishes  rt/pose"), std::string::npos) << report;
   EXPECT_NE(report.find("stopped cleanly"), std::string::npos) << report;
+  // Started without --params, it took the preset the simulated laser's
+  // geometry names (1081 beams at 0.25 deg: a Hokuyo UTM-30LX) and the
+  // laser's mounting that the simulator publishes on rt/tf_static.
+  EXPECT_NE(report.find("parameters: maps/params/hokuyo_utm30lx.xml, chosen from the first scan"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("laser mounting x 0.200 m, y 0.000 m, yaw 0.00 deg from rt/tf_static "
+                        "(base_link -> laser)"),
+            std::string::npos)
+      << report;
+}
+
+// Without --params and with no scan yet it waits for one, and a stop signal
+// ends the wait cleanly.
+TEST(Components, WithoutParamsItWaitsForTheFirstScanAndStopsCleanly) {
+  ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return localisation.CapturedOutput().find("waiting for the first scan") != std::string::npos;
+  })) << localisation.CapturedOutput();
+  localisation.Signal(SIGTERM);
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << localisation.CapturedOutput();
+  EXPECT_NE(localisation.CapturedOutput().find("stopped cleanly before it started"),
+            std::string::npos)
+      << localisation.CapturedOutput();
 }
 
 // How fast it fails is printed, not asserted (a loaded machine is slower).

@@ -37,7 +37,8 @@ std::string LaunchFile(bool respawn) {
          "office_people.xml'/></node>"
          "<node pkg='structloc' exec='structloc_localisation' name='localisation'" +
          (respawn ? " respawn='true' respawn_delay='0.5'" : "") + ">" + common +
-         "<param name='initial-pose' value='2.0 6.5 0'/></node></launch>";
+         "<param name='initial-pose' value='2.0 6.5 0'/><param name='params' value='" +
+         testing::SimulatedRobotParams() + "'/></node></launch>";
 }
 
 // The pid the launch reports for `node` the `nth` time it starts it (0 = none yet).
@@ -119,7 +120,8 @@ TEST(LaunchEnvironment, ASetEnvGroupPutsItsNodesOnTheDomainItNames) {
           "<param name='scenario' value='$(find-pkg-share structloc)/maps/scenarios/"
           "office_people.xml'/></node>"
           "<node pkg='structloc' exec='structloc_localisation' name='localisation'>" +
-          qos + "<param name='initial-pose' value='2.0 6.5 0'/></node></group></launch>");
+          qos + "<param name='initial-pose' value='2.0 6.5 0'/><param name='params' value='" +
+          testing::SimulatedRobotParams() + "'/></node></group></launch>");
   PoseCounter poses("domain_observer");
   process::ChildProcess launch(std::string(STRUCTLOC_BIN_DIR) + "/structloc",
                                {"launch", file, "--duration", "20"});

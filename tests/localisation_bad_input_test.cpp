@@ -14,6 +14,7 @@
 #include "pose_argument.hpp"
 #include "structloc/process/child_process.hpp"
 #include "test_domains.hpp"
+#include "test_paths.hpp"
 
 namespace structloc {
 namespace {
@@ -30,8 +31,8 @@ TEST(LocalisationBadInput, StaysUpReportsRejectionsAndKeepsLocalising) {
   const auto& p0 = scenario.initial_pose;
   process::ChildProcess localisation(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
-       testing::PoseArgument(p0)});
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--params",
+       testing::SimulatedRobotParams(), "--initial-pose", testing::PoseArgument(p0)});
   ASSERT_TRUE(feed.WaitForLocalisation(testing::kGenerousTimeout)) << localisation.CapturedOutput();
   int bad_sent = 0;
   size_t good_sent = 0;

@@ -33,7 +33,8 @@ TEST(LocalisationRestart, ResumesFromTheSavedPoseAfterKill9) {
   dds_common::Node observer(testing::TestNodeOptions("restart_observer", kDomain));
   evaluation::LiveEvaluator evaluator(observer, scenario.initial_pose);
   const std::vector<std::string> common = {
-      "--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--state-file", state};
+      "--domain", std::to_string(kDomain),         "--qos",        testing::ShippedQos(),
+      "--params", testing::SimulatedRobotParams(), "--state-file", state};
   const auto& p = scenario.initial_pose;
   auto with = [&](std::vector<std::string> extra) {
     extra.insert(extra.begin(), common.begin(), common.end());
@@ -103,8 +104,8 @@ TEST(LocalisationRestart, StartedLateItMendsItsInitialPoseByALocalSearch) {
       30s));
   process::ChildProcess localisation(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--initial-pose",
-       testing::PoseArgument(p)});
+      {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--params",
+       testing::SimulatedRobotParams(), "--initial-pose", testing::PoseArgument(p)});
   ASSERT_TRUE(testing::WaitUntil([&] { return evaluator.Estimate().size() > 40; }, 30s))
       << localisation.CapturedOutput();
   const auto estimate = evaluator.Estimate();

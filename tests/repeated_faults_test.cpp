@@ -162,7 +162,8 @@ class RepeatedFaults : public ::testing::TestWithParam<std::string> {
       // rightly refuses an estimate from them (exit 1 once its window is over).
       args.insert(args.end(), {"--record-s", "3600"});
     } else if (component == "localisation") {
-      args.insert(args.end(), {"--state-file", state_file_});
+      args.insert(args.end(),
+                  {"--state-file", state_file_, "--params", testing::SimulatedRobotParams()});
       if (first) args.insert(args.end(), {"--initial-pose", "2.0 6.5 0"});
     }
     return std::make_unique<process::ChildProcess>(

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
        {"exit-when-done", false,
         "exit after publishing the result (exit code 1 when the calibration failed or could not "
         "be written)"}},
-      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli,
+         const structloc::dds_common::StopWait&) {
         cal::CalibrationComponentOptions o;
         o.robot_path = cli.PathOr("robot", "maps/robots/tricycle.xml");
         o.nominal = structloc::kinematics::LoadRobotParameters(o.robot_path);

@@ -117,7 +117,12 @@ int RunComponent(int argc, char** argv, const std::string& name,
     node.HoldCallbacks();  // none may reach a component still being built
     // The component owns its subscriptions: destroying it (before the node,
     // also when an exception leaves) ends every callback into it.
-    auto component = factory(node, cli);
+    auto component = factory(
+        node, cli, [&](std::chrono::milliseconds timeout) { return shutdown.WaitFor(timeout); });
+    if (!component) {
+      std::cout << name << ": stopped cleanly before it started" << std::endl;
+      return 0;
+    }
     node.ReleaseCallbacks();
     std::cout << node.EndpointReport() << std::flush;
     std::cout << name << ": running (SIGINT or SIGTERM stops)" << std::endl;

@@ -41,4 +41,17 @@ double YawFromQuaternion(const geometry_msgs::msg::Quaternion& q) {
                     1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
 }
 
+geometry_msgs::msg::TransformStamped ToPlanarTransform(double x, double y, double yaw, double stamp,
+                                                       const std::string& parent,
+                                                       const std::string& child) {
+  geometry_msgs::msg::TransformStamped t;
+  t.header().stamp(ToRosTime(stamp));
+  t.header().frame_id(parent);
+  t.child_frame_id(child);
+  t.transform().translation().x(x);
+  t.transform().translation().y(y);
+  t.transform().rotation(ToQuaternion(yaw));
+  return t;
+}
+
 }  // namespace structloc::dds_common

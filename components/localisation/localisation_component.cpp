@@ -390,6 +390,10 @@ void LocalisationComponent::ApplyKidnapSearch(const SearchAnswer& answer, double
       kidnap_watch_->Jumped(answer.stamp, answer.points, attempt.found->pose, *answer.tracked);
   if (!kidnapping) return;
   ++kidnappings_;
+  // The scans taken while the search ran were tracked from where the robot
+  // was lifted: the poses up to the latest of them are of the old track.
+  const auto latest = session_.Latest();
+  const double old_track_until = latest ? std::max(latest->stamp, answer.stamp) : answer.stamp;
   session_.SetInitialPose(*attempt.found, "the search for a kidnapped robot", now);
   const auto& f = kidnapping->from;
   const auto& t = kidnapping->to;
@@ -397,7 +401,8 @@ void LocalisationComponent::ApplyKidnapSearch(const SearchAnswer& answer, double
             << "localisation: kidnapped: at t=" << answer.stamp << ", after " << kidnapping->doubt_s
             << " s of scans the tracked pose did not explain, the robot was found at (" << t.x
             << ", " << t.y << ", " << t.theta << "), not at (" << f.x << ", " << f.y << ", "
-            << f.theta << "); tracking goes on from there" << std::endl;
+            << f.theta << "); tracking goes on from there after the old track's last pose at t="
+            << old_track_until << std::endl;
   session_.NoteProblem("kidnapped: the robot was found " +
                            std::to_string(std::hypot(t.x - f.x, t.y - f.y)) +
                            " m from where it was tracked",

@@ -73,15 +73,9 @@ geometry_msgs::msg::PoseWithCovarianceStamped ToPoseWithCovarianceStamped(
 
 tf2_msgs::msg::TFMessage ToMapToOdomTf(const geometry::Pose2D& m, double stamp,
                                        const dds_common::FrameIds& frames) {
-  geometry_msgs::msg::TransformStamped t;
-  t.header().stamp(dds_common::ToRosTime(stamp));
-  t.header().frame_id(frames.map);
-  t.child_frame_id(frames.odom);
-  t.transform().translation().x(m.x);
-  t.transform().translation().y(m.y);
-  t.transform().rotation(dds_common::ToQuaternion(m.theta));
   tf2_msgs::msg::TFMessage msg;
-  msg.transforms().push_back(t);
+  msg.transforms().push_back(
+      dds_common::ToPlanarTransform(m.x, m.y, m.theta, stamp, frames.map, frames.odom));
   return msg;
 }
 

@@ -2,11 +2,13 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_number.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/localisation/localisation_component.hpp"
+#include "structloc/localisation/parameters_from_first_scan.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
 #include "structloc/localisation_core/tracking_session_options.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
@@ -17,7 +19,9 @@ int main(int argc, char** argv) {
   std::vector<structloc::config::OptionSpec> specs = {
       {"map", true, "world model XML (default: maps/office_floor.xml in structloc's data folder)"},
       {"params", true,
-       "localisation parameters (default: maps/params/office_sick.xml in structloc's data folder)"},
+       "localisation parameters (default: the shipped laser preset the first scan's geometry "
+       "names, with the laser's mounting from " +
+           structloc::dds_common::topics::kTfStatic.name + " when it is published)"},
       {"initial-pose", true,
        "\"X Y THETA\": map pose of the robot when the first odometry arrives (start while "
        "it stands, or publish " +
@@ -33,7 +37,9 @@ int main(int argc, char** argv) {
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds_common::RunComponent(
       argc, argv, "localisation", specs,
-      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli,
+         const structloc::dds_common::StopWait& stop)
+          -> std::unique_ptr<loc::LocalisationComponent> {
         structloc::world_model::WorldLimits limits;
         limits.max_walls = static_cast<size_t>(
             cli.IntegerIn("max-walls", static_cast<long long>(limits.max_walls), 1, 100000000));
@@ -48,16 +54,14 @@ int main(int argc, char** argv) {
             << " cylinders (loaded in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
             << " s)" << std::endl;
-        const std::string params_path = cli.PathOr("params", "maps/params/office_sick.xml");
-        const auto params = structloc::localisation_core::LoadLocaliserOptions(params_path);
-        const auto session = structloc::localisation_core::LoadSessionOptions(params_path);
         loc::LocalisationComponentOptions options;
         options.frames = structloc::dds_common::FrameIdsFrom(cli);
         options.state_file = cli.GetOr("state-file", "");
+        const std::string given_params = cli.Has("params") ? cli.PathOr("params", "") : "";
         // The saved pose is written over and over: never over a file read.
         if (!options.state_file.empty()) {
           structloc::config::RefuseOverwritingInput(options.state_file,
-                                                    {map, params_path, node.Options().qos_file});
+                                                    {map, given_params, node.Options().qos_file});
         }
         if (auto text = cli.Get("initial-pose")) {
           const auto pose = structloc::config::ParseNumberList(*text, 3);
@@ -73,6 +77,25 @@ int main(int argc, char** argv) {
           }
           options.initial_pose = structloc::geometry::Pose2D{(*pose)[0], (*pose)[1], (*pose)[2]};
         }
+        // Without --params: the preset the first scan names (the options above are
+        // checked before this wait, so a bad one fails at once).
+        std::string params_path = given_params;
+        std::optional<structloc::geometry::Pose2D> mount;
+        if (!cli.Has("params")) {
+          const auto chosen = loc::WaitForFirstScan(node, stop);
+          if (!chosen) return nullptr;
+          params_path = chosen->file;
+          mount = chosen->mount;
+          std::cout << "localisation: parameters: " << chosen->choice
+                    << "\nlocalisation: " << chosen->mount_source << std::endl;
+        }
+        auto params = params_path.empty()
+                          ? structloc::localisation_core::LocaliserOptions{}
+                          : structloc::localisation_core::LoadLocaliserOptions(params_path);
+        const auto session = params_path.empty()
+                                 ? structloc::localisation_core::SessionOptions{}
+                                 : structloc::localisation_core::LoadSessionOptions(params_path);
+        if (mount) params.sensor_mount = *mount;
         return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params, session,
                                                             options);
       },

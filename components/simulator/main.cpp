@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   specs.insert(specs.end(), frame_options.begin(), frame_options.end());
   return structloc::dds_common::RunComponent(
       argc, argv, "simulator", specs,
-      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli) {
+      [](structloc::dds_common::Node& node, const structloc::config::CommandLine& cli,
+         const structloc::dds_common::StopWait&) {
         auto scenario = structloc::simulation_core::LoadScenario(
             cli.PathOr("scenario", "maps/scenarios/office_people.xml"));
         if (cli.Has("seed")) {

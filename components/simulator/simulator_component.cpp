@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/simulator/sim_conversions.hpp"
 
 namespace structloc::simulator {
@@ -22,6 +23,8 @@ SimulatorComponent::SimulatorComponent(dds_common::Node& node,
           dds_common::topics::kWheelEncoders)),
       diagnostics_(node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
           dds_common::topics::kDiagnostics)),
+      tf_static_(
+          node.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds_common::topics::kTfStatic)),
       clock_offset_s_(std::floor(dds_common::WallClockSeconds())),
       wall_start_(std::chrono::steady_clock::now()) {
   cmd_vel_ = node.Subscribe<geometry_msgs::msg::TwistPubSubType>(
@@ -31,6 +34,14 @@ SimulatorComponent::SimulatorComponent(dds_common::Node& node,
         command_linear_ = t.linear().x();
         command_angular_ = t.angular().z();
       });
+  // The laser's mounting, once: rt/tf_static keeps it for late subscribers, as
+  // a ROS 2 robot's static transform broadcaster does.
+  const geometry::Pose2D& mount = scenario.laser.mount;
+  tf2_msgs::msg::TFMessage mounting;
+  mounting.transforms().push_back(
+      dds_common::ToPlanarTransform(mount.x, mount.y, mount.theta, clock_offset_s_,
+                                    options.frames.base_link, options.frames.laser));
+  tf_static_.Write(mounting);
   odom_every_ = std::max(1L, std::lround(1.0 / (scenario.odom_rate_hz * scenario.step_s)));
   last_ticks_ = sim_.State().traction_ticks;
   std::cout << "simulator: scenario '" << scenario.name << "' (seed " << scenario.seed << ", "

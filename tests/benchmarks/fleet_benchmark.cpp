@@ -148,7 +148,8 @@ FleetRow RunFleet(int robots, double time_scale, int domain, bool domain_per_rob
     localisations.push_back(std::make_unique<process::ChildProcess>(
         bin + "/structloc_localisation",
         std::vector<std::string>{"--domain", std::to_string(domain_of(k)), "--qos", qos,
-                                 "--namespace", ns, "--initial-pose", start}));
+                                 "--namespace", ns, "--initial-pose", start, "--params",
+                                 share + "/maps/params/office_sick.xml"}));
   }
   // Robots are switched on one after another, as a fleet's are, once the
   // localisations have met their observers: 60 participants discovering each

@@ -114,8 +114,9 @@ int Run(int argc, char** argv) {
   const auto& p = scenario.initial_pose;
   process::ChildProcess loc(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      {"--domain", std::to_string(domain), "--qos", source + "/qos/structloc_qos.xml",
-       "--initial-pose", structloc::testing::PoseArgument(p)});
+      {"--domain", std::to_string(domain), "--qos", source + "/qos/structloc_qos.xml", "--params",
+       source + "/maps/params/office_sick.xml", "--initial-pose",
+       structloc::testing::PoseArgument(p)});
   const auto give_up = Clock::now() + std::chrono::seconds(30);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     if (const auto code = loc.Poll()) {

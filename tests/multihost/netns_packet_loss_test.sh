@@ -60,6 +60,7 @@ on cal "$bin/structloc_calibration" "${common[@]}" --record-s 0 --out-dir "$work
   >"$work/cal.log" 2>&1 &
 cal_pid=$!
 on loc "$bin/structloc_localisation" "${common[@]}" --initial-pose "2.0 6.5 0" \
+  --params "$build_dir/share/structloc/maps/params/office_sick.xml" \
   >"$work/loc.log" 2>&1 &
 loc_pid=$!
 # Discovery under loss takes retries: every participant has found the others

@@ -28,8 +28,12 @@ class Component {
   virtual bool Done() const { return false; }
 };
 
-using ComponentFactory =
-    std::function<std::unique_ptr<Component>(Node& node, const config::CommandLine& cli)>;
+// Waits up to the time given; true once SIGINT or SIGTERM has arrived. For a
+// factory that waits on the network before it can build its component.
+using StopWait = std::function<bool(std::chrono::milliseconds)>;
+// Builds the component; nullptr when `stop` said to stop before it could.
+using ComponentFactory = std::function<std::unique_ptr<Component>(
+    Node& node, const config::CommandLine& cli, const StopWait& stop)>;
 
 // Options every component accepts, documented with their defaults.
 std::vector<config::OptionSpec> StandardOptions();

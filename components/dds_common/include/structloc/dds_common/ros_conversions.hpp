@@ -2,8 +2,11 @@
 // (seconds as double, planar yaw), tested without a participant.
 #pragma once
 
+#include <string>
+
 #include "builtin_interfaces/msg/Time.h"
 #include "geometry_msgs/msg/Quaternion.h"
+#include "geometry_msgs/msg/TransformStamped.h"
 
 namespace structloc::dds_common {
 
@@ -19,5 +22,11 @@ constexpr double kQuaternionNormTolerance = 1e-2;
 // NaN when `q` is not a unit quaternion (all zero, scaled, non-finite), so that
 // the receiver rejects the message instead of reading yaw 0 from it.
 double YawFromQuaternion(const geometry_msgs::msg::Quaternion& q);
+
+// A planar transform (x, y in m, yaw in rad) of `child` in `parent` at
+// `stamp`, as tf2 carries it (z 0, a rotation about z).
+geometry_msgs::msg::TransformStamped ToPlanarTransform(double x, double y, double yaw, double stamp,
+                                                       const std::string& parent,
+                                                       const std::string& child);
 
 }  // namespace structloc::dds_common

@@ -39,6 +39,9 @@ inline const TopicSpec kInitialPose{"rt/initialpose", qos_profiles::kReliableSta
 inline const TopicSpec kReinitializeGlobalLocalization{"rt/reinitialize_global_localization",
                                                        qos_profiles::kReliableState};
 inline const TopicSpec kTf{"rt/tf", qos_profiles::kReliableState};
+// Transforms that never change (the laser's mounting), kept for late
+// subscribers as tf2's static broadcaster does.
+inline const TopicSpec kTfStatic{"rt/tf_static", qos_profiles::kLatchedResult};
 inline const TopicSpec kFeatures{"rt/structloc/features", qos_profiles::kSensorData};
 inline const TopicSpec kStatus{"rt/structloc/status", qos_profiles::kReliableState};
 // A robot without a pose: the poses it is still weighing (geometry_msgs/PoseArray).

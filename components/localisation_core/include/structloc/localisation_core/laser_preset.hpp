@@ -1,9 +1,9 @@
 // Which shipped laser preset (maps/params/) suits a scan, chosen from the
 // scan's own geometry, for a run given no parameter file: the laser's field
 // of view, beam spacing and maximum range name its family as well as its
-// datasheet does. A user's --params always wins. Replay's default; the
-// localisation component keeps its own (office_sick.xml), since the scan does
-// not carry the laser's mounting that the simulated robot's file holds. DDS-free.
+// datasheet does. A user's --params always wins. The default of replay and of
+// the localisation component alike (which takes the laser's mounting from
+// rt/tf_static, as replay takes it from the log's laser and robot poses). DDS-free.
 #pragma once
 
 #include <cstddef>

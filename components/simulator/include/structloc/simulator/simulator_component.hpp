@@ -15,6 +15,7 @@
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/simulation_core/simulation.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 namespace structloc::simulator {
 
@@ -56,6 +57,7 @@ class SimulatorComponent : public dds_common::Component {
   dds_common::TopicWriter<nav_msgs::msg::OdometryPubSubType> ground_truth_;
   dds_common::TopicWriter<structloc_msgs::msg::WheelEncodersPubSubType> encoders_;
   dds_common::TopicWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType> diagnostics_;
+  dds_common::TopicWriter<tf2_msgs::msg::TFMessagePubSubType> tf_static_;  // the laser's mounting
   std::mutex command_mutex_;
   double command_linear_ = 0.0, command_angular_ = 0.0;
   double clock_offset_s_;  // message stamp = offset + simulation time

@@ -1,0 +1,119 @@
+// Parameters from the first scan (see header).
+#include "structloc/localisation/parameters_from_first_scan.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
+#include "structloc/config/install_layout.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/dds_common/topics.hpp"
+#include "structloc/localisation_core/laser_preset.hpp"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
+
+namespace structloc::localisation {
+namespace {
+
+using namespace std::chrono_literals;
+
+// What the probe's listeners heard, for the waiting thread.
+struct Heard {
+  std::mutex mutex;
+  std::optional<localisation_core::ScanShape> shape;
+  std::string laser_frame;
+  std::map<std::string, geometry_msgs::msg::TransformStamped> by_child;  // rt/tf_static
+  bool refused_scan = false;
+};
+
+bool Usable(const sensor_msgs::msg::LaserScan& m) {
+  return m.ranges().size() >= 2 && std::isfinite(m.angle_increment()) && m.angle_increment() != 0;
+}
+
+// The mounting a transform to the laser's frame gives, when it is a planar
+// one with finite values.
+std::optional<geometry::Pose2D> MountFrom(const geometry_msgs::msg::TransformStamped& t) {
+  const geometry::Pose2D mount{t.transform().translation().x(), t.transform().translation().y(),
+                               dds_common::YawFromQuaternion(t.transform().rotation())};
+  if (!std::isfinite(mount.x) || !std::isfinite(mount.y) || !std::isfinite(mount.theta))
+    return std::nullopt;
+  return mount;
+}
+
+}  // namespace
+
+std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
+                                                        const dds_common::StopWait& stop,
+                                                        std::chrono::milliseconds tf_wait) {
+  auto heard = std::make_shared<Heard>();
+  std::optional<ParametersFromFirstScan> chosen;
+  {
+    const auto scans = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
+        dds_common::topics::kScan, [heard](const sensor_msgs::msg::LaserScan& m) {
+          std::lock_guard<std::mutex> lock(heard->mutex);
+          if (heard->shape) return;
+          if (!Usable(m)) {
+            heard->refused_scan = true;
+            return;
+          }
+          heard->shape = localisation_core::ScanShape{
+              m.ranges().size(), static_cast<double>(m.angle_increment()),
+              std::isfinite(m.range_max()) ? static_cast<double>(m.range_max()) : 0.0};
+          heard->laser_frame = m.header().frame_id();
+        });
+    const auto statics = node.Subscribe<tf2_msgs::msg::TFMessagePubSubType>(
+        dds_common::topics::kTfStatic, [heard](const tf2_msgs::msg::TFMessage& m) {
+          std::lock_guard<std::mutex> lock(heard->mutex);
+          for (const auto& t : m.transforms()) heard->by_child[t.child_frame_id()] = t;
+        });
+    node.ReleaseCallbacks();
+    std::cout << "localisation: no --params: waiting for the first scan on "
+              << dds_common::topics::kScan.name << " to choose the laser's preset from"
+              << std::endl;
+    bool said_refused = false;
+    std::optional<std::chrono::steady_clock::time_point> scan_heard;
+    while (!chosen) {
+      if (stop(50ms)) break;
+      std::lock_guard<std::mutex> lock(heard->mutex);
+      if (heard->refused_scan && !said_refused) {
+        said_refused = true;
+        std::cout << "localisation: a scan with fewer than two beams or no finite angle "
+                     "increment cannot name a laser; waiting for another"
+                  << std::endl;
+      }
+      if (!heard->shape) continue;
+      if (!scan_heard) scan_heard = std::chrono::steady_clock::now();
+      const auto mounting = heard->by_child.find(heard->laser_frame);
+      const bool waited = std::chrono::steady_clock::now() - *scan_heard >= tf_wait;
+      if (mounting == heard->by_child.end() && !waited) continue;
+      const auto preset = localisation_core::ChooseLaserPreset(*heard->shape);
+      ParametersFromFirstScan out;
+      out.file = preset.file.empty() ? "" : config::SharePath(preset.file);
+      out.choice = (preset.file.empty() ? std::string("built-in defaults") : preset.file) +
+                   ", chosen from the first scan (" + preset.reason + ")";
+      if (mounting != heard->by_child.end()) out.mount = MountFrom(mounting->second);
+      if (out.mount) {
+        char values[96];
+        std::snprintf(values, sizeof values, "x %.3f m, y %.3f m, yaw %.2f deg", out.mount->x,
+                      out.mount->y, out.mount->theta * 180.0 / M_PI);
+        out.mount_source = "laser mounting " + std::string(values) + " from " +
+                           dds_common::topics::kTfStatic.name + " (" +
+                           mounting->second.header().frame_id() + " -> " + heard->laser_frame + ")";
+      } else {
+        out.mount_source =
+            "laser mounting from the preset: no usable transform to the scan's "
+            "frame '" +
+            heard->laser_frame + "' on " + dds_common::topics::kTfStatic.name +
+            " (publish one, or give --params)";
+      }
+      chosen = out;
+    }
+  }
+  node.HoldCallbacks();
+  return chosen;
+}
+
+}  // namespace structloc::localisation
