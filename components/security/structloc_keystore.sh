@@ -17,11 +17,12 @@
 # Permissions (default DENY; topics with or without a ROS 2 namespace, rt/X and
 # rt/*/X):
 #   simulator     publishes scan, odom, wheel_encoders, ground_truth,
-#                 diagnostics; subscribes cmd_vel (a laser or robot driver
-#                 takes this identity on a real robot)
+#                 tf_static (the laser's mounting), diagnostics; subscribes
+#                 cmd_vel (a laser or robot driver takes this identity on a
+#                 real robot)
 #   localisation  publishes pose, tf, structloc/status, structloc/features,
 #                 structloc/hypotheses, diagnostics; subscribes scan, odom,
-#                 initialpose, reinitialize_global_localization
+#                 tf_static, initialpose, reinitialize_global_localization
 #   calibration   publishes structloc/calibration, diagnostics; subscribes
 #                 wheel_encoders, pose
 #   operator      publishes initialpose, cmd_vel,
@@ -228,9 +229,9 @@ PERM
   cp "$ca_cert" "$dir/permissions_ca.cert.pem"
 }
 
-enclave simulator "scan odom wheel_encoders ground_truth diagnostics" "cmd_vel"
+enclave simulator "scan odom wheel_encoders ground_truth tf_static diagnostics" "cmd_vel"
 enclave localisation "pose tf structloc/status structloc/features structloc/hypotheses diagnostics" \
-  "scan odom initialpose reinitialize_global_localization"
+  "scan odom tf_static initialpose reinitialize_global_localization"
 enclave calibration "structloc/calibration diagnostics" "wheel_encoders pose"
 enclave operator "initialpose cmd_vel reinitialize_global_localization" "*"
 
