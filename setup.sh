@@ -129,18 +129,18 @@ run_fuzz_tests() {
 # The container test (mostly waiting on its containers) and the fuzz build and
 # runs (at the lowest CPU priority, on what ctest leaves idle) run beside
 # ctest, each with its output in a log that is printed when it ends.
-background_pids=()
+declare -A background_pids=()
 start_beside_ctest() {
   local name="$1" log="$build_dir/logs/$1.log"
   shift
   mkdir -p "$build_dir/logs"
   echo "setup: $name runs beside ctest (output: $log)"
   setsid "$@" >"$log" 2>&1 &
-  background_pids+=("$!")
+  background_pids[$name]=$!
 }
 wait_beside_ctest() {
-  local name="$1" pid="$2" status=0
-  wait "$pid" || status=$?
+  local name="$1" status=0
+  wait "${background_pids[$name]}" || status=$?
   echo "setup: ---- $name (exit $status) ----"
   cat "$build_dir/logs/$name.log"
   return "$status"
@@ -166,8 +166,8 @@ case "${1:-}" in
     start_beside_ctest container_test "$here/setup.sh" container
     start_beside_ctest fuzz_tests nice -n 19 "$here/setup.sh" fuzz
     run_tests || status=$?
-    wait_beside_ctest container_test "${background_pids[0]}" || status=$?
-    wait_beside_ctest fuzz_tests "${background_pids[1]}" || status=$?
+    wait_beside_ctest container_test || status=$?
+    wait_beside_ctest fuzz_tests || status=$?
     exit "$status"
     ;;
   demo) install_dependencies; build "${demo_targets[@]}"; run_demo ;;

@@ -12,6 +12,7 @@
 #include "structloc/config/install_layout.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/dds_common/topics.hpp"
+#include "structloc/geometry/pose2d.hpp"
 #include "structloc/localisation_core/laser_preset.hpp"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
@@ -43,14 +44,43 @@ std::optional<geometry::Pose2D> MountFrom(const geometry_msgs::msg::TransformSta
   return mount;
 }
 
+// What the probe has heard, once it may choose: the first usable scan's shape
+// and frame, and the transform to that frame if one came.
+struct Choosable {
+  localisation_core::ScanShape shape;
+  std::string laser_frame;
+  std::optional<geometry_msgs::msg::TransformStamped> mounting;
+};
+
+ParametersFromFirstScan Choose(const Choosable& heard) {
+  const auto preset = localisation_core::ChooseLaserPreset(heard.shape);
+  ParametersFromFirstScan out;
+  out.file = preset.file.empty() ? "" : config::SharePath(preset.file);
+  out.choice = localisation_core::DescribeChoice(preset);
+  if (heard.mounting) out.mount = MountFrom(*heard.mounting);
+  if (!out.mount) {
+    out.mount_source = "laser mounting from the preset: no usable transform to the scan's frame '" +
+                       heard.laser_frame + "' on " + dds_common::topics::kTfStatic.name +
+                       " (publish one, or give --params)";
+    return out;
+  }
+  char values[96];
+  std::snprintf(values, sizeof values, "x %.3f m, y %.3f m, yaw %.2f deg", out.mount->x,
+                out.mount->y, out.mount->theta * 180.0 / geometry::kPi);
+  out.mount_source = "laser mounting " + std::string(values) + " from " +
+                     dds_common::topics::kTfStatic.name + " (" +
+                     heard.mounting->header().frame_id() + " -> " + heard.laser_frame + ")";
+  return out;
+}
+
 }  // namespace
 
 std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
                                                         const dds_common::StopWait& stop,
                                                         std::chrono::milliseconds tf_wait) {
   auto heard = std::make_shared<Heard>();
-  std::optional<ParametersFromFirstScan> chosen;
-  {
+  std::optional<Choosable> choosable;
+  {  // the probe's subscriptions live only while it waits
     const auto scans = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
         dds_common::topics::kScan, [heard](const sensor_msgs::msg::LaserScan& m) {
           std::lock_guard<std::mutex> lock(heard->mutex);
@@ -75,45 +105,29 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
               << std::endl;
     bool said_refused = false;
     std::optional<std::chrono::steady_clock::time_point> scan_heard;
-    while (!chosen) {
-      if (stop(50ms)) break;
+    while (!choosable && !stop(50ms)) {
       std::lock_guard<std::mutex> lock(heard->mutex);
       if (heard->refused_scan && !said_refused) {
         said_refused = true;
-        std::cout << "localisation: a scan with fewer than two beams or no finite angle "
-                     "increment cannot name a laser; waiting for another"
+        std::cout << "localisation: a scan with fewer than two beams or no finite angle increment "
+                     "cannot name a laser; waiting for another"
                   << std::endl;
       }
       if (!heard->shape) continue;
       if (!scan_heard) scan_heard = std::chrono::steady_clock::now();
       const auto mounting = heard->by_child.find(heard->laser_frame);
-      const bool waited = std::chrono::steady_clock::now() - *scan_heard >= tf_wait;
-      if (mounting == heard->by_child.end() && !waited) continue;
-      const auto preset = localisation_core::ChooseLaserPreset(*heard->shape);
-      ParametersFromFirstScan out;
-      out.file = preset.file.empty() ? "" : config::SharePath(preset.file);
-      out.choice = (preset.file.empty() ? std::string("built-in defaults") : preset.file) +
-                   ", chosen from the first scan (" + preset.reason + ")";
-      if (mounting != heard->by_child.end()) out.mount = MountFrom(mounting->second);
-      if (out.mount) {
-        char values[96];
-        std::snprintf(values, sizeof values, "x %.3f m, y %.3f m, yaw %.2f deg", out.mount->x,
-                      out.mount->y, out.mount->theta * 180.0 / M_PI);
-        out.mount_source = "laser mounting " + std::string(values) + " from " +
-                           dds_common::topics::kTfStatic.name + " (" +
-                           mounting->second.header().frame_id() + " -> " + heard->laser_frame + ")";
-      } else {
-        out.mount_source =
-            "laser mounting from the preset: no usable transform to the scan's "
-            "frame '" +
-            heard->laser_frame + "' on " + dds_common::topics::kTfStatic.name +
-            " (publish one, or give --params)";
+      const bool has_mounting = mounting != heard->by_child.end();
+      if (has_mounting || std::chrono::steady_clock::now() - *scan_heard >= tf_wait) {
+        choosable = Choosable{*heard->shape, heard->laser_frame, std::nullopt};
+        if (has_mounting) choosable->mounting = mounting->second;
       }
-      chosen = out;
     }
   }
+  // The component's subscriptions are made with callbacks held, as the
+  // factory found them.
   node.HoldCallbacks();
-  return chosen;
+  if (!choosable) return std::nullopt;
+  return Choose(*choosable);
 }
 
 }  // namespace structloc::localisation

@@ -49,4 +49,9 @@ LaserPresetChoice ChooseLaserPreset(const ScanShape& shape) {
   return choice;
 }
 
+std::string DescribeChoice(const LaserPresetChoice& choice) {
+  return (choice.file.empty() ? std::string("built-in defaults") : choice.file) +
+         ", chosen from the first scan (" + choice.reason + ")";
+}
+
 }  // namespace structloc::localisation_core

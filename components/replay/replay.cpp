@@ -173,8 +173,7 @@ class Replayer {
   void ChoosePreset(const log_formats::CarmenRecord& first_scan) {
     const auto choice = localisation_core::ChooseLaserPreset(
         {first_scan.ranges.size(), first_scan.angular_resolution, first_scan.max_range});
-    report_.parameters = (choice.file.empty() ? std::string("built-in defaults") : choice.file) +
-                         ", chosen from the first scan (" + choice.reason + ")";
+    report_.parameters = localisation_core::DescribeChoice(choice);
     if (choice.file.empty()) return;
     const std::string path = config::SharePath(choice.file);
     params_ = localisation_core::LoadLocaliserOptions(path);

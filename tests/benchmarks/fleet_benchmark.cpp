@@ -41,6 +41,7 @@
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "test_domains.hpp"
+#include "test_paths.hpp"
 
 namespace structloc {
 namespace {
@@ -149,7 +150,7 @@ FleetRow RunFleet(int robots, double time_scale, int domain, bool domain_per_rob
         bin + "/structloc_localisation",
         std::vector<std::string>{"--domain", std::to_string(domain_of(k)), "--qos", qos,
                                  "--namespace", ns, "--initial-pose", start, "--params",
-                                 share + "/maps/params/office_sick.xml"}));
+                                 structloc::testing::SimulatedRobotParams()}));
   }
   // Robots are switched on one after another, as a fleet's are, once the
   // localisations have met their observers: 60 participants discovering each

@@ -28,6 +28,7 @@
 #include "structloc/process/child_process.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
+#include "test_paths.hpp"
 
 namespace structloc {
 namespace {
@@ -115,7 +116,7 @@ int Run(int argc, char** argv) {
   process::ChildProcess loc(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
       {"--domain", std::to_string(domain), "--qos", source + "/qos/structloc_qos.xml", "--params",
-       source + "/maps/params/office_sick.xml", "--initial-pose",
+       structloc::testing::SimulatedRobotParams(), "--initial-pose",
        structloc::testing::PoseArgument(p)});
   const auto give_up = Clock::now() + std::chrono::seconds(30);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {

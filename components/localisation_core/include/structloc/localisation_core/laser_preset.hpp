@@ -34,4 +34,8 @@ struct LaserPresetChoice {
 // Increments match within 3 %.
 LaserPresetChoice ChooseLaserPreset(const ScanShape& shape);
 
+// One line for the run's summary or log: "<file>, chosen from the first scan
+// (<reason>)" ("built-in defaults" when no preset matched).
+std::string DescribeChoice(const LaserPresetChoice& choice);
+
 }  // namespace structloc::localisation_core
