@@ -203,6 +203,40 @@ TEST(GlobalLocalisation, ASearchInSlicesGivesWhatOneAtOnceGives) {
   }
 }
 
+// Over the whole map the coarse phase is a branch and bound; a window as
+// large as the map scores every position. Both must keep the same candidates
+// and so give the same answer (a bound that dropped a good block would lose
+// or move the best pose).
+TEST(GlobalLocalisation, TheBranchAndBoundFindsWhatScoringEveryPositionFinds) {
+  const testing::OfficeScene office(4.71238898038469);
+  const GlobalLocaliser localiser(office.world, GlobalLocaliserOptions{});
+  std::mt19937 rng(12);
+  const localisation_core::SearchWindow everywhere{{10.0, 6.0, 0.0}, 100.0, geometry::kPi};
+  for (int n = 0; n < 6; ++n) {
+    const geometry::Pose2D truth = RandomPose(office.world, {1.0, 1.0, 19.0, 11.0}, 0.4, rng);
+    const auto points =
+        Points(testing::CastScan(office.scene, truth, {541, 4.71238898038469, 30.0, 0.01}, rng));
+    const auto bounded = localiser.Locate(points);
+    const auto exhaustive = localiser.Locate(points, &everywhere);
+    EXPECT_EQ(bounded.decision, exhaustive.decision);
+    ASSERT_EQ(bounded.best.has_value(), exhaustive.best.has_value());
+    // Hits of equal coarse score may be kept in another order, and climb to
+    // the same pose by another path: equal up to rounding.
+    if (bounded.best) {
+      EXPECT_NEAR(bounded.best->pose.x, exhaustive.best->pose.x, 1e-9);
+      EXPECT_NEAR(bounded.best->pose.y, exhaustive.best->pose.y, 1e-9);
+      EXPECT_NEAR(bounded.best->pose.theta, exhaustive.best->pose.theta, 1e-9);
+      EXPECT_NEAR(bounded.best->score, exhaustive.best->score, 1e-9);
+    }
+    ASSERT_EQ(bounded.candidates.size(), exhaustive.candidates.size());
+    for (size_t i = 0; i < bounded.candidates.size(); ++i) {
+      EXPECT_NEAR(bounded.candidates[i].pose.x, exhaustive.candidates[i].pose.x, 1e-9);
+      EXPECT_NEAR(bounded.candidates[i].pose.y, exhaustive.candidates[i].pose.y, 1e-9);
+      EXPECT_NEAR(bounded.candidates[i].score, exhaustive.candidates[i].score, 1e-9);
+    }
+  }
+}
+
 TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   const testing::OfficeScene office(2 * geometry::kPi);
   GlobalLocaliserOptions options;
@@ -216,6 +250,9 @@ TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
   options = {};
   options.coarse_step_m = 1e-17;  // a lattice that never ends
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.coarse_step_m = 0.27;  // not a whole number of 5 cm cells
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
   options = {};
   options.coarse_heading_step_rad = 1e-10;  // billions of headings

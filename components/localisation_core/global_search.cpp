@@ -1,8 +1,8 @@
 // The search of the global localiser (see global_localiser.hpp), as a
 // GlobalSearch done a slice at a time: the coarse lattice of positions and
-// headings on the blurred field, the refinement of the best candidates on the
-// fine field, the polishing and ranking of the distinct poses, and the
-// decision "found", "ambiguous" or "not found".
+// headings on the blurred field (global_coarse_search.cpp), the refinement
+// of the best candidates on the fine field, the polishing and ranking of the
+// distinct poses, and the decision "found", "ambiguous" or "not found".
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -87,8 +87,8 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
   for (int h = 0; h < headings_; ++h) {
     const double c = std::cos(h * heading_step_), s = std::sin(h * heading_step_);
     for (const auto& p : coarse) {
-      offsets_.push_back(static_cast<float>((c * p.x() - s * p.y()) / res));
-      offsets_.push_back(static_cast<float>((s * p.x() + c * p.y()) / res));
+      offsets_.push_back(static_cast<int>(std::floor((c * p.x() - s * p.y()) / res)));
+      offsets_.push_back(static_cast<int>(std::floor((s * p.x() + c * p.y()) / res)));
     }
   }
   work_ += offsets_.size();
@@ -101,7 +101,16 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
                                          window_->radius_m + o.coarse_step_m * std::sqrt(0.5));
     work_ += window_positions_.size();
   }
-  hits_.reserve(window_ ? 64 : g_.positions_.size() * 2);
+  // The headings a position is scored at: in a window, those within it.
+  for (int h = 0; h < headings_; ++h) {
+    if (window_ && std::abs(geometry::WrapAngle(h * heading_step_ - window_->centre.theta)) >
+                       window_->heading_rad + 0.5 * heading_step_) {
+      continue;
+    }
+    all_headings_.push_back(static_cast<uint16_t>(h));
+  }
+  hits_.reserve(window_ ? 64 : static_cast<size_t>(o.coarse_keep) * 2);
+  kept_scores_.reserve(static_cast<size_t>(o.coarse_keep));
   scores_.resize(static_cast<size_t>(headings_));
 }
 
@@ -112,12 +121,7 @@ bool GlobalSearch::Advance(uint64_t work) {
   do {
     switch (phase_) {
       case Phase::kCoarse:
-        if (next_ < PositionCount()) {
-          CoarsePosition(window_ ? window_positions_[next_] : next_);
-          ++next_;
-        } else {
-          SelectHits();
-        }
+        CoarseStep();
         break;
       case Phase::kRefine:
         if (next_ < keep_) {
@@ -140,48 +144,16 @@ bool GlobalSearch::Advance(uint64_t work) {
   return Done();
 }
 
-void GlobalSearch::CoarsePosition(size_t k) {
-  const auto& o = g_.options_;
-  const auto& cells = g_.cells_;
-  const double res = o.grid_resolution_m;
-  const float px = static_cast<float>((g_.positions_[k].x() - cells.x0) / res);
-  const float py = static_cast<float>((g_.positions_[k].y() - cells.y0) / res);
-  const size_t n = coarse_count_;
-  for (int h = 0; h < headings_; ++h) {
-    scores_[static_cast<size_t>(h)] = -1.0f;  // outside the window: never the best
-    if (window_ && std::abs(geometry::WrapAngle(h * heading_step_ - window_->centre.theta)) >
-                       window_->heading_rad + 0.5 * heading_step_) {
-      continue;
-    }
-    const float* off = &offsets_[static_cast<size_t>(h) * n * 2];
-    float sum = 0.0f;
-    for (size_t i = 0; i < n; ++i) {
-      const float fc = px + off[2 * i], fr = py + off[2 * i + 1];
-      if (!(fc >= 0.0f && fr >= 0.0f)) continue;  // off the grid (not truncated onto it)
-      const int c = static_cast<int>(fc), r = static_cast<int>(fr);
-      if (c < cells.width && r < cells.height)
-        sum += g_.coarse_gain_[static_cast<size_t>(r) * cells.width + c];
-    }
-    scores_[static_cast<size_t>(h)] = sum;
-    work_ += n;
-  }
-  // The best heading here, and the best one clearly turned from it.
-  const int best =
-      static_cast<int>(std::max_element(scores_.begin(), scores_.end()) - scores_.begin());
-  int second = -1;
-  for (int h = 0; h < headings_; ++h) {
-    const int apart = std::min(std::abs(h - best), headings_ - std::abs(h - best));
-    if (apart >= separation_ && (second < 0 || scores_[h] > scores_[second])) second = h;
-  }
-  hits_.push_back({scores_[best], static_cast<int>(k), best});
-  if (second >= 0 && scores_[second] >= 0.0f)
-    hits_.push_back({scores_[second], static_cast<int>(k), second});
-}
-
 void GlobalSearch::SelectHits() {
   keep_ = std::min(hits_.size(), static_cast<size_t>(g_.options_.coarse_keep));
   std::partial_sort(hits_.begin(), hits_.begin() + static_cast<std::ptrdiff_t>(keep_), hits_.end(),
                     [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
+  // Refined by heading and position: neighbouring climbs look up
+  // neighbouring cells, which are still in the cache.
+  std::sort(hits_.begin(), hits_.begin() + static_cast<std::ptrdiff_t>(keep_),
+            [](const CoarseHit& a, const CoarseHit& b) {
+              return a.heading != b.heading ? a.heading < b.heading : a.position < b.position;
+            });
   work_ += hits_.size();
   phase_ = Phase::kRefine;
   next_ = 0;
@@ -203,9 +175,10 @@ bool GlobalSearch::RefineHit(size_t i) {
     return false;
   }
   const geometry::Pose2D pose = climb_->pose;
+  const double score = climb_->score;
   climb_.reset();
   if (window_ && !g_.InWindow(pose, *window_)) return true;  // climbed out of it
-  converged_.push_back({pose, g_.FineScore(g_.fine_gain_, points_, pose, &work_), std::nullopt});
+  converged_.push_back({pose, score, std::nullopt});
   return true;
 }
 

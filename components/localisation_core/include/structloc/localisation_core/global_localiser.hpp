@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
+#include "structloc/localisation_core/coarse_bounds.hpp"
 #include "structloc/world_model/world_model.hpp"
 
 namespace structloc::localisation_core {
@@ -214,7 +215,19 @@ class GlobalLocaliser {
     geometry::Pose2D pose;
     double score = 0.0, step = 0.0, turn = 0.0;
     bool Done() const { return !(step > 0.005); }
+    // The points turned to the pose's heading, in cells (TurnPoints), and
+    // to a trial heading: the moves in x and y only shift them.
+    std::vector<Eigen::Vector2d> turned, trial_turned;
   };
+  // `points` turned by `theta`, in cells.
+  void TurnPoints(const std::vector<Eigen::Vector2d>& points, double theta,
+                  std::vector<Eigen::Vector2d>& turned) const;
+  // FineScore of turned points (TurnPoints) at position (x, y).
+  double TurnedScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& turned,
+                     double x, double y, uint64_t* work) const;
+  // Bilinear gain at cell coordinates (column, row) counted from the centre
+  // of cell (0, 0); 0 off the grid.
+  double GainAtCell(const std::vector<float>& gain, double gx, double gy) const;
   Climb StartClimb(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
                    const geometry::Pose2D& pose, double step, double turn, uint64_t* work) const;
   void ClimbRound(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
@@ -225,15 +238,21 @@ class GlobalLocaliser {
 
   GlobalLocaliserOptions options_;
   Cells cells_;
-  // The coarse lattice: where it starts, how many rows, and where each row's
-  // positions (west to east, clear of walls) start in positions_ (one past
-  // the last row: its end).
+  // The coarse lattice: where it starts, how many rows and columns, where
+  // each row's positions (west to east, clear of walls) start in positions_
+  // (one past the last row: its end), per lattice point (row major) its
+  // position's index, -1 where it is too close to a wall, and how many
+  // positions lie before and below each lattice point.
   struct Lattice {
     double x0 = 0.0, y0 = 0.0;
-    int rows = 0;
+    int rows = 0, columns = 0;
     std::vector<size_t> row_first;
+    std::vector<int> position;
+    // Positions in the lattice's rows < j and columns < i, at j * (columns + 1) + i.
+    std::vector<int> positions_before;
   };
   Lattice lattice_;
+  CoarseBounds coarse_bounds_;      // of coarse_gain_ over blocks of the lattice
   std::vector<float> fine_gain_;    // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;    // the same with the ranking truncation
   std::vector<float> coarse_gain_;  // the same with d shortened by coarse_blur_m
@@ -267,7 +286,30 @@ class GlobalSearch {
 
  private:
   enum class Phase { kCoarse, kRefine, kRank, kDone };
-  void CoarsePosition(size_t k);
+  // The coarse phase (global_coarse_search.cpp): one step scores a position
+  // of the window, or (over the whole map) bounds one top-level block or
+  // expands one block of the branch and bound into its four quarters.
+  void CoarseStep();
+  // The coarse scores of position k at `headings` (the others -1), and its
+  // hits: the best heading and the best one clearly turned from it.
+  void CoarsePosition(size_t k, const std::vector<uint16_t>& headings);
+  // The score below which a hit can no longer be among the coarse_keep best.
+  float KeepThreshold() const;
+  struct BoundedHeading {
+    uint16_t heading;
+    float bound;
+  };
+  struct Block {
+    int level = 0, column = 0, row = 0;  // its first lattice position
+    size_t first = 0, end = 0;  // its headings in top_headings_ (top level) or block_headings_
+    float bound = 0.0f;         // the best of its headings' bounds
+  };
+  bool BlockHasPositions(const Block& block) const;
+  // The block's headings (of `headings`) whose bound reaches KeepThreshold,
+  // into `out`; the block's bound is the best of them.
+  void BoundBlock(Block& block, const std::vector<uint16_t>& headings,
+                  std::vector<BoundedHeading>& out);
+  void ExpandBlock(const Block& block);
   void SelectHits();
   // One round of the climb of hit (candidate) `i`; true when its climb is done.
   bool RefineHit(size_t i);
@@ -289,11 +331,25 @@ class GlobalSearch {
   double heading_step_ = 0.0;
   int separation_ = 1;
   size_t coarse_count_ = 0;
-  std::vector<float> offsets_;  // per heading, per coarse point: x, y in cells
+  // Per heading, per coarse point: its cell's column and row from the
+  // position's (the lattice's positions lie on cell corners).
+  std::vector<int> offsets_;
+  // A lattice position's cell.
+  int CellColumn(double x) const;
+  int CellRow(double y) const;
   // With a window, the coarse positions in it (else every position is tried).
   std::vector<size_t> window_positions_;
-  size_t PositionCount() const { return window_ ? window_positions_.size() : g_.positions_.size(); }
   std::vector<float> scores_;
+  // The branch and bound over the whole map: the top-level blocks not yet
+  // bounded (next_top_ on), the blocks waiting to be expanded (a stack, the
+  // most promising on top), their headings, and the coarse_keep best hit
+  // scores so far (a min-heap).
+  size_t next_top_ = 0;
+  std::vector<Block> tops_, blocks_;
+  std::vector<BoundedHeading> top_headings_, block_headings_;
+  std::vector<BoundedHeading> quarter_headings_[4];
+  std::vector<uint16_t> all_headings_, expanding_;
+  std::vector<float> kept_scores_;
   struct CoarseHit {
     float score;
     int position;

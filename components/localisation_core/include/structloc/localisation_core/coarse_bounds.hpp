@@ -1,0 +1,36 @@
+// Upper bounds of the global search's coarse score over square blocks of
+// lattice positions, so that the search can skip whole blocks (and headings)
+// that cannot hold one of the best candidates: branch and bound as in Olson's
+// multi-resolution correlative scan matching and Cartographer's fast
+// correlative matcher, here exact for the candidates the search keeps. Level
+// L covers blocks of 2^L x 2^L lattice positions; its grid holds, per cell,
+// the largest coarse gain in the square of cells that a point looked up from
+// any position of the block can fall into.
+#pragma once
+
+#include <vector>
+
+namespace structloc::localisation_core {
+
+class CoarseBounds {
+ public:
+  // Levels 1..levels over `gain` (width x height cells, gains >= 0, row
+  // major), for lattice positions `step_cells` whole cells apart.
+  CoarseBounds(const std::vector<float>& gain, int width, int height, int step_cells, int levels);
+  CoarseBounds() = default;
+
+  int Levels() const { return static_cast<int>(grids_.size()); }
+  // At least the coarse score (the sum of the gains of the cells the points
+  // fall into, points off the grid counting nothing) of every position of a
+  // level-`level` block whose first (lowest x and y) position lies in cell
+  // (column, row), for points `offsets` (column, row pairs, n of them) cells
+  // from each position.
+  float Bound(int level, int column, int row, const int* offsets, size_t n) const;
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<std::vector<float>> grids_;  // level L at L - 1
+  std::vector<int> reach_;                 // level L's square: reach_[L - 1] + 1 cells a side
+};
+
+}  // namespace structloc::localisation_core

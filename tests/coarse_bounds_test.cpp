@@ -1,0 +1,64 @@
+// The global search's block bounds (CoarseBounds): on a random field, for
+// random points and blocks of every level, a block's bound is at least the
+// coarse score of every position in it, including points that fall off the
+// field from some of the block's positions and not from others. A bound
+// below one score would let the branch and bound drop the best candidate.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "structloc/localisation_core/coarse_bounds.hpp"
+
+namespace structloc {
+namespace {
+
+float Score(const std::vector<float>& gain, int width, int height, int column, int row,
+            const std::vector<int>& offsets) {
+  float sum = 0.0f;
+  for (size_t i = 0; i + 1 < offsets.size(); i += 2) {
+    const int c = column + offsets[i], r = row + offsets[i + 1];
+    if (c >= 0 && r >= 0 && c < width && r < height)
+      sum += gain[static_cast<size_t>(r) * width + c];
+  }
+  return sum;
+}
+
+TEST(CoarseBounds, ABlocksBoundIsAtLeastTheScoreOfEachOfItsPositions) {
+  constexpr int kWidth = 53, kHeight = 41, kStep = 3, kLevels = 3;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> gain(static_cast<size_t>(kWidth) * kHeight);
+  for (auto& g : gain) g = unit(rng) < 0.9f ? 0.0f : unit(rng);  // sparse, like walls
+  const localisation_core::CoarseBounds bounds(gain, kWidth, kHeight, kStep, kLevels);
+  ASSERT_EQ(bounds.Levels(), kLevels);
+  std::uniform_int_distribution<int> offset(-70, 70), start(-30, 60);
+  int tight = 0, checked = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<int> offsets(2 * 20);
+    for (auto& o : offsets) o = offset(rng);
+    const int level = 1 + trial % kLevels, side = 1 << level;
+    const int column = start(rng), row = start(rng);
+    const float bound = bounds.Bound(level, column, row, offsets.data(), offsets.size() / 2);
+    float best = 0.0f;
+    for (int j = 0; j < side; ++j) {
+      for (int i = 0; i < side; ++i) {
+        const float score =
+            Score(gain, kWidth, kHeight, column + i * kStep, row + j * kStep, offsets);
+        ASSERT_LE(score, bound + 1e-5f) << "level " << level << " block at " << column << ", "
+                                        << row << ": position " << i << ", " << j;
+        best = std::max(best, score);
+        ++checked;
+      }
+    }
+    if (bound <= best + 1e-5f) ++tight;
+  }
+  EXPECT_GT(checked, 1000);
+  // The bound is not just large: with nothing to bound (all points off the
+  // field) it is 0, and sometimes it is met by the block's best position.
+  const std::vector<int> far_away = {1000, 1000, -1000, 5};
+  EXPECT_EQ(bounds.Bound(2, 0, 0, far_away.data(), 2), 0.0f);
+  EXPECT_GT(tight, 0);
+}
+
+}  // namespace
+}  // namespace structloc
