@@ -418,11 +418,8 @@ void LocalisationComponent::Step() {
       state = session_.StateToSave(now);
     }
     if (state) {
-      try {
-        SavePoseAtomically(options_.state_file, {state->map_to_odom, state->variance});
-      } catch (const std::exception& e) {
-        std::cerr << "localisation: " << e.what() << std::endl;
-      }
+      if (!pose_saver_) pose_saver_ = std::make_unique<PoseSaver>(options_.state_file);
+      pose_saver_->Save({state->map_to_odom, state->variance});
     }
   }
   if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);

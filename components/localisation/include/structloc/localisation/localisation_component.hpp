@@ -23,6 +23,7 @@
 #include "std_msgs/msg/EmptyPubSubTypes.h"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/dds_common/diagnostics.hpp"
+#include "structloc/localisation/pose_saver.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
 #include "structloc/localisation_core/global_start.hpp"
 #include "structloc/localisation_core/kidnap_watch.hpp"
@@ -130,7 +131,8 @@ class LocalisationComponent : public dds_common::Component {
   size_t kidnap_hypotheses_ = 0;
   size_t kidnappings_ = 0;
   double last_diagnostics_s_ = 0.0;
-  std::string last_logged_state_;  // the diagnostics headline last printed
+  std::string last_logged_state_;          // the diagnostics headline last printed
+  std::unique_ptr<PoseSaver> pose_saver_;  // with a state file
   std::thread worker_;
   // Last: destroyed first, so no sample reaches the members above then.
   dds_common::Subscription scan_subscription_;
