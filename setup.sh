@@ -129,13 +129,20 @@ run_fuzz_tests() {
 # The container test (mostly waiting on its containers) and the fuzz build and
 # runs (at the lowest CPU priority, on what ctest leaves idle) run beside
 # ctest, each with its output in a log that is printed when it ends.
+# start_beside_ctest NAME NICE COMMAND...: setsid gives the job a session
+# (and process group) of its own, so that stop_beside_ctest ends it with all
+# it started. With the kernel's autogroup scheduling (on in Debian) a session
+# is also a scheduling group, which gets as much CPU as ctest's whole session
+# whatever the nice value of its processes; so the group's own nice value is
+# set too (/proc/self/autogroup; without autogroups there is no such file).
 declare -A background_pids=()
 start_beside_ctest() {
-  local name="$1" log="$build_dir/logs/$1.log"
-  shift
+  local name="$1" nice="$2" log="$build_dir/logs/$1.log"
+  shift 2
   mkdir -p "$build_dir/logs"
   echo "setup: $name runs beside ctest (output: $log)"
-  setsid "$@" >"$log" 2>&1 &
+  setsid sh -c 'echo "$0" 2>/dev/null >/proc/self/autogroup; exec nice -n "$0" "$@"' \
+    "$nice" "$@" >"$log" 2>&1 &
   background_pids[$name]=$!
 }
 wait_beside_ctest() {
@@ -163,8 +170,8 @@ case "${1:-}" in
     build
     status=0
     trap stop_beside_ctest INT TERM
-    start_beside_ctest container_test "$here/setup.sh" container
-    start_beside_ctest fuzz_tests nice -n 19 "$here/setup.sh" fuzz
+    start_beside_ctest container_test 0 "$here/setup.sh" container
+    start_beside_ctest fuzz_tests 19 "$here/setup.sh" fuzz
     run_tests || status=$?
     wait_beside_ctest container_test || status=$?
     wait_beside_ctest fuzz_tests || status=$?
