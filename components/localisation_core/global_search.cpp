@@ -146,10 +146,24 @@ bool GlobalSearch::Advance(uint64_t work) {
 
 void GlobalSearch::SelectHits() {
   keep_ = std::min(hits_.size(), static_cast<size_t>(g_.options_.coarse_keep));
-  std::partial_sort(hits_.begin(), hits_.begin() + static_cast<std::ptrdiff_t>(keep_), hits_.end(),
-                    [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
-  // Refined by heading and position: neighbouring climbs look up
-  // neighbouring cells, which are still in the cache.
+  if (keep_ > 0 && keep_ < hits_.size()) {
+    const auto last = hits_.begin() + static_cast<std::ptrdiff_t>(keep_ - 1);
+    std::nth_element(hits_.begin(), last, hits_.end(),
+                     [](const CoarseHit& a, const CoarseHit& b) { return a.score > b.score; });
+    // Every hit scoring as well as the last one kept is kept too: which of
+    // equal hits (a corridor that repeats every few lattice steps scores the
+    // same at each repetition) were kept would otherwise depend on the order
+    // in which they were found, and a twin left out makes its rival look
+    // unrivalled.
+    const float least = last->score;
+    keep_ = static_cast<size_t>(
+        std::partition(hits_.begin(), hits_.end(),
+                       [least](const CoarseHit& h) { return h.score >= least; }) -
+        hits_.begin());
+  }
+  // Refined by heading and position (whatever order the coarse phase found
+  // them in), so that neighbouring climbs look up neighbouring cells, still
+  // in the cache.
   std::sort(hits_.begin(), hits_.begin() + static_cast<std::ptrdiff_t>(keep_),
             [](const CoarseHit& a, const CoarseHit& b) {
               return a.heading != b.heading ? a.heading < b.heading : a.position < b.position;
