@@ -145,7 +145,8 @@ bool GlobalSearch::Advance(uint64_t work) {
 }
 
 void GlobalSearch::SelectHits() {
-  keep_ = std::min(hits_.size(), static_cast<size_t>(g_.options_.coarse_keep));
+  const size_t keep = static_cast<size_t>(g_.options_.coarse_keep);
+  keep_ = std::min(hits_.size(), keep);
   if (keep_ > 0 && keep_ < hits_.size()) {
     const auto last = hits_.begin() + static_cast<std::ptrdiff_t>(keep_ - 1);
     std::nth_element(hits_.begin(), last, hits_.end(),
@@ -154,12 +155,14 @@ void GlobalSearch::SelectHits() {
     // equal hits (a corridor that repeats every few lattice steps scores the
     // same at each repetition) were kept would otherwise depend on the order
     // in which they were found, and a twin left out makes its rival look
-    // unrivalled.
+    // unrivalled. Not where the last one kept explains nothing (a scan of
+    // clutter ties everywhere at 0), and never more than twice coarse_keep.
     const float least = last->score;
-    keep_ = static_cast<size_t>(
-        std::partition(hits_.begin(), hits_.end(),
-                       [least](const CoarseHit& h) { return h.score >= least; }) -
-        hits_.begin());
+    if (least > 0.0f) {
+      const auto tied_end = std::partition(
+          last + 1, hits_.end(), [least](const CoarseHit& h) { return h.score >= least; });
+      keep_ = std::min(static_cast<size_t>(tied_end - hits_.begin()), 2 * keep);
+    }
   }
   // Refined by heading and position (whatever order the coarse phase found
   // them in), so that neighbouring climbs look up neighbouring cells, still
