@@ -75,6 +75,7 @@ LocalisationComponent::LocalisationComponent(
       session_.NoteProblem(std::string("saved pose ignored: ") + e.what(), started_s_);
     }
   }
+  if (!options_.state_file.empty()) pose_saver_ = std::make_unique<PoseSaver>(options_.state_file);
   if (session_.WaitingForInitialPose() && !pose_hint_check_) {
     std::cout << "localisation: no initial pose: locating the robot globally from the scans "
               << "until one pose explains a scan without a doubt (or one comes on "
@@ -411,16 +412,13 @@ void LocalisationComponent::ApplyKidnapSearch(const SearchAnswer& answer, double
 
 void LocalisationComponent::Step() {
   const double now = dds_common::WallClockSeconds();
-  if (!options_.state_file.empty()) {
+  if (pose_saver_) {
     std::optional<localisation_core::SessionState> state;
     {
       std::lock_guard<std::mutex> lock(session_mutex_);
       state = session_.StateToSave(now);
     }
-    if (state) {
-      if (!pose_saver_) pose_saver_ = std::make_unique<PoseSaver>(options_.state_file);
-      pose_saver_->Save({state->map_to_odom, state->variance});
-    }
+    if (state) pose_saver_->Save({state->map_to_odom, state->variance});
   }
   if (now - last_diagnostics_s_ >= 0.5) PublishDiagnostics(now);
 }

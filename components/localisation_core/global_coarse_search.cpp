@@ -19,7 +19,7 @@ namespace structloc::localisation_core {
 void GlobalSearch::CoarseStep() {
   if (window_) {
     if (next_ < window_positions_.size()) {
-      CoarsePosition(window_positions_[next_++], all_headings_);
+      CoarsePosition(window_positions_[next_++], scored_headings_);
     } else {
       SelectHits();
     }
@@ -40,7 +40,7 @@ void GlobalSearch::CoarseStep() {
     ++next_top_;
     if (BlockHasPositions(block)) {
       block.first = top_headings_.size();
-      BoundBlock(block, all_headings_, top_headings_);
+      BoundBlock(block, scored_headings_, top_headings_);
       block.end = top_headings_.size();
       if (block.end > block.first) tops_.push_back(block);
     }

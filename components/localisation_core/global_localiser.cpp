@@ -176,8 +176,8 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   lattice_.rows = steps_y + 1;
   lattice_.columns = steps_x + 1;
   lattice_.position.assign(static_cast<size_t>(lattice_.rows) * lattice_.columns, -1);
+  cv::Mat clear(lattice_.rows, lattice_.columns, CV_8U, cv::Scalar(0));
   for (int j = 0; j <= steps_y; ++j) {
-    lattice_.row_first.push_back(positions_.size());
     for (int i = 0; i <= steps_x; ++i) {
       const double x = bounds[0] + i * step, y = bounds[1] + j * step;
       const int c = static_cast<int>(std::floor((x - cells_.x0) / res));
@@ -187,20 +187,12 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
       lattice_.position[static_cast<size_t>(j) * lattice_.columns + i] =
           static_cast<int>(positions_.size());
       positions_.emplace_back(x, y);
+      clear.at<uchar>(j, i) = 1;
     }
   }
-  lattice_.row_first.push_back(positions_.size());
-  const size_t stride = static_cast<size_t>(lattice_.columns) + 1;
-  lattice_.positions_before.assign(stride * (static_cast<size_t>(lattice_.rows) + 1), 0);
-  for (int j = 0; j < lattice_.rows; ++j) {
-    for (int i = 0; i < lattice_.columns; ++i) {
-      const bool here = lattice_.position[static_cast<size_t>(j) * lattice_.columns + i] >= 0;
-      lattice_.positions_before[(j + 1) * stride + i + 1] =
-          lattice_.positions_before[j * stride + i + 1] +
-          lattice_.positions_before[(j + 1) * stride + i] -
-          lattice_.positions_before[j * stride + i] + (here ? 1 : 0);
-    }
-  }
+  cv::Mat positions_before;
+  cv::integral(clear, positions_before, CV_32S);
+  lattice_.positions_before.assign(positions_before.begin<int>(), positions_before.end<int>());
   coarse_bounds_ = CoarseBounds(coarse_gain_, cells_.width, cells_.height,
                                 static_cast<int>(std::lround(step / res)), kCoarseBoundLevels);
 }
@@ -260,14 +252,6 @@ Readings GlobalLocaliser::UsableReadings(const Readings& readings) const {
     if (!readings.seen_from.empty()) usable.seen_from.push_back(from);
   }
   return Spread(usable, options_.rank_points);
-}
-
-double GlobalLocaliser::FineScore(const std::vector<float>& gain,
-                                  const std::vector<Eigen::Vector2d>& points,
-                                  const geometry::Pose2D& pose, uint64_t* work) const {
-  std::vector<Eigen::Vector2d> turned;
-  TurnPoints(points, pose.theta, turned);
-  return TurnedScore(gain, turned, pose.x, pose.y, work);
 }
 
 void GlobalLocaliser::TurnPoints(const std::vector<Eigen::Vector2d>& points, double theta,
@@ -446,21 +430,20 @@ std::vector<size_t> GlobalLocaliser::PositionsNear(const Eigen::Vector2d& centre
                                                    double radius_m) const {
   std::vector<size_t> near;
   const double step = options_.coarse_step_m;
-  const int first_row =
-      std::max(0, static_cast<int>(std::floor((centre.y() - radius_m - lattice_.y0) / step)));
-  const int last_row = std::min(
-      lattice_.rows - 1, static_cast<int>(std::ceil((centre.y() + radius_m - lattice_.y0) / step)));
-  for (int j = first_row; j <= last_row; ++j) {
-    // A row's positions run west to east.
-    const auto begin = positions_.begin() +
-                       static_cast<std::ptrdiff_t>(lattice_.row_first[static_cast<size_t>(j)]);
-    const auto end = positions_.begin() +
-                     static_cast<std::ptrdiff_t>(lattice_.row_first[static_cast<size_t>(j) + 1]);
-    auto it = std::lower_bound(begin, end, centre.x() - radius_m,
-                               [](const Eigen::Vector2d& p, double x) { return p.x() < x; });
-    for (; it != end && it->x() <= centre.x() + radius_m; ++it) {
-      if ((*it - centre).norm() <= radius_m)
-        near.push_back(static_cast<size_t>(it - positions_.begin()));
+  auto first = [&](double from, double origin) {
+    return std::max(0, static_cast<int>(std::floor((from - origin) / step)));
+  };
+  auto last = [&](double to, double origin, int count) {
+    return std::min(count - 1, static_cast<int>(std::ceil((to - origin) / step)));
+  };
+  const int first_column = first(centre.x() - radius_m, lattice_.x0);
+  const int last_column = last(centre.x() + radius_m, lattice_.x0, lattice_.columns);
+  const int last_row = last(centre.y() + radius_m, lattice_.y0, lattice_.rows);
+  for (int j = first(centre.y() - radius_m, lattice_.y0); j <= last_row; ++j) {
+    for (int i = first_column; i <= last_column; ++i) {
+      const int k = lattice_.position[static_cast<size_t>(j) * lattice_.columns + i];
+      if (k >= 0 && (positions_[static_cast<size_t>(k)] - centre).norm() <= radius_m)
+        near.push_back(static_cast<size_t>(k));
     }
   }
   return near;

@@ -107,7 +107,7 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
                        window_->heading_rad + 0.5 * heading_step_) {
       continue;
     }
-    all_headings_.push_back(static_cast<uint16_t>(h));
+    scored_headings_.push_back(static_cast<uint16_t>(h));
   }
   hits_.reserve(window_ ? 64 : static_cast<size_t>(o.coarse_keep) * 2);
   kept_scores_.reserve(static_cast<size_t>(o.coarse_keep));

@@ -196,9 +196,6 @@ class GlobalLocaliser {
   static std::vector<Eigen::Vector2d> Spread(const std::vector<Eigen::Vector2d>& points, int most);
   static Readings Spread(const Readings& readings, int most);
   Readings UsableReadings(const Readings& readings) const;
-  // `work`, when given, counts the points looked up.
-  double FineScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
-                   const geometry::Pose2D& pose, uint64_t* work = nullptr) const;
   // seen_from empty: every point seen from the pose itself.
   double RankScore(const std::vector<Eigen::Vector2d>& points,
                    const std::vector<Eigen::Vector2d>& seen_from,
@@ -223,7 +220,8 @@ class GlobalLocaliser {
   // `points` turned by `theta`, in cells.
   void TurnPoints(const std::vector<Eigen::Vector2d>& points, double theta,
                   std::vector<Eigen::Vector2d>& turned) const;
-  // FineScore of turned points (TurnPoints) at position (x, y).
+  // The mean gain of turned points (TurnPoints) with the laser at (x, y);
+  // `work`, when given, counts the points looked up.
   double TurnedScore(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& turned,
                      double x, double y, uint64_t* work) const;
   // Bilinear gain at cell coordinates (column, row) counted from the centre
@@ -239,15 +237,13 @@ class GlobalLocaliser {
 
   GlobalLocaliserOptions options_;
   Cells cells_;
-  // The coarse lattice: where it starts, how many rows and columns, where
-  // each row's positions (west to east, clear of walls) start in positions_
-  // (one past the last row: its end), per lattice point (row major) its
-  // position's index, -1 where it is too close to a wall, and how many
-  // positions lie before and below each lattice point.
+  // The coarse lattice: where it starts, how many rows and columns, per
+  // lattice point (row major) its index in positions_, -1 where it is too
+  // close to a wall, and how many positions lie before and below each
+  // lattice point.
   struct Lattice {
     double x0 = 0.0, y0 = 0.0;
     int rows = 0, columns = 0;
-    std::vector<size_t> row_first;
     std::vector<int> position;
     // Positions in the lattice's rows < j and columns < i, at j * (columns + 1) + i.
     std::vector<int> positions_before;
@@ -341,15 +337,18 @@ class GlobalSearch {
   // With a window, the coarse positions in it (else every position is tried).
   std::vector<size_t> window_positions_;
   std::vector<float> scores_;
+  // The headings positions are scored at: all of them, or a window's.
+  std::vector<uint16_t> scored_headings_;
   // The branch and bound over the whole map: the top-level blocks not yet
   // bounded (next_top_ on), the blocks waiting to be expanded (a stack, the
-  // most promising on top), their headings, and the coarse_keep best hit
-  // scores so far (a min-heap).
+  // most promising on top), their headings (and those of the block being
+  // expanded, and of its quarters), and the coarse_keep best hit scores so
+  // far (a min-heap).
   size_t next_top_ = 0;
   std::vector<Block> tops_, blocks_;
   std::vector<BoundedHeading> top_headings_, block_headings_;
+  std::vector<uint16_t> expanding_;
   std::vector<BoundedHeading> quarter_headings_[4];
-  std::vector<uint16_t> all_headings_, expanding_;
   std::vector<float> kept_scores_;
   struct CoarseHit {
     float score;
