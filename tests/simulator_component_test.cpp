@@ -111,11 +111,16 @@ TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) 
           dds_common::topics::kWheelEncoders, [&](const structloc_msgs::msg::WheelEncoders& m) {
             encoders.Add(dds_common::FromRosTime(m.header().stamp()));
           });
+  // At twice real time: the readers are best effort with a history of 5 (the
+  // shipped sensor_data profile), so odometry at 8x (400 Hz) lost samples
+  // whenever a host busy beside the tests (the container test building its
+  // image) held the observer up for over 12 ms, which the QoS allows and this
+  // test's "nothing missing" does not; at 2x a stall must exceed 50 ms.
   const auto start = std::chrono::steady_clock::now();
   process::ChildProcess sim(
       std::string(STRUCTLOC_BIN_DIR) + "/structloc_simulator",
       {"--domain", std::to_string(kDomain), "--qos", testing::ShippedQos(), "--scenario",
-       testing::SourcePath("maps/scenarios/dead_end_corridor.xml"), "--time-scale", "8",
+       testing::SourcePath("maps/scenarios/dead_end_corridor.xml"), "--time-scale", "2",
        "--wait-for-subscribers", "1", "--exit-when-done"});
   const auto code = sim.WaitExit(testing::kGenerousTimeout);
   const double wall =
@@ -123,7 +128,7 @@ TEST(SimulatorComponent, RunsAScenarioAtTheConfiguredRatesWithConsistentStamps) 
   ASSERT_TRUE(code.has_value()) << sim.CapturedOutput();
   EXPECT_EQ(*code, 0) << sim.CapturedOutput();
   // Printed, not asserted: a loaded machine runs the 40 s scenario slower.
-  std::printf("40 s of scenario at time scale 8 took %.1f s of wall time\n", wall);
+  std::printf("40 s of scenario at time scale 2 took %.1f s of wall time\n", wall);
   // The last samples may still be in flight: wait until every stream reached
   // the scenario's end. The clock offset is a whole second taken when the
   // clock started, so it is the first odometry stamp rounded down.
