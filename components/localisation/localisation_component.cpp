@@ -143,6 +143,9 @@ void LocalisationComponent::StartSearch(const localisation_core::SessionScan& sc
 }
 
 void LocalisationComponent::ApplySearch(const SearchAnswer& answer, double now) {
+  // The kidnap watch's searches come out of its budget, even one outdated.
+  if (answer.tracked && answer.global && kidnap_watch_)
+    kidnap_watch_->Spent(answer.global->result.work);
   if (answer.generation != search_generation_) return;  // outdated meanwhile
   if (answer.tracked) {
     ApplyKidnapSearch(answer, now);

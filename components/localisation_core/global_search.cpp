@@ -141,6 +141,7 @@ bool GlobalSearch::Advance(uint64_t work) {
         return true;
     }
   } while (work_ < until && phase_ != Phase::kDone);
+  result_.work = work_;
   return Done();
 }
 

@@ -25,6 +25,10 @@ void CheckKidnapOptions(const KidnapOptions& o) {
   require(o.min_share_gain >= 0.0 && o.min_share_gain <= 1.0, "min_share_gain", "in [0, 1]");
   require(o.max_share_below_normal >= 0.0 && o.max_share_below_normal <= 1.0,
           "max_share_below_normal", "in [0, 1]");
+  require(o.search_work_per_scan >= 0.0 && o.search_work_per_scan <= 1e12, "search_work_per_scan",
+          "in [0, 1e12]");
+  require(o.search_work_banked >= o.search_work_per_scan && o.search_work_banked <= 1e15,
+          "search_work_banked", "in [search_work_per_scan, 1e15]");
   require(o.fit_points >= 10 && o.fit_points <= 5000, "fit_points", "in [10, 5000]");
 }
 
@@ -33,7 +37,8 @@ KidnapWatch::KidnapWatch(const GlobalLocaliser& localiser, const geometry::Pose2
     : localiser_(localiser),
       mount_(sensor_mount),
       options_(options),
-      search_period_s_(options.search_period_s) {
+      search_period_s_(options.search_period_s),
+      budget_(options.search_work_banked) {
   CheckKidnapOptions(options_);
 }
 
@@ -48,6 +53,7 @@ void KidnapWatch::Clear() {
 
 bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
                           const geometry::Pose2D& tracked, bool lost) {
+  budget_ = std::min(budget_ + options_.search_work_per_scan, options_.search_work_banked);
   const bool checked = CheckDue(stamp, lost);
   if (checked) {
     last_check_s_ = stamp;
@@ -69,7 +75,7 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   }
   if (!doubt_since_) doubt_since_ = stamp;
   doubt_s_ = stamp - *doubt_since_;
-  if (doubt_s_ < options_.after_s) return false;
+  if (doubt_s_ < options_.after_s || budget_ < last_work_) return false;
   return !last_search_s_ || stamp - *last_search_s_ >= search_period_s_;
 }
 
@@ -77,6 +83,11 @@ void KidnapWatch::Searched(double stamp) {
   if (last_search_s_)
     search_period_s_ = std::min(2.0 * search_period_s_, options_.max_search_period_s);
   last_search_s_ = stamp;
+}
+
+void KidnapWatch::Spent(uint64_t work) {
+  last_work_ = std::min(static_cast<double>(work), options_.search_work_banked);
+  budget_ -= static_cast<double>(work);
 }
 
 std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,

@@ -344,6 +344,7 @@ class Replayer {
     if (due) watch_->Searched(report.stamp);
     const auto attempt = global_->Try(scan, *report.odometry);
     report_.kidnap_searches += attempt.searched ? 1 : 0;
+    watch_->Spent(attempt.result.work);
     if (!attempt.found) return;
     if (points.empty()) points = localisation_core::LaserPoints(scan);
     if (const auto kidnapping =

@@ -5,13 +5,17 @@
 // explains at the tracked pose (GlobalLocaliser::FitAt, every
 // check_period_s); when the tracker says "lost", or the share stays below
 // unexplained_share, for `after_s` of scans in a row, it asks for a global
-// search (the waits between them doubling while the doubt lasts). The caller
-// searches (GlobalStart) and moves the robot only if the pose found or
+// search (the waits between them doubling while the doubt lasts, and the
+// searches held to a budget of work per scan, so that a map that explains
+// little of a building cannot make the watch cost more than a lost tracker
+// may). The caller searches (GlobalStart), says what the search cost
+// (Spent), and moves the robot only if the pose found or
 // committed is far from the tracked one and explains the scan clearly better
 // (Jumped); a search that finds the robot where it is tracked leaves the
 // tracking alone. DDS-free.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -35,6 +39,16 @@ struct KidnapOptions {
   // tracking is right, must not keep a search running), up to the longest.
   double search_period_s = 2.0;
   double max_search_period_s = 30.0;
+  // The searches' budget, in GlobalSearch's work units (one: a scan point
+  // looked up; a whole-map search runs at about 5e8 a second on our
+  // machines, 1e8 for a 40 m building). Each scan observed adds
+  // search_work_per_scan, about 0.5 ms: the lost-mode budget of 1 ms of CPU
+  // a scan less the tracking's 0.2-0.4 ms with its work between scans. A
+  // search starts only when the budget holds the work the last one took;
+  // it saves up at most search_work_banked (one such search at once after a
+  // calm spell).
+  double search_work_per_scan = 2.5e5;
+  double search_work_banked = 1e8;
   // A pose found this far from the tracked one is a kidnapping (nearer: the
   // tracker was right).
   double min_jump_m = 0.3;
@@ -73,6 +87,9 @@ class KidnapWatch {
                const geometry::Pose2D& tracked, bool lost);
   // A search for the scan at `stamp` was started: the next waits longer.
   void Searched(double stamp);
+  // A search (due or not: the hypotheses' own) took `work` units.
+  void Spent(uint64_t work);
+  double Budget() const { return budget_; }
   // Whether Observe at `stamp` computes the share (and so needs the scan's
   // points; otherwise it may be given none).
   bool CheckDue(double stamp, bool lost) const {
@@ -101,6 +118,8 @@ class KidnapWatch {
   std::optional<double> normal_share_;  // running mean of the share outside doubt
   double doubt_s_ = 0.0;
   double search_period_s_;  // the wait before the next search in doubt
+  double budget_;           // work units the searches may still spend
+  double last_work_ = 0.0;  // of the last search
 };
 
 }  // namespace structloc::localisation_core
