@@ -35,7 +35,7 @@ namespace {
 struct Recording {
   const char* log;
   const char* map;
-  int right_percent;  // least share placed right (see the figures in the README)
+  int right_percent;  // least share placed right (see the figures in docs/design/method.md)
 };
 
 // How ctest lists the case: the recording's file name.

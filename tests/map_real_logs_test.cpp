@@ -7,8 +7,8 @@
 // map and 20 mm for the maps from grids. And `map check --fit-poses` on the
 // shipped maps: each scan fitted alone to the map lies a median 5-25 mm from its
 // corrected pose (21.4 mm on Freiburg 079, 15.9 on Intel: the agreement the
-// README's localisation figures are read against; a fit that never moved
-// would give 0), one CSV row per scan.
+// localisation figures of docs/measurements/real_recordings.md are read against; a fit that never
+// moved would give 0), one CSV row per scan.
 #include <gtest/gtest.h>
 
 #include <fstream>

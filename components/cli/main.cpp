@@ -1,6 +1,6 @@
 // structloc: the command-line front end (launch, demo and, as they land,
-// simulate, replay, calibrate, render, params, map, synthesise-odometry). Each subcommand calls the
-// same core libraries as the components.
+// simulate, replay, calibrate, render, params, topics, map, synthesise-odometry). Each
+// subcommand calls the same core libraries as the components.
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -40,6 +40,8 @@ const Subcommand kSubcommands[] = {
      "[--localiser] [--robot] [--scenario] [--map-build] [--check FILE.xml]  list every "
      "option of the localiser, robot, scenario and map-build files, or check such a file or a "
      "world map"},
+    {"topics", structloc::cli::TopicsCommand,
+     " list the DDS topics the components publish and subscribe (a Markdown table)"},
     {"map", structloc::cli::MapCommand,
      "build|grid|import|export|check ...  make world maps from recordings, occupancy grids "
      "and CAD drawings, export grids, check maps"},

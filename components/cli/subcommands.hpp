@@ -20,6 +20,7 @@ int RenderCommand(const Invocation& invocation);
 int ReplayCommand(const Invocation& invocation);
 int CalibrateCommand(const Invocation& invocation);
 int ParamsCommand(const Invocation& invocation);
+int TopicsCommand(const Invocation& invocation);
 int MapCommand(const Invocation& invocation);
 int SynthesiseOdometryCommand(const Invocation& invocation);
 

@@ -1,6 +1,6 @@
 // A world model from the chosen layers of a CAD drawing (see header).
 //
-// Choices, documented in README "Maps from CAD drawings":
+// Choices, documented in docs/guides/maps.md, "From a CAD drawing":
 // - a polyline segment with a bulge (an arc) is skipped and counted: the world
 //   model has straight walls only, and chords of a curve would be walls the
 //   laser never sees as such;

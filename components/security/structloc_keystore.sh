@@ -33,7 +33,7 @@
 #                                    [--domains MIN-MAX]
 # KEYSTORE must not exist yet (nothing is overwritten). To rotate identities,
 # make a new keystore, install its enclaves on every host and restart the
-# components (README, section Security).
+# components (docs/guides/security.md).
 set -euo pipefail
 set -f  # no globbing: "*" is a topic pattern here, not file names
 

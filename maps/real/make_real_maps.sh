@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Rebuilds the maps of the two SLAM-corrected real recordings in ../shared/data
-# (Freiburg 079 and Intel, GMapping-corrected poses) and the pictures the README
-# shows, with the structloc CLI only:
+# (Freiburg 079 and Intel, GMapping-corrected poses) and the pictures the docs
+# show, with the structloc CLI only:
 #   1. map build   walls, corners, pillars from the recording       -> NAME.xml
 #   2. map check   the built map against the same recording        -> NAME_check.png
 #   3. map grid    a 5 cm log-odds grid ray-cast from the recording (independent of 1)

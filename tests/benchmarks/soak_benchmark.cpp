@@ -14,7 +14,7 @@
 // With --check it exits 1 unless memory grows under 1 MB/h, the thread count
 // does not grow, the last minute's median latency is within twice the first's
 // + 1 ms, and every scan is accounted for. ./setup.sh test runs 120 s with
-// --check; the 30-minute run is the README's documented command.
+// --check; the 30-minute run is documented in docs/guides/testing.md.
 #include <algorithm>
 #include <cstdio>
 #include <map>

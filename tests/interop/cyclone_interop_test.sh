@@ -63,7 +63,7 @@ start_client() {
 }
 # Stock Cyclone without configuration hears structloc only through its own
 # periodic multicast announcement when it starts first (about 7 s later; see
-# README): that case starts structloc first. The others start the client first.
+# docs/guides/deploy.md): that case starts structloc first. The others start the client first.
 order=client_first
 min_poses=500
 if [ "$config" = default ]; then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the whole suite of a -DSTRUCTLOC_SANITIZE=ON build (see README) with the
+# Runs the whole suite of a -DSTRUCTLOC_SANITIZE=ON build (see docs/guides/testing.md) with the
 # sanitizer settings it needs, in a private network namespace when possible so
 # that it can run beside a normal test run on the same DDS domains.
 #   tests/sanitizer/run_sanitized_tests.sh BUILD_DIR [ctest options...]
