@@ -14,6 +14,7 @@
 #include "shipped_copy.hpp"
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/tracking_session_options.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/process/launch_file.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -42,6 +43,20 @@ std::string Mutated(const TempDir& dir, const std::string& relative, const std::
   std::string name = relative;
   for (auto& c : name) c = c == '/' ? '_' : c;
   return dir.Write(name, text);
+}
+
+// The office's parameter file whole (every key, as `structloc params --expand`
+// prints it: the shipped file states only what differs from the defaults),
+// with `from` replaced by `to` (which must occur), written into `dir`.
+std::string MutatedParams(const TempDir& dir, const std::string& from, const std::string& to) {
+  std::ostringstream whole;
+  localisation_core::WriteExpandedLocalisationParams(SourcePath("maps/params/office_sick.xml"),
+                                                     whole);
+  std::string text = whole.str();
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from << " not in\n" << text;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return dir.Write("office_sick_whole.xml", text);
 }
 
 // Expects `read(path)` to throw a ConfigError whose message starts with
@@ -263,11 +278,10 @@ TEST(BadInputConfig, M9_VisibilityOfAVeryLongWallHasNoIntegerOverflow) {
 
 TEST(BadInputConfig, L1_IntegersOutOfTheirTypesRangeAreRefusedNotTruncated) {
   TempDir dir;
-  ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", "window_points=\"7\"",
-                         "window_points=\"4294967303\""),
+  ExpectRejected(MutatedParams(dir, "window_points=\"7\"", "window_points=\"4294967303\""),
                  LoadParams, {"not \"4294967303\"", "window_points must be an integer from"});
-  ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", "seed=\"1\"", "seed=\"-1\""),
-                 LoadParams, {"not \"-1\"", "seed must be an integer from 0 to 4294967295"});
+  ExpectRejected(MutatedParams(dir, "seed=\"1\"", "seed=\"-1\""), LoadParams,
+                 {"not \"-1\"", "seed must be an integer from 0 to 4294967295"});
   ExpectRejected(
       Mutated(dir, "maps/scenarios/robustness_room.xml", "beams=\"300\"", "beams=\"4294967596\""),
       LoadScenario, {"not \"4294967596\"", "beams must be an integer from 10 to 100000"});
@@ -288,8 +302,7 @@ TEST(BadInputConfig, L1b_ParamsCommandListsEveryKeyAndChecksAFile) {
   const auto good =
       testing::RunCli({"params", "--check", SourcePath("maps/params/office_sick.xml")});
   EXPECT_EQ(good.exit_code, 0) << good.output;
-  const auto bad_path = Mutated(dir, "maps/params/office_sick.xml", "redundant_min_sin=\"0.5\"",
-                                "redundant_min_sin=\"2\"");
+  const auto bad_path = MutatedParams(dir, "redundant_min_sin=\"0.5\"", "redundant_min_sin=\"2\"");
   const auto bad = testing::RunCli({"params", "--check", bad_path});
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find(bad_path + ":"), std::string::npos) << bad.output;
@@ -300,12 +313,11 @@ TEST(BadInputConfig, L1b_ParamsCommandListsEveryKeyAndChecksAFile) {
 
 TEST(BadInputConfig, L2_AbsurdIterationCountsRatesAndDurationsAreRefused) {
   TempDir dir;
-  ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", "bisection_iterations=\"10\"",
-                         "bisection_iterations=\"2000000000\""),
-                 LoadParams, {"bisection_iterations", "from 1 to 60"});
-  ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", "iterations=\"2000\"",
-                         "iterations=\"2000000000\""),
-                 LoadParams, {"<kohonen>", "from 1 to 100000"});
+  ExpectRejected(
+      MutatedParams(dir, "bisection_iterations=\"10\"", "bisection_iterations=\"2000000000\""),
+      LoadParams, {"bisection_iterations", "from 1 to 60"});
+  ExpectRejected(MutatedParams(dir, "iterations=\"2000\"", "iterations=\"2000000000\""), LoadParams,
+                 {"<kohonen>", "from 1 to 100000"});
   const std::string room = "maps/scenarios/robustness_room.xml";
   ExpectRejected(Mutated(dir, room, "rate_hz=\"5\"", "rate_hz=\"1e9\""), LoadScenario,
                  {"laser: rate_hz must be in [0.1, 100]"});
@@ -330,8 +342,8 @@ TEST(BadInputConfig, L3_DuplicatesSecondRootsWrappedSectorsAndHexAreErrors) {
                               "</launch>\n");
   ExpectRejected(args, LoadLaunch, {args + ":3:", "a second <arg name=\"a\">"});
   const std::string mount = "<sensor_mount x_m=\"0.2\" y_m=\"0\" theta_rad=\"0\"/>";
-  ExpectRejected(Mutated(dir, "maps/params/office_sick.xml", mount,
-                         mount + "\n  <sensor_mount x_m=\"0\" y_m=\"0.2\" theta_rad=\"0\"/>"),
+  ExpectRejected(MutatedParams(dir, mount,
+                               mount + "\n  <sensor_mount x_m=\"0\" y_m=\"0.2\" theta_rad=\"0\"/>"),
                  LoadParams, {"a second <sensor_mount>"});
   ExpectRejected(
       Mutated(dir, "maps/robustness_room.xml", "</world>", "</world>\n<world name=\"other\"/>"),

@@ -191,6 +191,46 @@ TEST(OptionTable, ValuesGiveEveryKeyAsWrittenAndTheListingMarksOptionalKeys) {
   EXPECT_NE(out.str().find("magnitude in [0.1, 1]"), std::string::npos) << out.str();
 }
 
+// A file with a base states only what differs from it; strict all the same.
+TEST(OptionTable, AFileWithBaseDefaultsStatesOnlyWhatDiffers) {
+  const testing::TempDir dir;
+  const auto o = ExampleFile().Load(XmlFile::Load(dir.Write(
+      "example.xml", "<example base=\"defaults\">\n<things count=\"5\"/>\n</example>\n")));
+  EXPECT_EQ(o.count, 5);
+  const Example defaults;
+  EXPECT_EQ(o.enabled, defaults.enabled);
+  EXPECT_EQ(o.colour, defaults.colour);
+  EXPECT_DOUBLE_EQ(o.inner.gate_m, defaults.inner.gate_m);
+  // A section left out is all the base's.
+  const auto empty =
+      ExampleFile().Load(XmlFile::Load(dir.Write("empty.xml", "<example base=\"defaults\"/>\n")));
+  EXPECT_EQ(empty.count, defaults.count);
+}
+
+TEST(OptionTable, ABaseFileBesideItGivesWhatTheFileLeavesOut) {
+  const testing::TempDir dir;
+  dir.Write("robot.xml", kGood);  // count 4, not enabled, red, gate 0.5
+  const auto o = ExampleFile().Load(XmlFile::Load(dir.Write(
+      "mine.xml", "<example base=\"robot.xml\">\n<things gate_m=\"0.25\"/>\n</example>\n")));
+  EXPECT_EQ(o.count, 4);
+  EXPECT_FALSE(o.enabled);
+  EXPECT_EQ(o.colour, Colour::kRed);
+  EXPECT_DOUBLE_EQ(o.inner.gate_m, 0.25);
+}
+
+TEST(OptionTable, AFileWithABaseIsStillStrict) {
+  auto what = Problem("<example base=\"defaults\">\n<things gate_x=\"1\"/>\n</example>\n");
+  EXPECT_NE(what.find("unknown attribute(s): gate_x"), std::string::npos) << what;
+  what = Problem("<example base=\"defaults\">\n<things gate_m=\"-1\"/>\n</example>\n");
+  EXPECT_NE(what.find("gate_m must be > 0, not -1"), std::string::npos) << what;
+  what = Problem("<example basis=\"defaults\"/>\n");
+  EXPECT_NE(what.find("unknown attribute(s): basis"), std::string::npos) << what;
+  what = Problem("<example base=\"example.xml\"/>\n");  // itself
+  EXPECT_NE(what.find("more than 8 files based on one another"), std::string::npos) << what;
+  what = Problem("<example base=\"missing.xml\"/>\n");
+  EXPECT_NE(what.find("missing.xml"), std::string::npos) << what;
+}
+
 TEST(Range, DescribesAndChecksItsEnds) {
   EXPECT_TRUE(Range::Positive().Contains(1e-9));
   EXPECT_FALSE(Range::Positive().Contains(0.0));

@@ -37,9 +37,9 @@ const Subcommand kSubcommands[] = {
     {"render", structloc::cli::RenderCommand,
      "--scenario S.xml --out PICTURE.png [--time T]  draw a scenario and one scan"},
     {"params", structloc::cli::ParamsCommand,
-     "[--localiser] [--robot] [--scenario] [--map-build] [--check FILE.xml]  list every "
-     "option of the localiser, robot, scenario and map-build files, or check such a file or a "
-     "world map"},
+     "[--localiser] [--robot] [--scenario] [--map-build] [--check FILE.xml] [--expand FILE.xml]  "
+     "list every option of the localiser, robot, scenario and map-build files, check such a file "
+     "or a world map, or print a parameter file with what it takes from its base"},
     {"topics", structloc::cli::TopicsCommand,
      " list the DDS topics the components publish and subscribe (a Markdown table)"},
     {"map", structloc::cli::MapCommand,

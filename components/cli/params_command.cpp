@@ -3,7 +3,8 @@
 // the scenario files and the map builder's files (key, default, unit, valid
 // values, meaning) from the one place each is declared (all when none is
 // chosen), or checks that a file of any of these kinds, or a world map, loads
-// (the kind from its root element).
+// (the kind from its root element), or prints a parameter file with every key
+// it takes from its base (--expand).
 #include <iostream>
 
 #include "structloc/config/command_line.hpp"
@@ -51,9 +52,24 @@ int ParamsCommand(const Invocation& inv) {
       {"check", true,
        "a <localisation_params>, <robot>, <scenario>, <map_build_params> or <world> file to load "
        "and validate instead of listing"},
+      {"expand", true,
+       "a <localisation_params> or <map_build_params> file to print whole: every key with the "
+       "value it takes, its own or its base's"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
+    if (const auto path = cli.Get("expand")) {
+      const std::string root = config::XmlFile::Load(*path).Root().Name();
+      if (root == "localisation_params") {
+        localisation_core::WriteExpandedLocalisationParams(*path, std::cout);
+      } else if (root == "map_build_params") {
+        map_building::WriteExpandedMapBuildOptions(*path, std::cout);
+      } else {
+        throw config::ConfigError(*path + ": root element is <" + root +
+                                  ">, expected <localisation_params> or <map_build_params>");
+      }
+      return 0;
+    }
     if (const auto path = cli.Get("check")) {
       Check(*path);
       std::cout << *path << ": valid\n";

@@ -110,6 +110,15 @@ void PrintSessionOptions(std::ostream& out) {
   SessionOptionFile().Print(out, SessionOptions{});
 }
 
+void WriteExpandedLocalisationParams(const std::string& path, std::ostream& out) {
+  const auto localiser = LoadLocaliserOptions(path);
+  const auto session = LoadSessionOptions(path);
+  out << "<localisation_params>\n";
+  LocaliserOptionFile().WriteSections(out, localiser);
+  SessionOptionFile().WriteSections(out, session);
+  out << "</localisation_params>\n";
+}
+
 SessionOptions LoadSessionOptions(const std::string& path) {
   const auto file = config::XmlFile::Load(path);
   return SessionOptionFile().Load(file);

@@ -141,4 +141,11 @@ void PrintMapBuildOptions(std::ostream& out) {
   MapBuildOptionFile().Print(out, MapBuildOptions{});
 }
 
+void WriteExpandedMapBuildOptions(const std::string& path, std::ostream& out) {
+  const auto options = LoadMapBuildOptions(path);
+  out << "<map_build_params>\n";
+  MapBuildOptionFile().WriteSections(out, options);
+  out << "</map_build_params>\n";
+}
+
 }  // namespace structloc::map_building

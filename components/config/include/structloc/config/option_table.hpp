@@ -5,12 +5,16 @@
 // errors naming file:line), validation (naming section and key) and a printed
 // listing all derive from that declaration, so key, default and range cannot
 // drift apart. Generic over the options struct and DDS-free, for parameter,
-// scenario and robot files alike.
+// scenario and robot files alike. A file whose root names a base
+// (base="defaults", or another file of the same kind beside it) states only
+// what differs from it; unknown keys stay errors.
 #pragma once
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <stdexcept>
@@ -152,11 +156,13 @@ class OptionTable {
   }
 
   // Reads every key of `element` into `out`; throws ConfigError naming
-  // file:line for a missing, unknown, malformed or out-of-range value.
-  void Load(const XmlFile& file, const tinyxml2::XMLElement& element, S& out) const {
+  // file:line for a missing, unknown, malformed or out-of-range value. With
+  // `only_given`, a key left out keeps the value `out` has (a file with a base).
+  void Load(const XmlFile& file, const tinyxml2::XMLElement& element, S& out,
+            bool only_given = false) const {
     AttributeReader reader(file, element);
     for (const auto& e : entries_) {
-      if (!e.optional || reader.Has(e.key.c_str())) e.load(*this, reader, out);
+      if ((!e.optional && !only_given) || reader.Has(e.key.c_str())) e.load(*this, reader, out);
     }
     reader.Finish();
     const std::string problem = FirstProblem(out);
@@ -310,7 +316,11 @@ class OptionTable {
 };
 
 // A file whose root element holds one element per OptionTable, each exactly
-// once, and nothing else.
+// once, and nothing else. Its root may name a base: base="defaults" (the
+// options struct's own defaults, as `structloc params` lists them) or
+// base="OTHER.xml" (a file of the same kind, its path relative to this
+// file's folder, itself complete or based in turn); the file then states only
+// the sections and keys that differ from its base.
 template <class S>
 class OptionFile {
  public:
@@ -325,22 +335,13 @@ class OptionFile {
   const std::string& RootName() const { return root_; }
   const std::vector<OptionTable<S>>& Sections() const { return sections_; }
 
-  // Loads every section into a copy of `defaults`; throws ConfigError naming
-  // file:line for any problem.
+  // Bases based on bases, at most this deep (a file based on itself fails).
+  static constexpr int kMaxBaseDepth = 8;
+
+  // Loads every section into a copy of `defaults` (or of what the file's base
+  // gives); throws ConfigError naming file:line for any problem.
   S Load(const XmlFile& file, S defaults = S{}) const {
-    const auto& root = file.Root(root_);
-    std::set<std::string> names = other_sections_;
-    for (const auto& t : sections_) names.insert(t.Section());
-    RequireChildNames(file, root, names);
-    for (const auto& t : sections_) {
-      const auto* element = root.FirstChildElement(t.Section().c_str());
-      if (element == nullptr) file.Fail(root, "missing section <" + t.Section() + ">");
-      if (const auto* second = element->NextSiblingElement(t.Section().c_str())) {
-        file.Fail(*second, "a second <" + t.Section() + "> section; write each section once");
-      }
-      t.Load(file, *element, defaults);
-    }
-    return defaults;
+    return LoadBased(file, std::move(defaults), 0);
   }
 
   void Validate(const S& options) const {
@@ -352,11 +353,63 @@ class OptionFile {
     for (const auto& t : sections_) optional = optional || t.HasOptionalKeys();
     out << "<" << root_ << ">: every key below is required"
         << (optional ? " unless marked [optional]" : "")
-        << "; columns: key, default, unit, valid values, meaning\n";
+        << " (a file whose root says base=\"defaults\" or base=\"OTHER.xml\" states only what "
+           "differs from that); columns: key, default, unit, valid values, meaning\n";
     for (const auto& t : sections_) t.Print(out, defaults);
   }
 
+  // Every section of `options` as XML elements with every key (values as
+  // Values gives them; text is not escaped), one per line.
+  void WriteSections(std::ostream& out, const S& options) const {
+    for (const auto& t : sections_) {
+      out << "  <" << t.Section();
+      for (const auto& [key, value] : t.Values(options))
+        out << " " << key << "=\"" << value << "\"";
+      out << "/>\n";
+    }
+  }
+
  private:
+  S LoadBased(const XmlFile& file, S defaults, int depth) const {
+    const auto& root = file.Root(root_);
+    std::optional<std::string> base;
+    {
+      AttributeReader reader(file, root);
+      if (reader.Has("base")) base = reader.String("base");
+      reader.Finish();  // no other attribute
+    }
+    if (base && *base != "defaults") {
+      if (depth >= kMaxBaseDepth) {
+        file.Fail(root, "base=\"" + *base + "\": more than " + std::to_string(kMaxBaseDepth) +
+                            " files based on one another (is a file its own base?)");
+      }
+      const auto beside = std::filesystem::path(file.Path()).parent_path() / *base;
+      const XmlFile base_file = [&] {
+        try {
+          return XmlFile::Load(beside.string());
+        } catch (const ConfigError& e) {
+          file.Fail(root, "base=\"" + *base + "\": " + e.what());
+        }
+      }();
+      defaults = LoadBased(base_file, std::move(defaults), depth + 1);
+    }
+    std::set<std::string> names = other_sections_;
+    for (const auto& t : sections_) names.insert(t.Section());
+    RequireChildNames(file, root, names);
+    for (const auto& t : sections_) {
+      const auto* element = root.FirstChildElement(t.Section().c_str());
+      if (element == nullptr) {
+        if (base) continue;  // all of it as the base has it
+        file.Fail(root, "missing section <" + t.Section() + ">");
+      }
+      if (const auto* second = element->NextSiblingElement(t.Section().c_str())) {
+        file.Fail(*second, "a second <" + t.Section() + "> section; write each section once");
+      }
+      t.Load(file, *element, defaults, base.has_value());
+    }
+    return defaults;
+  }
+
   std::string root_;
   std::vector<OptionTable<S>> sections_;
   std::set<std::string> other_sections_;

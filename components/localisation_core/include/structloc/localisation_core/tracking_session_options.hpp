@@ -35,4 +35,9 @@ SessionOptions LoadSessionOptions(const std::string& path);
 // and meaning.
 void PrintSessionOptions(std::ostream& out);
 
+// Writes a complete <localisation_params> file (every section, every key) of
+// the file at `path` as loaded: its own values and those it takes from its
+// base. Throws config::ConfigError as the loaders do.
+void WriteExpandedLocalisationParams(const std::string& path, std::ostream& out);
+
 }  // namespace structloc::localisation_core

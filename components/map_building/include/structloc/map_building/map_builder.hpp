@@ -35,6 +35,9 @@ struct MapBuildOptions {
 
 MapBuildOptions LoadMapBuildOptions(const std::string& path);
 void PrintMapBuildOptions(std::ostream& out);
+// A complete <map_build_params> file (every key) of the file at `path` as
+// loaded, with what it takes from its base.
+void WriteExpandedMapBuildOptions(const std::string& path, std::ostream& out);
 
 struct MapBuildResult {
   std::vector<FittedWall> walls;  // with their support, in the world's wall order
