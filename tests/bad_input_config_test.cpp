@@ -13,8 +13,7 @@
 #include "cli_runner.hpp"
 #include "shipped_copy.hpp"
 #include "structloc/config/strict_xml.hpp"
-#include "structloc/localisation_core/localiser_options.hpp"
-#include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/localisation_core/localiser/localiser_options.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/process/launch_file.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -24,6 +23,7 @@
 #include "test_domains.hpp"
 #include "test_paths.hpp"
 #include "wait_until.hpp"
+#include "whole_params.hpp"
 
 namespace structloc {
 namespace {
@@ -49,10 +49,7 @@ std::string Mutated(const TempDir& dir, const std::string& relative, const std::
 // prints it: the shipped file states only what differs from the defaults),
 // with `from` replaced by `to` (which must occur), written into `dir`.
 std::string MutatedParams(const TempDir& dir, const std::string& from, const std::string& to) {
-  std::ostringstream whole;
-  localisation_core::WriteExpandedLocalisationParams(SourcePath("maps/params/office_sick.xml"),
-                                                     whole);
-  std::string text = whole.str();
+  std::string text = testing::WholeParamsText(SourcePath("maps/params/office_sick.xml"));
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from << " not in\n" << text;
   if (at != std::string::npos) text.replace(at, from.size(), to);

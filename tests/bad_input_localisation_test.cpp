@@ -12,7 +12,7 @@
 #include "cli_runner.hpp"
 #include "localisation_feed.hpp"
 #include "pose_argument.hpp"
-#include "structloc/localisation_core/pose_tracker.hpp"
+#include "structloc/localisation_core/tracking/pose_tracker.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "structloc/world_model/world_model_xml.hpp"

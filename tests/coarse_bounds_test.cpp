@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "structloc/localisation_core/coarse_bounds.hpp"
+#include "structloc/localisation_core/global/coarse_bounds.hpp"
 
 namespace structloc {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <cstdio>
 
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "synthetic_scans.hpp"
 
 namespace structloc::localisation_core {

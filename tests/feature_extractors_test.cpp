@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/feature_kinds.hpp"
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/features/feature_kinds.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 
 namespace structloc::localisation_core {
 namespace {

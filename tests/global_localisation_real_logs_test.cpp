@@ -23,8 +23,8 @@
 #include <string>
 
 #include "evaluation_odometry.hpp"
-#include "structloc/localisation_core/global_localiser.hpp"
-#include "structloc/localisation_core/recent_scans.hpp"
+#include "structloc/localisation_core/global/global_localiser.hpp"
+#include "structloc/localisation_core/global/recent_scans.hpp"
 #include "structloc/map_building/posed_scans.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "test_paths.hpp"

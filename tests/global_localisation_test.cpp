@@ -12,7 +12,7 @@
 #include <random>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/global_localiser.hpp"
+#include "structloc/localisation_core/global/global_localiser.hpp"
 #include "synthetic_scans.hpp"
 
 namespace structloc {

@@ -20,7 +20,7 @@
 #include <string>
 
 #include "evaluation_odometry.hpp"
-#include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/global/global_start.hpp"
 #include "structloc/map_building/posed_scans.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "test_paths.hpp"

@@ -8,7 +8,7 @@
 
 #include "initial_pose_expectations.hpp"
 #include "office_scene.hpp"
-#include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/global/global_start.hpp"
 
 namespace structloc::localisation_core {
 namespace {

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "structloc/localisation_core/hypothesis_tracker.hpp"
+#include "structloc/localisation_core/global/hypothesis_tracker.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 #include "test_paths.hpp"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "structloc/localisation_core/session_inbox.hpp"
+#include "structloc/localisation_core/tracking/session_inbox.hpp"
 
 namespace structloc::testing {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/kidnap_watch.hpp"
+#include "structloc/localisation_core/global/kidnap_watch.hpp"
 
 namespace structloc::localisation_core {
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "structloc/localisation_core/laser_preset.hpp"
-#include "structloc/localisation_core/localiser_options.hpp"
+#include "structloc/localisation_core/localiser/localiser_options.hpp"
+#include "structloc/localisation_core/scan/laser_preset.hpp"
 #include "test_paths.hpp"
 
 namespace structloc {

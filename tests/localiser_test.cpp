@@ -8,10 +8,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 #include "temp_dir.hpp"
+#include "whole_params.hpp"
 
 namespace structloc::localisation_core {
 namespace {
@@ -48,10 +49,7 @@ TEST(LocaliserOptions, DefaultsAreTheThesisTable6Values) {
 
 std::string EditedCopy(const testing::TempDir& temp, const std::string& from,
                        const std::string& to) {
-  std::ifstream in(testing::SourcePath("maps/params/thesis_table6.xml"));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = testing::WholeParamsText(testing::SourcePath("maps/params/thesis_table6.xml"));
   const auto pos = text.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
   text.replace(pos, from.size(), to);

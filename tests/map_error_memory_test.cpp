@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
-#include "structloc/localisation_core/map_error_memory.hpp"
-#include "structloc/localisation_core/pose_tracker.hpp"
-#include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/localisation_core/association/map_error_memory.hpp"
+#include "structloc/localisation_core/tracking/pose_tracker.hpp"
+#include "structloc/localisation_core/tracking/tracking_session_options.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 #include "test_paths.hpp"

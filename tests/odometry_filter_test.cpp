@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "structloc/localisation_core/odometry_filter.hpp"
+#include "structloc/localisation_core/tracking/odometry_filter.hpp"
 
 namespace structloc::localisation_core {
 namespace {

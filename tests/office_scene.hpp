@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 

@@ -5,8 +5,8 @@
 // Mahalanobis gate under the prior.
 #include <gtest/gtest.h>
 
-#include "structloc/localisation_core/point_gate.hpp"
-#include "structloc/localisation_core/wall_clustering.hpp"
+#include "structloc/localisation_core/association/point_gate.hpp"
+#include "structloc/localisation_core/features/walls/wall_clustering.hpp"
 
 namespace structloc::localisation_core {
 namespace {

@@ -7,12 +7,12 @@
 #include <limits>
 #include <random>
 
-#include "structloc/localisation_core/corner_extraction.hpp"
-#include "structloc/localisation_core/cylinder_extraction.hpp"
-#include "structloc/localisation_core/deskew.hpp"
-#include "structloc/localisation_core/line_fit.hpp"
-#include "structloc/localisation_core/pose_solver.hpp"
-#include "structloc/localisation_core/prefilter.hpp"
+#include "structloc/localisation_core/features/corners/corner_extraction.hpp"
+#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
+#include "structloc/localisation_core/scan/deskew.hpp"
+#include "structloc/localisation_core/scan/line_fit.hpp"
+#include "structloc/localisation_core/scan/prefilter.hpp"
+#include "structloc/localisation_core/solver/pose_solver.hpp"
 
 namespace structloc::localisation_core {
 namespace {

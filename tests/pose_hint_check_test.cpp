@@ -12,7 +12,7 @@
 
 #include "initial_pose_expectations.hpp"
 #include "office_scene.hpp"
-#include "structloc/localisation_core/pose_hint_check.hpp"
+#include "structloc/localisation_core/global/pose_hint_check.hpp"
 
 namespace structloc::localisation_core {
 namespace {

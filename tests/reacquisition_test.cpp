@@ -9,8 +9,8 @@
 #include <random>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/pose_tracker.hpp"
-#include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/localisation_core/tracking/pose_tracker.hpp"
+#include "structloc/localisation_core/tracking/tracking_session_options.hpp"
 
 namespace structloc::localisation_core {
 namespace {

@@ -11,8 +11,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "structloc/localisation_core/global_localiser.hpp"
-#include "structloc/localisation_core/recent_scans.hpp"
+#include "structloc/localisation_core/global/global_localiser.hpp"
+#include "structloc/localisation_core/global/recent_scans.hpp"
 #include "synthetic_scans.hpp"
 
 namespace structloc::localisation_core {

@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <random>
 
-#include "structloc/localisation_core/localiser.hpp"
-#include "structloc/localisation_core/scan_visibility.hpp"
+#include "structloc/localisation_core/expectation/scan_visibility.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "synthetic_scans.hpp"
 
 namespace structloc::localisation_core {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/session_health.hpp"
+#include "structloc/localisation_core/tracking/session_health.hpp"
 
 namespace structloc::localisation_core {
 namespace {

@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "structloc/localisation_core/localiser.hpp"
-#include "structloc/localisation_core/pose_tracker.hpp"
-#include "structloc/localisation_core/session_scan.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
+#include "structloc/localisation_core/scan/session_scan.hpp"
+#include "structloc/localisation_core/tracking/pose_tracker.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/world_model.hpp"
 

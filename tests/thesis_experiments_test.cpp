@@ -7,7 +7,7 @@
 
 #include <cstdio>
 
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
 

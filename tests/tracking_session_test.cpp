@@ -9,8 +9,9 @@
 
 #include "office_scene.hpp"
 #include "structloc/config/strict_xml.hpp"
-#include "structloc/localisation_core/tracking_session.hpp"
+#include "structloc/localisation_core/tracking/tracking_session.hpp"
 #include "temp_dir.hpp"
+#include "whole_params.hpp"
 
 namespace structloc::localisation_core {
 namespace {
@@ -61,8 +62,7 @@ TEST_F(SessionTest, ShippedParameterFilesCarryTheTrackerOptions) {
 
 TEST_F(SessionTest, MissingOrUnknownTrackingKeysAreErrors) {
   testing::TempDir dir;
-  std::ifstream in(kParams);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = testing::WholeParamsText(kParams);
   auto write = [&](const std::string& from, const std::string& to) {
     std::string changed = text;
     const auto at = changed.find(from);
@@ -72,7 +72,7 @@ TEST_F(SessionTest, MissingOrUnknownTrackingKeysAreErrors) {
     std::ofstream(path) << changed;
     return path;
   };
-  EXPECT_THROW(LoadSessionOptions(write(" state_period_s=\"2.0\"", "")), config::ConfigError);
+  EXPECT_THROW(LoadSessionOptions(write(" state_period_s=\"2\"", "")), config::ConfigError);
   EXPECT_THROW(LoadSessionOptions(write("deskew=\"true\"", "deskew=\"true\" speed=\"1\"")),
                config::ConfigError);
   EXPECT_THROW(LoadSessionOptions(write("initial_sigma_xy_m=\"0.05\"", "initial_sigma_xy_m=\"0\"")),

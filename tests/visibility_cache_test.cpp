@@ -10,8 +10,8 @@
 #include <random>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/localiser.hpp"
-#include "structloc/localisation_core/visibility_cache.hpp"
+#include "structloc/localisation_core/expectation/visibility_cache.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 
 namespace structloc {
 namespace {

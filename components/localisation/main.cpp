@@ -9,8 +9,8 @@
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/localisation/localisation_component.hpp"
 #include "structloc/localisation/parameters_from_first_scan.hpp"
-#include "structloc/localisation_core/localiser_options.hpp"
-#include "structloc/localisation_core/tracking_session_options.hpp"
+#include "structloc/localisation_core/localiser/localiser_options.hpp"
+#include "structloc/localisation_core/tracking/tracking_session_options.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 
 int main(int argc, char** argv) {

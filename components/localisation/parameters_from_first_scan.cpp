@@ -13,7 +13,7 @@
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/geometry/pose2d.hpp"
-#include "structloc/localisation_core/laser_preset.hpp"
+#include "structloc/localisation_core/scan/laser_preset.hpp"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 namespace structloc::localisation {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "structloc/localisation_core/cylinder_extraction.hpp"
-#include "structloc/localisation_core/line_fit.hpp"
+#include "structloc/fitting/circle_fit.hpp"
+#include "structloc/fitting/line_fit.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -13,17 +13,18 @@ namespace {
 // Checks one run of points (laser frame) for a pillar-like arc.
 bool ArcCircle(const std::vector<Eigen::Vector2d>& run, const PillarOptions& options,
                Eigen::Vector2d& centre, double& radius) {
-  localisation_core::ScanPoints points;
-  localisation_core::LineSums sums;
+  std::vector<double> xs, ys;
+  fitting::LineSums sums;
   for (const auto& p : run) {
-    points.Push(p.x(), p.y(), 0);
+    xs.push_back(p.x());
+    ys.push_back(p.y());
     sums.Add(p.x() - run.front().x(), p.y() - run.front().y());
   }
-  const auto line = localisation_core::FitLine(sums, run.front().x(), run.front().y());
+  const auto line = fitting::FitLine(sums, run.front().x(), run.front().y());
   if (!line.degenerate &&
       std::sqrt(line.sse / static_cast<double>(run.size())) < options.min_line_rms_m)
     return false;
-  const auto circle = localisation_core::FitCircle(points, 0, run.size());
+  const auto circle = fitting::FitCircle(xs, ys, 0, run.size());
   if (!circle.ok || circle.radius < options.min_radius_m || circle.radius > options.max_radius_m)
     return false;
   centre = {circle.xc, circle.yc};

@@ -3,14 +3,14 @@
 
 #include <cmath>
 
-#include "structloc/localisation_core/line_fit.hpp"
+#include "structloc/fitting/line_fit.hpp"
 
 namespace structloc::map_building {
 namespace {
 
-using localisation_core::FitLine;
-using localisation_core::LineEstimate;
-using localisation_core::LineSums;
+using fitting::FitLine;
+using fitting::LineEstimate;
+using fitting::LineSums;
 
 struct GrowingLine {
   Eigen::Vector2d origin;

@@ -7,16 +7,16 @@
 #include <stdexcept>
 #include <utility>
 
-#include "structloc/localisation_core/line_fit.hpp"
+#include "structloc/fitting/line_fit.hpp"
 
 namespace structloc::map_building {
 
 FittedWall FitWall(const std::vector<Eigen::Vector2d>& points) {
   if (points.size() < 2) throw std::invalid_argument("a wall needs at least two points");
   const Eigen::Vector2d origin = points.front();
-  localisation_core::LineSums sums;
+  fitting::LineSums sums;
   for (const auto& p : points) sums.Add(p.x() - origin.x(), p.y() - origin.y());
-  const auto fit = localisation_core::FitLine(sums, origin.x(), origin.y());
+  const auto fit = fitting::FitLine(sums, origin.x(), origin.y());
   if (fit.degenerate) throw std::invalid_argument("a wall's points are all in one place");
   FittedWall wall;
   wall.line = geometry::Normalised(fit.r, fit.Alpha());

@@ -7,8 +7,8 @@
 namespace structloc::map_building {
 namespace {
 
-using localisation_core::FitLine;
-using localisation_core::LineEstimate;
+using fitting::FitLine;
+using fitting::LineEstimate;
 
 Eigen::Vector2d Direction(const LineEstimate& fit) {
   return {-fit.sin_alpha, fit.cos_alpha};

@@ -9,10 +9,10 @@
 #include <chrono>
 
 #include "office_scene.hpp"
-#include "structloc/localisation_core/corner_extraction.hpp"
-#include "structloc/localisation_core/cylinder_extraction.hpp"
-#include "structloc/localisation_core/kohonen_clustering.hpp"
-#include "structloc/localisation_core/scan_visibility.hpp"
+#include "structloc/localisation_core/expectation/scan_visibility.hpp"
+#include "structloc/localisation_core/features/corners/corner_extraction.hpp"
+#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
+#include "structloc/localisation_core/features/walls/kohonen_clustering.hpp"
 
 namespace structloc {
 namespace {

@@ -27,7 +27,7 @@
 #include <Eigen/Geometry>
 
 #include "scenario_trials.hpp"
-#include "structloc/localisation_core/global_start.hpp"
+#include "structloc/localisation_core/global/global_start.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "structloc/simulation_core/simulation.hpp"
 

@@ -22,7 +22,7 @@ mv "$work/first" "$work/prefix"
 prefix="$work/prefix"
 
 for f in bin/structloc bin/structloc_simulator bin/structloc_localisation bin/structloc_calibration \
-         bin/structloc_check_qos bin/structloc_keystore include/structloc/localisation_core/localiser.hpp \
+         bin/structloc_check_qos bin/structloc_keystore include/structloc/localisation_core/localiser/localiser.hpp \
          lib/cmake/structloc/structlocConfig.cmake lib/cmake/structloc/structlocTargets.cmake \
          lib/cmake/structloc/opencv_modules.cmake \
          share/structloc/maps/office_floor.xml share/structloc/maps/params/office_sick.xml \

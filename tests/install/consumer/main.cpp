@@ -3,7 +3,7 @@
 // usable from another CMake project. Prints the number of walls.
 #include <iostream>
 
-#include "structloc/localisation_core/localiser.hpp"
+#include "structloc/localisation_core/localiser/localiser.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 
 int main() {

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "structloc/localisation_core/line_fit.hpp"
+#include "structloc/fitting/line_fit.hpp"
 #include "structloc/map_building/wall_fitting.hpp"
 
 namespace structloc::map_building {
@@ -52,8 +52,8 @@ class WallAccumulator {
  private:
   struct Candidate {
     Eigen::Vector2d origin{0, 0};
-    localisation_core::LineSums sums;
-    localisation_core::LineEstimate fit;
+    fitting::LineSums sums;
+    fitting::LineEstimate fit;
     Eigen::Vector2d low{0, 0}, high{0, 0};  // extreme supporting points along the line
     std::vector<Eigen::Vector2d> points;
     std::vector<uint32_t> scans;

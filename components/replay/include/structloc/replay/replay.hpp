@@ -26,9 +26,9 @@
 #include <string>
 #include <vector>
 
-#include "structloc/localisation_core/global_localiser.hpp"
-#include "structloc/localisation_core/hypothesis_tracker.hpp"
-#include "structloc/localisation_core/kidnap_watch.hpp"
+#include "structloc/localisation_core/global/global_localiser.hpp"
+#include "structloc/localisation_core/global/hypothesis_tracker.hpp"
+#include "structloc/localisation_core/global/kidnap_watch.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 #include "structloc/replay/trajectory_error.hpp"
 #include "structloc/world_model/world_model.hpp"

@@ -1,0 +1,109 @@
+// Expected features (see header).
+#include "structloc/localisation_core/expectation/expected_features.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace structloc::localisation_core {
+
+std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& world,
+                                               double r_tolerance_m, double alpha_tolerance_rad) {
+  std::vector<WallLineModel> lines;
+  for (size_t i = 0; i < world.Walls().size(); ++i) {
+    const auto& w = world.Walls()[i];
+    bool grouped = false;
+    for (auto& l : lines) {
+      // Both ends on the group's line (a small angle over a long distance is
+      // a large offset), and the same direction.
+      const Eigen::Vector2d n(std::cos(l.line.alpha), std::sin(l.line.alpha));
+      if (std::abs(n.dot(w.a) - l.line.r) <= r_tolerance_m &&
+          std::abs(n.dot(w.b) - l.line.r) <= r_tolerance_m &&
+          std::abs(geometry::WrapAngle(l.line.alpha - w.line.alpha)) <= alpha_tolerance_rad) {
+        l.walls.push_back(static_cast<int>(i));
+        grouped = true;
+        break;
+      }
+    }
+    if (!grouped) lines.push_back({w.line, {static_cast<int>(i)}, w.id});
+  }
+  return lines;
+}
+
+void ExpectedFeatures::Reserve(size_t l, size_t w, size_t c, size_t y) {
+  walls.reserve(l);
+  extents.reserve(w);
+  corners.reserve(c);
+  cylinders.reserve(y);
+}
+
+void ComputeExpectedFeatures(const world_model::WorldModel& world,
+                             const std::vector<WallLineModel>& lines,
+                             const std::vector<int>& wall_line_of,
+                             const world_model::Visibility& visibility,
+                             const geometry::Pose2D& pose, ExpectedFeatures& out) {
+  out.walls.clear();
+  out.extents.clear();
+  out.corners.clear();
+  out.cylinders.clear();
+  for (const auto& vw : visibility.walls) {
+    const int line_index = wall_line_of[static_cast<size_t>(vw.index)];
+    const auto& model = lines[static_cast<size_t>(line_index)];
+    const double cw = std::cos(model.line.alpha), sw = std::sin(model.line.alpha);
+    const double t1 = -sw * vw.first.x() + cw * vw.first.y();
+    const double t2 = -sw * vw.last.x() + cw * vw.last.y();
+    const auto& wall = world.Walls()[static_cast<size_t>(vw.index)];
+    const double centre = 0.5 * (-sw * (wall.a.x() + wall.b.x()) + cw * (wall.a.y() + wall.b.y()));
+    ExpectedWall* existing = nullptr;
+    for (auto& e : out.walls) {
+      if (e.line_index == line_index) existing = &e;
+    }
+    const int index = existing != nullptr ? static_cast<int>(existing - out.walls.data())
+                                          : static_cast<int>(out.walls.size());
+    out.extents.push_back({index, std::min(t1, t2), std::max(t1, t2), centre, 0.5 * wall.Length()});
+    if (existing != nullptr) continue;
+    ExpectedWall e;
+    e.line_index = line_index;
+    e.model_id = model.model_id;
+    e.slot = line_index;
+    e.world = model.line;
+    e.world_c = cw;
+    e.world_s = sw;
+    e.r = model.line.r - (pose.x * cw + pose.y * sw);
+    const double a = model.line.alpha - pose.theta;
+    e.c = std::cos(a);
+    e.s = std::sin(a);
+    out.walls.push_back(e);
+  }
+  const int corner_slots = static_cast<int>(lines.size());
+  for (int i : visibility.corners) {
+    const auto& c = world.Corners()[static_cast<size_t>(i)];
+    out.corners.push_back(
+        {i, c.id, c.position, pose.ApplyInverse(c.position), 0.0, corner_slots + i, 1.0});
+  }
+  const int cylinder_slots = corner_slots + static_cast<int>(world.Corners().size());
+  for (int i : visibility.cylinders) {
+    const auto& c = world.Cylinders()[static_cast<size_t>(i)];
+    out.cylinders.push_back(
+        {i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius, cylinder_slots + i, 1.0});
+  }
+}
+
+size_t MapFeatureSlots(const world_model::WorldModel& world,
+                       const std::vector<WallLineModel>& lines) {
+  return lines.size() + world.Corners().size() + world.Cylinders().size();
+}
+
+double ExpectedFeatures::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
+  double best = 1e300;
+  for (const auto& x : extents) {
+    if (x.expected_index != e) continue;
+    const double d = std::max({x.lo - t, t - x.hi, 0.0});
+    if (d < best) {
+      best = d;
+      if (wall != nullptr) *wall = &x;
+    }
+  }
+  return best;
+}
+
+}  // namespace structloc::localisation_core

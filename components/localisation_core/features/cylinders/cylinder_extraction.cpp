@@ -1,0 +1,104 @@
+// Cylinder extraction (see header).
+#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace structloc::localisation_core {
+
+void CylinderWork::Reserve(size_t points, size_t expected) {
+  sums.reserve(expected);
+  point_label.reserve(points);
+}
+
+namespace {
+// Geometric fit of the centre with a known radius (Gauss-Newton), over the
+// points labelled `label`; returns the covariance of the centre.
+bool RefineCentre(const ScanPoints& points, const std::vector<int>& labels, int label,
+                  double radius, double floor2, Eigen::Vector2d& centre, Eigen::Matrix2d& cov) {
+  for (int iteration = 0; iteration < 10; ++iteration) {
+    Eigen::Matrix2d jtj = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d jtr = Eigen::Vector2d::Zero();
+    double sse = 0.0, n = 0.0;
+    for (size_t k = 0; k < points.Size(); ++k) {
+      if (labels[k] != label) continue;
+      const Eigen::Vector2d d(points.x[k] - centre.x(), points.y[k] - centre.y());
+      const double dist = d.norm();
+      if (dist < 1e-9) continue;
+      const Eigen::Vector2d j = -d / dist;  // d(dist - R)/d(centre)
+      const double res = dist - radius;
+      jtj.noalias() += j * j.transpose();
+      jtr += j * res;
+      sse += res * res;
+      n += 1.0;
+    }
+    if (n < 3 || std::abs(jtj.determinant()) < 1e-18) return false;
+    const Eigen::Vector2d step = -jtj.inverse() * jtr;
+    centre += step;
+    if (step.norm() < 1e-10 || iteration == 9) {
+      cov = std::max(sse / std::max(1.0, n - 2.0), floor2) * jtj.inverse();
+      return true;
+    }
+  }
+  return false;
+}
+}  // namespace
+
+void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& points,
+                      const ExpectedFeatures& expected, const CylinderOptions& o, int window_points,
+                      CylinderWork& work, std::vector<PointCluster>& out) {
+  out.clear();
+  const size_t ne = expected.cylinders.size();
+  if (ne == 0) return;
+  work.sums.assign(ne, PointSums{});
+  work.point_label.assign(points.Size(), -1);
+  const double gate2 = o.gate_m * o.gate_m;
+  const size_t np = points.Size();
+  for (const auto& w : windows) {
+    // Candidate only when the window's centroid lies near an expected surface
+    // (compared squared: no square root in this loop).
+    int near = -1;
+    for (size_t e = 0; e < ne; ++e) {
+      const auto& c = expected.cylinders[e];
+      const double dx = w.line.xm - c.sensor.x(), dy = w.line.ym - c.sensor.y();
+      const double d2 = dx * dx + dy * dy;
+      const double lo = std::max(0.0, c.radius - o.candidate_gate_m);
+      const double hi = c.radius + o.candidate_gate_m;
+      if (d2 >= lo * lo && d2 <= hi * hi) near = static_cast<int>(e);
+    }
+    if (near < 0) continue;
+    const CircleFit fit =
+        FitCircle(points, static_cast<size_t>(w.first), static_cast<size_t>(window_points));
+    if (!fit.ok || fit.quality < o.min_quality) continue;
+    const int e = NearestWithin(expected.cylinders, fit.xc, fit.yc, gate2);
+    if (e < 0) continue;
+    if (std::abs(fit.radius - expected.cylinders[static_cast<size_t>(e)].radius) >
+        o.radius_tolerance_m) {
+      continue;
+    }
+    work.sums[static_cast<size_t>(e)].Add(fit.xc, fit.yc);
+    for (int j = 0; j < window_points; ++j) {
+      int& label = work.point_label[(static_cast<size_t>(w.first) + static_cast<size_t>(j)) % np];
+      label = (label == -1 || label == e) ? e : -2;
+    }
+  }
+  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  for (size_t e = 0; e < ne; ++e) {
+    const auto& s = work.sums[e];
+    if (s.n < o.min_cluster_size) continue;
+    // The thesis' mean with its scatter; refined by a geometric fit with the
+    // model radius over all member points when that converges nearby.
+    PointCluster c = s.ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m);
+    Eigen::Vector2d refined = c.mean;
+    Eigen::Matrix2d cov;
+    if (RefineCentre(points, work.point_label, static_cast<int>(e), expected.cylinders[e].radius,
+                     floor2, refined, cov) &&
+        (refined - c.mean).norm() < o.gate_m) {
+      c.refined = refined;
+      c.covariance = cov;
+    }
+    out.push_back(c);
+  }
+}
+
+}  // namespace structloc::localisation_core

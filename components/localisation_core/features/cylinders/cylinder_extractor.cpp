@@ -1,0 +1,80 @@
+// Feature kind "cylinders" (see header): the extractor and the kind's options block.
+#include "structloc/localisation_core/features/cylinders/cylinder_extractor.hpp"
+
+#include "structloc/localisation_core/association/point_gate.hpp"
+
+namespace structloc::localisation_core {
+namespace {
+
+using config::Range;
+using O = LocaliserOptions;
+
+std::vector<LocaliserOptionTable> CylinderSections() {
+  LocaliserOptionTable t("cylinders", "feature kind cylinders, thesis 3.5.6 EQ 36-40: circle fits");
+  t.Flag("enabled", &O::use_cylinders, "extract and use cylinders");
+  t.Number("candidate_gate_m", &O::cylinders, &CylinderOptions::candidate_gate_m, Range::Positive(),
+           "m", "window centroid to expected surface");
+  t.Number("radius_tolerance_m", &O::cylinders, &CylinderOptions::radius_tolerance_m,
+           Range::Positive(), "m", "|fitted radius - model radius|");
+  t.Number("min_quality", &O::cylinders, &CylinderOptions::min_quality, Range::NonNegative(),
+           "1/m^4", "EQ 40 threshold on Q = 1 / sum(residual^2)");
+  t.Number("gate_m", &O::cylinders, &CylinderOptions::gate_m, Range::Positive(), "m",
+           "fitted centre to expected centre");
+  t.Number("min_cluster_size", &O::cylinders, &CylinderOptions::min_cluster_size, Range::AtLeast(1),
+           "", "minimum number of circle fits in a cluster");
+  t.Number("min_point_sigma_m", &O::cylinders, &CylinderOptions::min_point_sigma_m,
+           Range::Positive(), "m", "floor of the per-point noise for the covariance");
+  t.Number("map_sigma_m", &O::cylinders, &CylinderOptions::map_sigma_m, Range::NonNegative(), "m",
+           "the map's error of a pillar centre, 1 sigma (0: exact map)");
+  t.Number("gate_chi2", &O::cylinders, &CylinderOptions::gate_chi2, Range::NonNegative(), "",
+           "Mahalanobis gate (2 dof) under the prior's, the fit's and the map's covariance (0: "
+           "fixed gate only)");
+  return {t};
+}
+
+}  // namespace
+
+FeatureKind CylinderKind() {
+  return {"cylinders", CylinderSections, [](const LocaliserOptions& o) { return o.use_cylinders; },
+          [](const LocaliserOptions& o, const ExtractorCapacity& c) {
+            return std::unique_ptr<FeatureExtractor>(
+                std::make_unique<CylinderExtractor>(o.cylinders, c.beams, c.cylinders));
+          }};
+}
+
+CylinderExtractor::CylinderExtractor(const CylinderOptions& options, size_t max_beams,
+                                     size_t cylinders)
+    : options_(options) {
+  work_.Reserve(max_beams, cylinders);
+  clusters_.reserve(cylinders);
+}
+
+void CylinderExtractor::Extract(const ExtractionInput& in, Measurements& all,
+                                std::vector<FeatureMatch>& matches) {
+  const auto& expected = *in.expected;
+  ExtractCylinders(*in.windows, *in.points, expected, options_, in.window_points, work_, clusters_);
+  for (const auto& c : clusters_) {
+    const auto& e = expected.cylinders[static_cast<size_t>(c.expected_index)];
+    PointMeasurement m;
+    m.sensor = in.thesis_values ? c.mean : c.refined;
+    m.covariance = c.covariance;
+    m.world = e.world;
+    if (!GatePoint(m.sensor, m.covariance, m.world, in.sensor_prior, in.sensor_prior_covariance,
+                   options_.map_sigma_m, options_.gate_chi2, e.map_error_scale)) {
+      continue;
+    }
+    m.cylinder = true;
+    FeatureMatch match;
+    match.model_id = e.model_id;
+    match.slot = e.slot;
+    match.members = c.members;
+    match.x_m = m.sensor.x();
+    match.y_m = m.sensor.y();
+    match.radius_m = e.radius;
+    match.row = static_cast<int>(all.points.size());
+    all.points.push_back(m);
+    matches.push_back(match);
+  }
+}
+
+}  // namespace structloc::localisation_core

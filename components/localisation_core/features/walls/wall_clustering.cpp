@@ -1,0 +1,238 @@
+// Wall clustering by expectation (see header).
+#include "structloc/localisation_core/features/walls/wall_clustering.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace structloc::localisation_core {
+
+namespace {
+
+// The map's angle error of a wall: map_sigma_alpha_rad, but never so much
+// that the wall's ends err by more than its offset error again (long walls
+// are drawn or fitted with proportionally better angles).
+double MapAngleSigma(const WallClusterOptions& o, const ExpectedExtent* wall) {
+  if (wall == nullptr || wall->wall_half_length <= 0.0) return o.map_sigma_alpha_rad;
+  return std::min(o.map_sigma_alpha_rad, o.map_sigma_r_m / wall->wall_half_length);
+}
+
+// Variance of a map wall's offset `lever_m` along the line from its centre:
+// offset error plus the angle error over the lever arm.
+double MapOffsetVariance(const WallClusterOptions& o, const ExpectedExtent* wall, double lever_m) {
+  const double sa = MapAngleSigma(o, wall) * lever_m;
+  return o.map_sigma_r_m * o.map_sigma_r_m + sa * sa;
+}
+
+// Along-line (world) coordinate of a sensor-frame point seen from `pose`.
+double AlongLine(const ExpectedWall& x, const geometry::Pose2D& pose, double px, double py) {
+  const double pc = std::cos(pose.theta), ps = std::sin(pose.theta);
+  const double wx = pose.x + pc * px - ps * py;
+  const double wy = pose.y + ps * px + pc * py;
+  return -x.world_s * wx + x.world_c * wy;
+}
+
+}  // namespace
+
+void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
+                                const ExpectedFeatures& expected, const geometry::Pose2D& pose,
+                                const Eigen::Matrix3d& cov, const WallClusterOptions& o,
+                                std::vector<int>& assignment) {
+  assignment.assign(windows.size(), -1);
+  if (expected.walls.empty()) return;
+  const double min_dot = std::cos(o.gate_alpha_rad);
+  const double inv_r2 = 1.0 / (o.gate_r_m * o.gate_r_m);
+  // 1 - cos(d) ~ d^2 / 2: normalised angular distance without atan2.
+  const double inv_a2 = 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
+  const double pc = std::cos(pose.theta), ps = std::sin(pose.theta);
+  const bool check_extent = o.extent_margin_m > 0.0;
+  const bool mahalanobis = o.gate_chi2 > 0.0;
+  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  for (size_t i = 0; i < windows.size(); ++i) {
+    const auto& w = windows[i];
+    if (!w.valid) continue;
+    const auto& l = w.line;
+    // The window's centroid in the world: the overlap test and the gate use it.
+    const Eigen::Vector2d v(pc * l.xm - ps * l.ym, ps * l.xm + pc * l.ym);  // R p
+    int best = -1;
+    double best_d = 3.0;  // > 2 = outside both gates
+    for (size_t e = 0; e < expected.walls.size(); ++e) {
+      const auto& x = expected.walls[e];
+      double dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
+      double r = l.r;
+      if (dot < 0.0) {  // the fit's normal points the other way: flip it
+        dot = -dot;
+        r = -r;
+      }
+      if (dot < min_dot) continue;
+      const double dr = r - x.r;
+      if (dr * dr * inv_r2 > 1.0) continue;
+      const double d = dr * dr * inv_r2 + (1.0 - dot) * inv_a2;
+      if (d >= best_d) continue;
+      if (check_extent || mahalanobis) {
+        const double t = -x.world_s * (pose.x + v.x()) + x.world_c * (pose.y + v.y());
+        const ExpectedExtent* wall = nullptr;
+        const double outside = expected.DistanceOutside(static_cast<int>(e), t, &wall);
+        if (check_extent && outside > o.extent_margin_m) continue;
+        const double centre = wall != nullptr ? wall->wall_centre : t;
+        if (mahalanobis) {
+          const double off = l.xm * x.c + l.ym * x.s - x.r;  // centroid from the line
+          const Eigen::Vector3d j(x.world_c, x.world_s, -v.y() * x.world_c + v.x() * x.world_s);
+          const double var =
+              j.dot(cov * j) + std::max(l.sse, floor2) + MapOffsetVariance(o, wall, t - centre);
+          if (off * off > o.gate_chi2 * var) continue;
+        }
+      }
+      best = static_cast<int>(e);
+      best_d = d;
+    }
+    assignment[i] = best;
+  }
+}
+
+namespace {
+
+// Squared Mahalanobis distance of a cluster from expected wall `e`, with the
+// map's error at the cluster's place; `map_cov` receives that error.
+double ClusterDistance(const WallCluster& c, const ExpectedFeatures& expected, int e,
+                       const geometry::Pose2D& pose, const Eigen::Matrix3d& cov,
+                       const WallClusterOptions& o, Eigen::Matrix2d* map_cov) {
+  const auto& x = expected.walls[static_cast<size_t>(e)];
+  double r = c.refined_r, alpha = c.refined_alpha;
+  if (std::cos(alpha) * x.c + std::sin(alpha) * x.s < 0.0) {
+    r = -r;
+    alpha += geometry::kPi;
+  }
+  const double t = AlongLine(x, pose, c.centroid.x(), c.centroid.y());
+  const ExpectedExtent* wall = nullptr;
+  expected.DistanceOutside(e, t, &wall);
+  const double centre = wall != nullptr ? wall->wall_centre : t;
+  // The sensor's foot on the line: the offset error at the sensor's own
+  // along-line place is what r measures (thesis EQ 23 with an uncertain r_W, alpha_W).
+  const double t_sensor = -x.world_s * pose.x + x.world_c * pose.y;
+  const double lever = centre - t_sensor;
+  const double sa = MapAngleSigma(o, wall);
+  Eigen::Matrix2d m;
+  m << MapOffsetVariance(o, wall, lever), lever * sa * sa, lever * sa * sa, sa * sa;
+  Eigen::Matrix<double, 2, 3> h;
+  h << -x.world_c, -x.world_s, 0.0, 0.0, 0.0, -1.0;
+  const Eigen::Matrix2d s = h * cov * h.transpose() + c.covariance + m;
+  const Eigen::Vector2d nu(r - x.r, geometry::WrapAngle(alpha - std::atan2(x.s, x.c)));
+  if (map_cov != nullptr) *map_cov = m;
+  return nu.dot(s.ldlt().solve(nu));
+}
+
+}  // namespace
+
+void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& pose,
+                      const Eigen::Matrix3d& cov, const WallClusterOptions& o,
+                      std::vector<WallCluster>& clusters) {
+  const double min_dot = std::cos(o.gate_alpha_rad);
+  size_t kept = 0;
+  for (size_t k = 0; k < clusters.size(); ++k) {
+    WallCluster c = clusters[k];
+    Eigen::Matrix2d map_cov = Eigen::Matrix2d::Zero();
+    const double d2 = ClusterDistance(c, expected, c.expected_index, pose, cov, o, &map_cov);
+    bool keep = o.gate_chi2 <= 0.0 || d2 <= o.gate_chi2;
+    for (size_t f = 0; keep && o.gate_chi2 > 0.0 && f < expected.walls.size(); ++f) {
+      if (static_cast<int>(f) == c.expected_index) continue;
+      const auto& x = expected.walls[f];
+      const auto& mine = expected.walls[static_cast<size_t>(c.expected_index)];
+      if (std::abs(x.c * mine.c + x.s * mine.s) < min_dot) continue;  // not parallel
+      const double t = AlongLine(x, pose, c.centroid.x(), c.centroid.y());
+      if (o.extent_margin_m > 0.0 &&
+          expected.DistanceOutside(static_cast<int>(f), t) > o.extent_margin_m) {
+        continue;
+      }
+      if (ClusterDistance(c, expected, static_cast<int>(f), pose, cov, o, nullptr) <= o.gate_chi2) {
+        keep = false;  // two walls explain it: ambiguous
+      }
+    }
+    if (!keep) continue;
+    // The map's error, counted once over the scans that share it (map_error_memory.hpp).
+    c.covariance += expected.walls[static_cast<size_t>(c.expected_index)].map_error_scale * map_cov;
+    clusters[kept++] = c;
+  }
+  clusters.resize(kept);
+}
+
+void WallClusterWork::Reserve(size_t points, size_t expected) {
+  point_label.reserve(points);
+  sums.reserve(expected);
+  r_sum.reserve(expected);
+  c_sum.reserve(expected);
+  s_sum.reserve(expected);
+  count.reserve(expected);
+  labelled_end.reserve(expected);
+}
+
+void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
+                       const ScanPoints& points, int window_points,
+                       const ExpectedFeatures& expected, const WallClusterOptions& o,
+                       WallClusterWork& work, std::vector<WallCluster>& out) {
+  out.clear();
+  const size_t ne = expected.walls.size();
+  const size_t np = points.Size();
+  work.sums.assign(ne, LineSums{});
+  work.r_sum.assign(ne, 0.0);
+  work.c_sum.assign(ne, 0.0);
+  work.s_sum.assign(ne, 0.0);
+  work.count.assign(ne, 0);
+  work.labelled_end.assign(ne, 0);
+  work.point_label.assign(np, -1);
+  for (size_t i = 0; i < windows.size(); ++i) {
+    const int e = assignment[i];
+    if (e < 0) continue;
+    const auto& x = expected.walls[static_cast<size_t>(e)];
+    const auto& l = windows[i].line;
+    const double sign = (l.cos_alpha * x.c + l.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
+    work.r_sum[static_cast<size_t>(e)] += sign * l.r;
+    work.c_sum[static_cast<size_t>(e)] += sign * l.cos_alpha;
+    work.s_sum[static_cast<size_t>(e)] += sign * l.sin_alpha;
+    ++work.count[static_cast<size_t>(e)];
+    // Windows come in scan order, so the points of this window before
+    // labelled_end[e] already carry label e: label each point once per run.
+    const size_t first = static_cast<size_t>(windows[i].first);
+    const size_t end = first + static_cast<size_t>(window_points);
+    size_t& done = work.labelled_end[static_cast<size_t>(e)];
+    for (size_t u = std::max(first, done); u < end; ++u) {
+      int& label = work.point_label[u < np ? u : u - np];
+      label = (label == -1 || label == e) ? e : -2;  // -2: claimed by two walls
+    }
+    done = std::max(done, end);
+  }
+  // Sums relative to each cluster's first point would be ideal; the sensor
+  // origin is close enough for indoor ranges in double precision.
+  for (size_t k = 0; k < np; ++k) {
+    const int e = work.point_label[k];
+    if (e >= 0) work.sums[static_cast<size_t>(e)].Add(points.x[k], points.y[k]);
+  }
+  const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  for (size_t e = 0; e < ne; ++e) {
+    const int n = work.count[e];
+    if (n < o.min_cluster_size || work.sums[e].n < 3) continue;
+    const auto& x = expected.walls[e];
+    WallCluster cl;
+    cl.expected_index = static_cast<int>(e);
+    cl.members = n;
+    cl.mean_r = work.r_sum[e] / n;
+    cl.mean_alpha = std::atan2(work.s_sum[e], work.c_sum[e]);
+    const LineEstimate fit = FitLine(work.sums[e], 0.0, 0.0);
+    if (fit.degenerate) continue;
+    const double sign = (fit.cos_alpha * x.c + fit.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
+    const double c = sign * fit.cos_alpha, s = sign * fit.sin_alpha;
+    cl.refined_r = sign * fit.r;
+    cl.refined_alpha = std::atan2(s, c);
+    cl.points = static_cast<int>(work.sums[e].n);
+    cl.centroid = Eigen::Vector2d(fit.xm, fit.ym);
+    // Residual e_k = x_k c + y_k s - r: d/dr = -1, d/dalpha = t_k (along-line coordinate).
+    const double npts = work.sums[e].n;
+    const double sigma2 = std::max(fit.sse / std::max(1.0, npts - 2.0), floor2);
+    const double tm = -fit.xm * s + fit.ym * c;
+    Eigen::Matrix2d info;
+    info << npts, -npts * tm, -npts * tm, fit.along_spread + npts * tm * tm;
+    cl.covariance = sigma2 * info.inverse();
+    out.push_back(cl);
+  }
+}
+
+}  // namespace structloc::localisation_core

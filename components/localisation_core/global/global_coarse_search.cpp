@@ -1,0 +1,204 @@
+// The coarse phase of the global search (see global_localiser.hpp): every
+// lattice position at every heading scored on the blurred field. In a window
+// each position is scored. Over the whole map the lattice is searched by
+// branch and bound: blocks of 16 x 16 positions are bounded (CoarseBounds),
+// the most promising first are split into quarters down to single positions,
+// and a block or heading whose bound falls below the coarse_keep-th best hit
+// so far is never looked at again. The hits kept are those that scoring
+// every position would keep: a position's hits score at most its block's
+// bound, and a hit below coarse_keep others is never kept.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "structloc/localisation_core/global/global_localiser.hpp"
+
+namespace structloc::localisation_core {
+
+void GlobalSearch::CoarseStep() {
+  if (window_) {
+    if (next_ < window_positions_.size()) {
+      CoarsePosition(window_positions_[next_++], scored_headings_);
+    } else {
+      SelectHits();
+    }
+    return;
+  }
+  const int top = g_.coarse_bounds_.Levels();
+  const int side = 1 << top;
+  const int top_columns = (g_.lattice_.columns + side - 1) / side;
+  const size_t top_count =
+      static_cast<size_t>(top_columns) * static_cast<size_t>((g_.lattice_.rows + side - 1) / side);
+  if (next_top_ < top_count) {
+    // Every top-level block is bounded before any is expanded, so that the
+    // most promising of the whole map is expanded first.
+    Block block;
+    block.level = top;
+    block.column = static_cast<int>(next_top_ % static_cast<size_t>(top_columns)) * side;
+    block.row = static_cast<int>(next_top_ / static_cast<size_t>(top_columns)) * side;
+    ++next_top_;
+    if (BlockHasPositions(block)) {
+      block.first = top_headings_.size();
+      BoundBlock(block, scored_headings_, top_headings_);
+      block.end = top_headings_.size();
+      if (block.end > block.first) tops_.push_back(block);
+    }
+    if (next_top_ < top_count) return;
+    std::sort(tops_.begin(), tops_.end(),
+              [](const Block& a, const Block& b) { return a.bound < b.bound; });
+    blocks_ = std::move(tops_);
+    return;
+  }
+  if (blocks_.empty()) {
+    SelectHits();
+    return;
+  }
+  const Block block = blocks_.back();
+  blocks_.pop_back();
+  // A block's headings lie at the end of block_headings_ (those of the blocks
+  // below it on the stack lie before them), the top level's in top_headings_.
+  const bool top_level = block.level == top;
+  const auto& from = top_level ? top_headings_ : block_headings_;
+  const float threshold = KeepThreshold();
+  expanding_.clear();
+  for (size_t i = block.first; i < block.end; ++i) {
+    if (from[i].bound >= threshold) expanding_.push_back(from[i].heading);
+  }
+  if (!top_level) block_headings_.resize(block.first);
+  if (!expanding_.empty()) ExpandBlock(block);
+}
+
+void GlobalSearch::ExpandBlock(const Block& block) {
+  const auto& lattice = g_.lattice_;
+  const int half = 1 << (block.level - 1);
+  if (block.level == 1) {
+    for (int row = block.row; row < std::min(block.row + 2, lattice.rows); ++row) {
+      for (int column = block.column; column < std::min(block.column + 2, lattice.columns);
+           ++column) {
+        const int k = lattice.position[static_cast<size_t>(row) * lattice.columns + column];
+        if (k >= 0) CoarsePosition(static_cast<size_t>(k), expanding_);
+      }
+    }
+    return;
+  }
+  Block quarters[4];
+  int count = 0;
+  for (int q = 0; q < 4; ++q) {
+    Block& quarter = quarters[count];
+    quarter.level = block.level - 1;
+    quarter.column = block.column + (q % 2) * half;
+    quarter.row = block.row + (q / 2) * half;
+    if (quarter.column >= lattice.columns || quarter.row >= lattice.rows) continue;
+    if (!BlockHasPositions(quarter)) continue;
+    quarter_headings_[count].clear();
+    BoundBlock(quarter, expanding_, quarter_headings_[count]);
+    if (!quarter_headings_[count].empty()) ++count;
+  }
+  // The most promising quarter goes on top of the stack, so it is expanded next.
+  int order[4] = {0, 1, 2, 3};
+  for (int i = 1; i < count; ++i) {  // insertion sort, by bound
+    for (int j = i; j > 0 && quarters[order[j]].bound < quarters[order[j - 1]].bound; --j)
+      std::swap(order[j], order[j - 1]);
+  }
+  for (int i = 0; i < count; ++i) {
+    Block quarter = quarters[order[i]];
+    const auto& headings = quarter_headings_[order[i]];
+    quarter.first = block_headings_.size();
+    block_headings_.insert(block_headings_.end(), headings.begin(), headings.end());
+    quarter.end = block_headings_.size();
+    blocks_.push_back(quarter);
+  }
+}
+
+bool GlobalSearch::BlockHasPositions(const Block& block) const {
+  const auto& lattice = g_.lattice_;
+  const int side = 1 << block.level;
+  const size_t stride = static_cast<size_t>(lattice.columns) + 1;
+  const size_t i0 = static_cast<size_t>(block.column), j0 = static_cast<size_t>(block.row);
+  const size_t i1 = static_cast<size_t>(std::min(block.column + side, lattice.columns));
+  const size_t j1 = static_cast<size_t>(std::min(block.row + side, lattice.rows));
+  const auto& before = lattice.positions_before;
+  return before[j1 * stride + i1] - before[j0 * stride + i1] - before[j1 * stride + i0] +
+             before[j0 * stride + i0] >
+         0;
+}
+
+void GlobalSearch::BoundBlock(Block& block, const std::vector<uint16_t>& headings,
+                              std::vector<BoundedHeading>& out) {
+  const double step = g_.options_.coarse_step_m;
+  // The block's first position's cell.
+  const int column = CellColumn(g_.lattice_.x0 + block.column * step);
+  const int row = CellRow(g_.lattice_.y0 + block.row * step);
+  const float threshold = KeepThreshold();
+  const size_t n = coarse_count_;
+  block.bound = -std::numeric_limits<float>::infinity();
+  for (const uint16_t h : headings) {
+    const float bound = g_.coarse_bounds_.Bound(block.level, column, row,
+                                                &offsets_[static_cast<size_t>(h) * n * 2], n);
+    work_ += n;
+    if (bound < threshold) continue;
+    out.push_back({h, bound});
+    block.bound = std::max(block.bound, bound);
+  }
+}
+
+int GlobalSearch::CellColumn(double x) const {
+  return static_cast<int>(std::lround((x - g_.cells_.x0) / g_.options_.grid_resolution_m));
+}
+
+int GlobalSearch::CellRow(double y) const {
+  return static_cast<int>(std::lround((y - g_.cells_.y0) / g_.options_.grid_resolution_m));
+}
+
+float GlobalSearch::KeepThreshold() const {
+  if (kept_scores_.size() < static_cast<size_t>(g_.options_.coarse_keep))
+    return -std::numeric_limits<float>::infinity();
+  return kept_scores_.front();
+}
+
+void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& headings) {
+  const auto& cells = g_.cells_;
+  const int column = CellColumn(g_.positions_[k].x()), row = CellRow(g_.positions_[k].y());
+  const auto width = static_cast<unsigned>(cells.width),
+             height = static_cast<unsigned>(cells.height);
+  const float* gain = g_.coarse_gain_.data();
+  const size_t n = coarse_count_;
+  std::fill(scores_.begin(), scores_.end(), -1.0f);  // not scored: never the best
+  for (const uint16_t h : headings) {
+    const int* off = &offsets_[static_cast<size_t>(h) * n * 2];
+    float sum = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+      // Off the grid (a negative cell wraps to a large unsigned one): nothing.
+      const auto c = static_cast<unsigned>(column + off[2 * i]);
+      const auto r = static_cast<unsigned>(row + off[2 * i + 1]);
+      if (c < width && r < height) sum += gain[static_cast<size_t>(r) * width + c];
+    }
+    scores_[h] = sum;
+    work_ += n;
+  }
+  // The best heading here, and the best one clearly turned from it.
+  const int best =
+      static_cast<int>(std::max_element(scores_.begin(), scores_.end()) - scores_.begin());
+  int second = -1;
+  for (int h = 0; h < headings_; ++h) {
+    const int apart = std::min(std::abs(h - best), headings_ - std::abs(h - best));
+    if (apart >= separation_ && (second < 0 || scores_[h] > scores_[second])) second = h;
+  }
+  const size_t keep = static_cast<size_t>(g_.options_.coarse_keep);
+  auto add = [&](float score, int heading) {
+    hits_.push_back({score, static_cast<int>(k), heading});
+    if (kept_scores_.size() < keep) {
+      kept_scores_.push_back(score);
+      std::push_heap(kept_scores_.begin(), kept_scores_.end(), std::greater<float>());
+    } else if (score > kept_scores_.front()) {
+      std::pop_heap(kept_scores_.begin(), kept_scores_.end(), std::greater<float>());
+      kept_scores_.back() = score;
+      std::push_heap(kept_scores_.begin(), kept_scores_.end(), std::greater<float>());
+    }
+  };
+  add(scores_[best], best);
+  if (second >= 0 && scores_[second] >= 0.0f) add(scores_[second], second);
+}
+
+}  // namespace structloc::localisation_core

@@ -1,0 +1,452 @@
+// Global localisation against the whole map (see header): its options, the
+// distance fields and the scores of a pose; the search itself is in
+// global_search.cpp.
+#include "structloc/localisation_core/global/global_localiser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <stdexcept>
+
+namespace structloc::localisation_core {
+namespace {
+
+constexpr double kMaxCells = 50e6;
+// Blocks of up to 4 x 4 lattice positions (1 m at the default step) are
+// bounded: the bound of larger blocks on the blurred field is too loose to
+// prune much, and costs as much to take as the positions' scores (measured
+// on the Intel recording with 1, 2 and 4 levels).
+constexpr int kCoarseBoundLevels = 2;
+
+void RequirePositive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw std::invalid_argument(std::string("global localiser option ") + name +
+                                " must be a positive number");
+}
+
+void Check(const GlobalLocaliserOptions& o) {
+  RequirePositive(o.grid_resolution_m, "grid_resolution_m");
+  RequirePositive(o.max_range_m, "max_range_m");
+  RequirePositive(o.coarse_step_m, "coarse_step_m");
+  RequirePositive(o.truncation_m, "truncation_m");
+  RequirePositive(o.rank_truncation_m, "rank_truncation_m");
+  RequirePositive(o.distinct_distance_m, "distinct_distance_m");
+  RequirePositive(o.distinct_heading_rad, "distinct_heading_rad");
+  // A lattice finer than the field, or a heading step that makes millions of
+  // headings, would take hours and gigabytes instead of a second.
+  if (!(o.coarse_step_m >= o.grid_resolution_m))
+    throw std::invalid_argument(
+        "global localiser option coarse_step_m must be at least grid_resolution_m");
+  const double cells_per_step = o.coarse_step_m / o.grid_resolution_m;
+  if (std::abs(cells_per_step - std::round(cells_per_step)) > 1e-6 * cells_per_step)
+    throw std::invalid_argument(
+        "global localiser option coarse_step_m must be a whole number of grid_resolution_m "
+        "cells (the coarse search looks points up by whole cells)");
+  if (!(o.coarse_heading_step_rad >= 1e-3 && o.coarse_heading_step_rad <= geometry::kPi))
+    throw std::invalid_argument(
+        "global localiser option coarse_heading_step_rad must lie in [0.001, pi]");
+  if (!(o.grid_margin_m >= 0.0) || !(o.min_range_m >= 0.0) || !(o.clearance_m >= 0.0) ||
+      !(o.coarse_blur_m >= 0.0) || !(o.see_through_margin_m >= 0.0))
+    throw std::invalid_argument(
+        "global localiser options grid_margin_m, min_range_m, clearance_m, coarse_blur_m and "
+        "see_through_margin_m must not be negative");
+  if (!(o.min_range_m < o.max_range_m))
+    throw std::invalid_argument("global localiser option min_range_m must be below max_range_m");
+  // Without a least score or margin every scan would be "found", also where
+  // the map explains nothing or two poses explain it equally well.
+  if (!(o.min_score > 0.0 && o.min_score <= 1.0))
+    throw std::invalid_argument("global localiser option min_score must lie in (0, 1]");
+  if (!(o.ambiguity_margin > 0.0 && o.ambiguity_margin < 1.0))
+    throw std::invalid_argument("global localiser option ambiguity_margin must lie in (0, 1)");
+  if (o.coarse_points > o.max_points)
+    throw std::invalid_argument(
+        "global localiser option coarse_points must not exceed max_points (the coarse search "
+        "uses some of the refinement's points)");
+  if (o.max_points < 3 || o.coarse_points < 3 || o.min_points < 3 || o.rank_points < 3 ||
+      o.coarse_keep < 1 || o.ranked < 2)
+    throw std::invalid_argument(
+        "global localiser options max_points, coarse_points, rank_points and min_points must be "
+        "at least 3, coarse_keep at least 1 and ranked at least 2");
+}
+
+}  // namespace
+
+const char* ToString(GlobalDecision decision) {
+  switch (decision) {
+    case GlobalDecision::kFound:
+      return "found";
+    case GlobalDecision::kAmbiguous:
+      return "ambiguous";
+    case GlobalDecision::kNotFound:
+      return "not found";
+  }
+  return "?";
+}
+
+Readings OneScan(std::vector<Eigen::Vector2d> points) {
+  Readings readings;
+  readings.points = std::move(points);
+  return readings;
+}
+
+std::vector<Eigen::Vector2d> ScanPointsInLaserFrame(const std::vector<float>& ranges,
+                                                    double angle_min, double angle_increment,
+                                                    double min_range_m, double max_range_m) {
+  std::vector<Eigen::Vector2d> points;
+  for (size_t i = 0; i < ranges.size(); ++i) {
+    const double r = ranges[i];
+    if (!std::isfinite(r) || r < min_range_m || r > max_range_m) continue;
+    const double a = angle_min + static_cast<double>(i) * angle_increment;
+    points.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return points;
+}
+
+GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
+                                 const GlobalLocaliserOptions& options)
+    : options_(options) {
+  Check(options);
+  const double res = options.grid_resolution_m;
+  const Eigen::Vector4d bounds = world.Bounds();
+  // A margin of whole cells: the coarse lattice (from the map's bounds, whole
+  // cells apart) then starts on a cell corner, and a point's cell at a
+  // lattice position is that position's cell plus the point's offset in cells.
+  const double margin = std::ceil(options.grid_margin_m / res - 1e-9) * res;
+  cells_.x0 = bounds[0] - margin;
+  cells_.y0 = bounds[1] - margin;
+  // Cells up to and including the one holding the far bound (also with no margin).
+  const double columns = std::floor((bounds[2] + margin - cells_.x0) / res) + 1;
+  const double rows = std::floor((bounds[3] + margin - cells_.y0) / res) + 1;
+  if (!(columns * rows <= kMaxCells))
+    throw std::invalid_argument(
+        "global localiser: the map needs a distance field of more than 50 million cells; "
+        "choose a coarser grid_resolution_m");
+  cells_.width = std::max(1, static_cast<int>(columns));
+  cells_.height = std::max(1, static_cast<int>(rows));
+
+  // Walls and pillar outlines drawn at a quarter-cell spacing.
+  cv::Mat image(cells_.height, cells_.width, CV_8U, cv::Scalar(255));
+  auto mark = [&](const Eigen::Vector2d& p) {
+    const int c = static_cast<int>(std::floor((p.x() - cells_.x0) / res));
+    const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
+    if (c >= 0 && r >= 0 && c < cells_.width && r < cells_.height) image.at<uchar>(r, c) = 0;
+  };
+  for (const auto& wall : world.Walls()) {
+    const int n = static_cast<int>(std::ceil(wall.Length() / (0.25 * res)));
+    for (int i = 0; i <= n; ++i) mark(wall.a + (wall.b - wall.a) * (double(i) / n));
+  }
+  for (const auto& pillar : world.Cylinders()) {
+    const int n =
+        std::max(16, static_cast<int>(std::ceil(2 * geometry::kPi * pillar.radius / (0.25 * res))));
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * geometry::kPi * i / n;
+      mark(pillar.centre + pillar.radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+  }
+  cv::Mat distance;
+  cv::distanceTransform(image, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+
+  const size_t count = static_cast<size_t>(cells_.width) * static_cast<size_t>(cells_.height);
+  fine_gain_.resize(count);
+  rank_gain_.resize(count);
+  coarse_gain_.resize(count);
+  wall_distance_.resize(count);
+  const double t = options.truncation_m, tr = options.rank_truncation_m;
+  for (int r = 0; r < cells_.height; ++r) {
+    for (int c = 0; c < cells_.width; ++c) {
+      const size_t i = static_cast<size_t>(r) * cells_.width + c;
+      const double d = distance.at<float>(r, c) * res;
+      const double fine = std::min(d, t),
+                   coarse = std::min(std::max(0.0, d - options.coarse_blur_m), t);
+      fine_gain_[i] = static_cast<float>(1.0 - fine * fine / (t * t));
+      const double sharp = std::min(d, tr);
+      rank_gain_[i] = static_cast<float>(1.0 - sharp * sharp / (tr * tr));
+      coarse_gain_[i] = static_cast<float>(1.0 - coarse * coarse / (t * t));
+      wall_distance_[i] = distance.at<float>(r, c);
+    }
+  }
+
+  // Coarse candidate positions: a lattice over the map's bounds, clear of walls.
+  const double step = options.coarse_step_m;
+  const int steps_x = static_cast<int>(std::floor((bounds[2] - bounds[0]) / step));
+  const int steps_y = static_cast<int>(std::floor((bounds[3] - bounds[1]) / step));
+  lattice_.x0 = bounds[0];
+  lattice_.y0 = bounds[1];
+  lattice_.rows = steps_y + 1;
+  lattice_.columns = steps_x + 1;
+  lattice_.position.assign(static_cast<size_t>(lattice_.rows) * lattice_.columns, -1);
+  cv::Mat clear(lattice_.rows, lattice_.columns, CV_8U, cv::Scalar(0));
+  for (int j = 0; j <= steps_y; ++j) {
+    for (int i = 0; i <= steps_x; ++i) {
+      const double x = bounds[0] + i * step, y = bounds[1] + j * step;
+      const int c = static_cast<int>(std::floor((x - cells_.x0) / res));
+      const int r = static_cast<int>(std::floor((y - cells_.y0) / res));
+      if (c < 0 || r < 0 || c >= cells_.width || r >= cells_.height) continue;
+      if (distance.at<float>(r, c) * res < options.clearance_m) continue;
+      lattice_.position[static_cast<size_t>(j) * lattice_.columns + i] =
+          static_cast<int>(positions_.size());
+      positions_.emplace_back(x, y);
+      clear.at<uchar>(j, i) = 1;
+    }
+  }
+  cv::Mat positions_before;
+  cv::integral(clear, positions_before, CV_32S);
+  lattice_.positions_before.assign(positions_before.begin<int>(), positions_before.end<int>());
+  coarse_bounds_ = CoarseBounds(coarse_gain_, cells_.width, cells_.height,
+                                static_cast<int>(std::lround(step / res)), kCoarseBoundLevels);
+}
+
+// Every `step`-th of the points, at most `most` of them, spread over the scan.
+std::vector<Eigen::Vector2d> GlobalLocaliser::Spread(const std::vector<Eigen::Vector2d>& points,
+                                                     int most) {
+  if (points.size() <= static_cast<size_t>(most)) return points;
+  std::vector<Eigen::Vector2d> out;
+  const double step = static_cast<double>(points.size()) / most;
+  for (int i = 0; i < most; ++i) out.push_back(points[static_cast<size_t>(i * step)]);
+  return out;
+}
+
+// The same for readings and the places they were seen from (none: all from
+// the laser's origin); which of them were the newest scan's is not kept.
+Readings GlobalLocaliser::Spread(const Readings& readings, int most) {
+  Readings spread = OneScan(Spread(readings.points, most));
+  if (!readings.seen_from.empty()) spread.seen_from = Spread(readings.seen_from, most);
+  spread.scans = readings.scans;
+  return spread;
+}
+
+double GlobalLocaliser::Gain(const std::vector<float>& gain, double x, double y) const {
+  return GainAtCell(gain, (x - cells_.x0) / options_.grid_resolution_m - 0.5,
+                    (y - cells_.y0) / options_.grid_resolution_m - 0.5);
+}
+
+double GlobalLocaliser::GainAtCell(const std::vector<float>& gain, double gx, double gy) const {
+  if (!(gx >= 0.0 && gy >= 0.0)) return 0.0;
+  const int c = static_cast<int>(gx), r = static_cast<int>(gy);  // floor, as not negative
+  if (c + 1 >= cells_.width || r + 1 >= cells_.height) return 0.0;
+  const double fx = gx - c, fy = gy - r;
+  const size_t i = static_cast<size_t>(r) * cells_.width + c;
+  const size_t w = static_cast<size_t>(cells_.width);
+  const double bottom = (1 - fx) * gain[i] + fx * gain[i + 1];
+  const double top = (1 - fx) * gain[i + w] + fx * gain[i + w + 1];
+  return (1 - fy) * bottom + fy * top;
+}
+
+Readings GlobalLocaliser::UsableReadings(const Readings& readings) const {
+  if (!readings.seen_from.empty() && readings.seen_from.size() != readings.points.size())
+    throw std::invalid_argument("global localiser: readings have " +
+                                std::to_string(readings.points.size()) + " points but " +
+                                std::to_string(readings.seen_from.size()) + " places seen from");
+  if (readings.newest_points && *readings.newest_points > readings.points.size())
+    throw std::invalid_argument("global localiser: readings' newest scan has more points (" +
+                                std::to_string(*readings.newest_points) + ") than all (" +
+                                std::to_string(readings.points.size()) + ")");
+  Readings usable;
+  for (size_t i = 0; i < readings.points.size(); ++i) {
+    const Eigen::Vector2d& from =
+        readings.seen_from.empty() ? Eigen::Vector2d::Zero() : readings.seen_from[i];
+    const double r = (readings.points[i] - from).norm();
+    if (!std::isfinite(r) || r < options_.min_range_m || r > options_.max_range_m) continue;
+    usable.points.push_back(readings.points[i]);
+    if (!readings.seen_from.empty()) usable.seen_from.push_back(from);
+  }
+  return Spread(usable, options_.rank_points);
+}
+
+void GlobalLocaliser::TurnPoints(const std::vector<Eigen::Vector2d>& points, double theta,
+                                 std::vector<Eigen::Vector2d>& turned) const {
+  const double per_cell = 1.0 / options_.grid_resolution_m;
+  const double c = std::cos(theta) * per_cell, s = std::sin(theta) * per_cell;
+  turned.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    turned[i] = {c * points[i].x() - s * points[i].y(), s * points[i].x() + c * points[i].y()};
+  }
+}
+
+double GlobalLocaliser::TurnedScore(const std::vector<float>& gain,
+                                    const std::vector<Eigen::Vector2d>& turned, double x, double y,
+                                    uint64_t* work) const {
+  if (work != nullptr) *work += turned.size();
+  if (turned.empty()) return 0.0;
+  const double per_cell = 1.0 / options_.grid_resolution_m;
+  const double gx = (x - cells_.x0) * per_cell - 0.5, gy = (y - cells_.y0) * per_cell - 0.5;
+  double sum = 0.0;
+  for (const auto& q : turned) sum += GainAtCell(gain, gx + q.x(), gy + q.y());
+  return sum / static_cast<double>(turned.size());
+}
+
+// The samples every half cell from `from` to `to` (ends excluded), as many
+// as fit, each tested for lying in a wall cell; the distance field says how
+// many of the next samples are certainly clear, and those are skipped (the
+// result is that of testing every sample).
+bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+  const double res = options_.grid_resolution_m;
+  const double length = (to - from).norm();
+  const int steps = static_cast<int>(length / (0.5 * res));
+  if (steps < 2) return false;
+  const double spacing = length / steps;
+  // In cells: the start, and the step from one sample to the next.
+  const double fx = (from.x() - cells_.x0) / res, fy = (from.y() - cells_.y0) / res;
+  const double dx = (to.x() - from.x()) / (res * steps), dy = (to.y() - from.y()) / (res * steps);
+  // A wall cell's points lie at least (d - sqrt 2) cells from any point of a
+  // cell whose centre is d cells from the wall cell's centre (with a margin
+  // for the field's rounding).
+  constexpr double kCellDiagonal = 1.4142135623730951 + 1e-3;
+  const double width = cells_.width, height = cells_.height;
+  for (int i = 1; i < steps;) {
+    const double x = fx + dx * i, y = fy + dy * i;
+    if (!(x >= 0.0 && y >= 0.0 && x < width && y < height)) return false;
+    const double d = wall_distance_[static_cast<size_t>(static_cast<int>(y)) * cells_.width +
+                                    static_cast<int>(x)];
+    if (d == 0.0) return true;
+    const double clear_m = (d - kCellDiagonal) * res;
+    i += 1 + (clear_m > spacing ? static_cast<int>(clear_m / spacing) : 0);
+  }
+  return false;
+}
+
+double GlobalLocaliser::RankGain(const Eigen::Vector2d& origin, const Eigen::Vector2d& q) const {
+  // A point no surface explains adds nothing, whether its beam crossed a wall or not.
+  const double gain = Gain(rank_gain_, q.x(), q.y());
+  if (gain <= 0.0) return 0.0;
+  const double range = (q - origin).norm();
+  if (range > options_.see_through_margin_m) {
+    const Eigen::Vector2d short_end =
+        origin + (q - origin) * ((range - options_.see_through_margin_m) / range);
+    if (CrossesWall(origin, short_end)) return 0.0;
+  }
+  return gain;
+}
+
+double GlobalLocaliser::RankScore(const std::vector<Eigen::Vector2d>& points,
+                                  const std::vector<Eigen::Vector2d>& seen_from,
+                                  const geometry::Pose2D& pose) const {
+  if (points.empty()) return 0.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d origin =
+        seen_from.empty() ? pose.Translation() : pose.Apply(seen_from[i]);
+    sum += RankGain(origin, pose.Apply(points[i]));
+  }
+  return sum / static_cast<double>(points.size());
+}
+
+std::vector<Eigen::Vector2d> GlobalLocaliser::FitPoints(const std::vector<Eigen::Vector2d>& points,
+                                                        int most) const {
+  return Spread(UsableReadings(OneScan(points)).points, std::max(1, most));
+}
+
+geometry::Pose2D GlobalLocaliser::Polish(const std::vector<Eigen::Vector2d>& fit_points,
+                                         const geometry::Pose2D& laser_pose) const {
+  auto climb = StartClimb(rank_gain_, fit_points, laser_pose, 0.05, 0.01, nullptr);
+  while (!climb.Done()) ClimbRound(rank_gain_, fit_points, climb, nullptr);
+  return climb.pose;
+}
+
+GlobalLocaliser::Fit GlobalLocaliser::FitAt(const std::vector<Eigen::Vector2d>& fit_points,
+                                            const geometry::Pose2D& laser_pose,
+                                            double unexplained_likelihood) const {
+  Fit fit;
+  if (fit_points.empty()) return fit;
+  const double u = std::clamp(unexplained_likelihood, 1e-6, 1.0);
+  for (const auto& p : fit_points) {
+    const double gain = RankGain(laser_pose.Translation(), laser_pose.Apply(p));
+    fit.share += gain;
+    fit.mean_log_likelihood += std::log((1.0 - u) * gain + u);
+  }
+  const double n = static_cast<double>(fit_points.size());
+  fit.share /= n;
+  fit.mean_log_likelihood /= n;
+  return fit;
+}
+
+double GlobalLocaliser::Score(const std::vector<Eigen::Vector2d>& points,
+                              const geometry::Pose2D& laser_pose) const {
+  return Score(OneScan(points), laser_pose);
+}
+
+double GlobalLocaliser::Score(const Readings& readings, const geometry::Pose2D& laser_pose) const {
+  const Readings usable = UsableReadings(readings);
+  return RankScore(usable.points, usable.seen_from, laser_pose);
+}
+
+// A window's poses: the refinement may climb a coarse step beyond its edge,
+// no farther (a pose found far outside was never weighed against the rest of
+// the map).
+bool GlobalLocaliser::InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const {
+  return (pose.Translation() - window.centre.Translation()).norm() <=
+             window.radius_m + options_.coarse_step_m &&
+         std::abs(geometry::WrapAngle(pose.theta - window.centre.theta)) <=
+             window.heading_rad + options_.coarse_heading_step_rad;
+}
+
+GlobalLocaliser::Climb GlobalLocaliser::StartClimb(const std::vector<float>& gain,
+                                                   const std::vector<Eigen::Vector2d>& points,
+                                                   const geometry::Pose2D& pose, double step,
+                                                   double turn, uint64_t* work) const {
+  Climb climb{pose, 0.0, step, turn, {}, {}};
+  TurnPoints(points, pose.theta, climb.turned);
+  climb.score = TurnedScore(gain, climb.turned, pose.x, pose.y, work);
+  return climb;
+}
+
+// One round of hill climbing: a move of one step in x, y or heading wherever
+// it raises the score, the steps halved when none does.
+void GlobalLocaliser::ClimbRound(const std::vector<float>& gain,
+                                 const std::vector<Eigen::Vector2d>& points, Climb& climb,
+                                 uint64_t* work) const {
+  bool improved = false;
+  const double step = climb.step, turn = climb.turn;
+  const Eigen::Vector2d shifts[4] = {{step, 0}, {-step, 0}, {0, step}, {0, -step}};
+  for (const auto& shift : shifts) {
+    const double x = climb.pose.x + shift.x(), y = climb.pose.y + shift.y();
+    const double s = TurnedScore(gain, climb.turned, x, y, work);
+    if (s > climb.score) {
+      climb.score = s;
+      climb.pose.x = x;
+      climb.pose.y = y;
+      improved = true;
+    }
+  }
+  for (const double sign : {1.0, -1.0}) {
+    const double theta = geometry::WrapAngle(climb.pose.theta + sign * turn);
+    TurnPoints(points, theta, climb.trial_turned);
+    const double s = TurnedScore(gain, climb.trial_turned, climb.pose.x, climb.pose.y, work);
+    if (s > climb.score) {
+      climb.score = s;
+      climb.pose.theta = theta;
+      climb.turned.swap(climb.trial_turned);
+      improved = true;
+    }
+  }
+  if (!improved) {
+    climb.step *= 0.5;
+    climb.turn *= 0.5;
+  }
+}
+
+std::vector<size_t> GlobalLocaliser::PositionsNear(const Eigen::Vector2d& centre,
+                                                   double radius_m) const {
+  std::vector<size_t> near;
+  const double step = options_.coarse_step_m;
+  auto first = [&](double from, double origin) {
+    return std::max(0, static_cast<int>(std::floor((from - origin) / step)));
+  };
+  auto last = [&](double to, double origin, int count) {
+    return std::min(count - 1, static_cast<int>(std::ceil((to - origin) / step)));
+  };
+  const int first_column = first(centre.x() - radius_m, lattice_.x0);
+  const int last_column = last(centre.x() + radius_m, lattice_.x0, lattice_.columns);
+  const int last_row = last(centre.y() + radius_m, lattice_.y0, lattice_.rows);
+  for (int j = first(centre.y() - radius_m, lattice_.y0); j <= last_row; ++j) {
+    for (int i = first_column; i <= last_column; ++i) {
+      const int k = lattice_.position[static_cast<size_t>(j) * lattice_.columns + i];
+      if (k >= 0 && (positions_[static_cast<size_t>(k)] - centre).norm() <= radius_m)
+        near.push_back(static_cast<size_t>(k));
+    }
+  }
+  return near;
+}
+
+}  // namespace structloc::localisation_core

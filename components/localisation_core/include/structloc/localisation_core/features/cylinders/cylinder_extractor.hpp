@@ -1,0 +1,33 @@
+// Feature kind "cylinders" (thesis 3.5.6, EQ 36-40): sliding circle fits
+// clustered around expected pillar centres; one point measurement per matched
+// pillar (the thesis solver's EQ 43 treats it as a circle, not a point).
+#pragma once
+
+#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
+#include "structloc/localisation_core/features/feature_extractor.hpp"
+#include "structloc/localisation_core/features/feature_kinds.hpp"
+
+namespace structloc::localisation_core {
+
+class CylinderExtractor : public FeatureExtractor {
+ public:
+  // Buffers for `max_beams` beams and `cylinders` expected pillars.
+  CylinderExtractor(const CylinderOptions& options, size_t max_beams, size_t cylinders);
+  const char* Kind() const override { return "cylinders"; }
+  FeatureShape Shape() const override { return FeatureShape::kPoint; }
+  int Expected(const ExpectedFeatures& expected) const override {
+    return static_cast<int>(expected.cylinders.size());
+  }
+  void Extract(const ExtractionInput& in, Measurements& all,
+               std::vector<FeatureMatch>& matches) override;
+
+ private:
+  CylinderOptions options_;
+  CylinderWork work_;
+  std::vector<PointCluster> clusters_;
+};
+
+// The kind "cylinders": its options blocks, when it is enabled, how it is built.
+FeatureKind CylinderKind();
+
+}  // namespace structloc::localisation_core

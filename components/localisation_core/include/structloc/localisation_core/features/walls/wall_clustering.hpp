@@ -1,0 +1,80 @@
+// Step 3 (thesis 3.5.3, EQ 23-25): window lines join the cluster of the nearest
+// expected wall within the (r, alpha) gates; unmodelled obstacles form
+// clusters nobody uses. Each cluster yields the thesis' value (mean r,
+// circular-mean alpha) and, beyond the thesis, a refined line fitted through
+// all member points with its covariance from the point scatter.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/scan/line_fit.hpp"
+
+namespace structloc::localisation_core {
+
+struct WallClusterOptions {
+  double gate_r_m = 0.2;             // Table 6: size of cluster (r)
+  double gate_alpha_rad = 0.2;       // Table 6: size of cluster (alpha)
+  int min_cluster_size = 1;          // Table 6: minimum number of points in a cluster
+  double extent_margin_m = 0.5;      // a window must lie within the visible part of one
+                                     // map wall plus this margin (0 or less disables the check)
+  double min_point_sigma_m = 0.002;  // floor of the per-point noise used for covariances
+  // The map's own error (beyond the thesis, which takes the map as exact): offset
+  // of a wall at its centre and its angle, 1 sigma. Added to every pairing's
+  // covariance, the angle's share growing with the distance from the wall's centre.
+  double map_sigma_r_m = 0.0;
+  double map_sigma_alpha_rad = 0.0;
+  // Mahalanobis gate (chi-square, 2 dof) of a window and of a cluster against its
+  // expected wall under the prior's covariance, the measurement's and the map's;
+  // a cluster that passes the gate of two walls is ambiguous and dropped.
+  // 0 keeps the thesis' fixed gates only.
+  double gate_chi2 = 0.0;
+};
+
+// A matched wall: the measurement in the sensor frame, oriented like its
+// expected wall (r may be negative), and its uncertainty.
+struct WallCluster {
+  int expected_index = 0;
+  int members = 0;          // window lines in the cluster
+  double mean_r = 0.0;      // thesis value: mean of the members' r
+  double mean_alpha = 0.0;  // thesis value: circular mean of the members' alpha
+  double refined_r = 0.0;   // line through the member points
+  double refined_alpha = 0.0;
+  int points = 0;  // member points behind the refined line
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // of (refined_r, refined_alpha)
+  Eigen::Vector2d centroid{0, 0};                            // of the member points
+};
+
+// Window i -> expected wall index, or -1. Nearest (normalised) match wins.
+// With options.gate_chi2 > 0 a window's centroid must also lie within that
+// Mahalanobis gate of the expected line under `sensor_covariance` (the prior's).
+void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
+                                const ExpectedFeatures& expected,
+                                const geometry::Pose2D& sensor_pose,
+                                const Eigen::Matrix3d& sensor_covariance,
+                                const WallClusterOptions& options, std::vector<int>& assignment);
+
+// Scratch space for BuildWallClusters, reused across updates.
+struct WallClusterWork {
+  std::vector<int> point_label;
+  std::vector<LineSums> sums;
+  std::vector<double> r_sum, c_sum, s_sum;
+  std::vector<int> count;
+  std::vector<size_t> labelled_end;  // per expected wall: points labelled so far
+  void Reserve(size_t points, size_t expected);
+};
+
+void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
+                       const ScanPoints& points, int window_points,
+                       const ExpectedFeatures& expected, const WallClusterOptions& options,
+                       WallClusterWork& work, std::vector<WallCluster>& out);
+
+// Adds the map's error to each cluster's covariance and, with options.gate_chi2
+// > 0, drops clusters outside the Mahalanobis gate of their expected wall or
+// inside the gate of another (ambiguous), under the prior's covariance.
+void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& sensor_pose,
+                      const Eigen::Matrix3d& sensor_covariance, const WallClusterOptions& options,
+                      std::vector<WallCluster>& clusters);
+
+}  // namespace structloc::localisation_core
