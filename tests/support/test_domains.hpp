@@ -35,7 +35,7 @@ inline constexpr int kInstallTest = 82;
 inline constexpr int kDdsSecurity = 83;
 // tests/security/secure_demo_test.sh (a script: tests/CMakeLists.txt passes it 84).
 inline constexpr int kSecureDemo = 84;
-// tests/repeated_faults_test.cpp: the simulator's kills on 85, the
+// tests/system/repeated_faults_test.cpp: the simulator's kills on 85, the
 // localisation's on 88, the calibration's on 89.
 inline constexpr int kRepeatedFaults = 85;
 inline constexpr int kRepeatedFaultsLocalisation = 88;
