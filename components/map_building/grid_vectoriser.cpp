@@ -290,102 +290,147 @@ FittedCircle FitCircle(const std::vector<Eigen::Vector2d>& points) {
   return circle;
 }
 
-GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOptions& options) {
-  CheckOptions(options);
-  GridVectorisation out;
-  out.cells = grid.cells.size();
-  const double res = grid.resolution_m;
-  auto occupied = [&](int c, int r) {
-    return grid.Contains(c, r) && grid.At(c, r) >= options.occupied_min_value;
-  };
-  auto free = [&](int c, int r) {
-    return grid.Contains(c, r) && grid.At(c, r) >= 0 && grid.At(c, r) <= options.free_max_value;
-  };
-  cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
-  bool any_free = false;
-  for (int r = 0; r < grid.height; ++r) {
-    for (int c = 0; c < grid.width; ++c) {
-      if (occupied(c, r)) {
-        mask.at<uint8_t>(r, c) = 255;
-        ++out.occupied_cells;
-      } else if (free(c, r)) {
-        any_free = true;
-      }
+namespace {
+
+// Which cells of the grid are occupied, free, open and faces, by the
+// options' thresholds.
+class CellKinds {
+ public:
+  CellKinds(const OccupancyGrid& grid, const GridVectoriseOptions& options)
+      : grid_(grid), options_(options) {
+    for (int r = 0; r < grid.height && !any_free_; ++r) {
+      for (int c = 0; c < grid.width && !any_free_; ++c) any_free_ = !Occupied(c, r) && Free(c, r);
     }
   }
-  if (out.occupied_cells == 0)
+  bool Occupied(int c, int r) const {
+    return grid_.Contains(c, r) && grid_.At(c, r) >= options_.occupied_min_value;
+  }
+  bool Free(int c, int r) const {
+    return grid_.Contains(c, r) && grid_.At(c, r) >= 0 && grid_.At(c, r) <= options_.free_max_value;
+  }
+  // A face looks onto free space; a grid without free cells (only occupied
+  // and unknown) has its faces looking onto anything not occupied.
+  bool Open(int c, int r) const { return any_free_ ? Free(c, r) : !Occupied(c, r); }
+  bool Face(int c, int r) const {
+    return Open(c - 1, r) || Open(c + 1, r) || Open(c, r - 1) || Open(c, r + 1);
+  }
+
+ private:
+  const OccupancyGrid& grid_;
+  const GridVectoriseOptions& options_;
+  bool any_free_ = false;
+};
+
+// The occupied cells (255), refused when there are none or when Hough would
+// have more face cells to vote with than max_face_cells.
+cv::Mat OccupiedMask(const OccupancyGrid& grid, const CellKinds& kinds,
+                     const GridVectoriseOptions& options, size_t& occupied) {
+  cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      if (!kinds.Occupied(c, r)) continue;
+      mask.at<uint8_t>(r, c) = 255;
+      ++occupied;
+    }
+  }
+  if (occupied == 0)
     throw std::invalid_argument("the grid has no occupied cell (none at or above " +
                                 std::to_string(options.occupied_min_value) +
                                 "): nothing to import");
-  // A face looks onto free space; a grid without free cells (only occupied
-  // and unknown) has its faces looking onto anything not occupied.
-  auto open = [&](int c, int r) { return any_free ? free(c, r) : !occupied(c, r); };
-  auto face = [&](int c, int r) {
-    return open(c - 1, r) || open(c + 1, r) || open(c, r - 1) || open(c, r + 1);
-  };
   // Hough's time grows with the face cells: bounded before any blob is made.
   size_t all_faces = 0;
   for (int r = 0; r < grid.height; ++r) {
-    for (int c = 0; c < grid.width; ++c) all_faces += mask.at<uint8_t>(r, c) != 0 && face(c, r);
+    for (int c = 0; c < grid.width; ++c)
+      all_faces += mask.at<uint8_t>(r, c) != 0 && kinds.Face(c, r);
   }
   if (all_faces > options.max_face_cells) {
     OverBudget("the grid has " + std::to_string(all_faces) + " occupied cells next to open space",
                "max_face_cells", options.max_face_cells);
   }
+  return mask;
+}
 
-  cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+// The 8-connected blobs of occupied cells (index 0: the background).
+struct Blobs {
+  cv::Mat labels;  // per cell, its blob
+  std::vector<Blob> blobs;
+  int Count() const { return static_cast<int>(blobs.size()); }
+};
+
+Blobs FindBlobs(const cv::Mat& mask, const GridVectoriseOptions& options) {
+  Blobs out;
+  cv::Mat stats, centroids;
+  const int count = cv::connectedComponentsWithStats(mask, out.labels, stats, centroids, 8, CV_32S);
   if (static_cast<size_t>(count - 1) > options.max_blobs) {
     OverBudget("the grid has " + std::to_string(count - 1) + " blobs of occupied cells",
                "max_blobs", options.max_blobs);
   }
-  std::vector<Blob> blobs(static_cast<size_t>(count));
+  out.blobs.resize(static_cast<size_t>(count));
   for (int i = 1; i < count; ++i) {
-    blobs[static_cast<size_t>(i)] = {
+    out.blobs[static_cast<size_t>(i)] = {
         stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
         stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
         static_cast<size_t>(stats.at<int>(i, cv::CC_STAT_AREA))};
   }
-  // Boundary cells of the blobs shaped like a pillar (small and round), the
-  // only ones a circle is fitted to.
+  return out;
+}
+
+// Boundary cells of the blobs shaped like a pillar (small and round), the
+// only ones a circle is fitted to: per blob its slot in `cells` (-1: none).
+struct PillarBoundaries {
+  std::vector<int> slot;
+  std::vector<std::vector<Eigen::Vector2d>> cells;
+};
+
+PillarBoundaries PillarShapedBoundaries(const OccupancyGrid& grid, const CellKinds& kinds,
+                                        const Blobs& found, const GridVectoriseOptions& options) {
+  const double res = grid.resolution_m;
   const auto pillar_shaped = [&](const Blob& blob) {
     const double long_side = std::max(blob.width, blob.height) * res;
     const double short_side = std::min(blob.width, blob.height) * res;
     return long_side <= 2.0 * options.max_pillar_radius_m + 2.0 * res &&
            short_side >= options.min_pillar_roundness * long_side;
   };
-  std::vector<int> pillar_slot(static_cast<size_t>(count), -1);
-  std::vector<std::vector<Eigen::Vector2d>> boundary;
-  for (int i = 1; i < count; ++i) {
-    if (!pillar_shaped(blobs[static_cast<size_t>(i)])) continue;
-    pillar_slot[static_cast<size_t>(i)] = static_cast<int>(boundary.size());
-    boundary.emplace_back();
+  PillarBoundaries out;
+  out.slot.assign(found.blobs.size(), -1);
+  for (int i = 1; i < found.Count(); ++i) {
+    if (!pillar_shaped(found.blobs[static_cast<size_t>(i)])) continue;
+    out.slot[static_cast<size_t>(i)] = static_cast<int>(out.cells.size());
+    out.cells.emplace_back();
   }
   for (int r = 0; r < grid.height; ++r) {
     for (int c = 0; c < grid.width; ++c) {
-      const int label = labels.at<int>(r, c);
-      if (label == 0 || pillar_slot[static_cast<size_t>(label)] < 0) continue;
-      if (!occupied(c - 1, r) || !occupied(c + 1, r) || !occupied(c, r - 1) || !occupied(c, r + 1))
-        boundary[static_cast<size_t>(pillar_slot[static_cast<size_t>(label)])].push_back(
-            grid.CellCentre(c, r));
+      const int slot = out.slot[static_cast<size_t>(found.labels.at<int>(r, c))];
+      if (slot < 0) continue;
+      if (!kinds.Occupied(c - 1, r) || !kinds.Occupied(c + 1, r) || !kinds.Occupied(c, r - 1) ||
+          !kinds.Occupied(c, r + 1))
+        out.cells[static_cast<size_t>(slot)].push_back(grid.CellCentre(c, r));
     }
   }
+  return out;
+}
 
+// Classifies the blobs (judged with those up to max_join_gap_m away):
+// specks and the rest left out, pillars into out.pillars, and walls, whose
+// blobs it returns (true per blob label).
+std::vector<bool> ClassifyBlobs(const OccupancyGrid& grid, const cv::Mat& mask, const Blobs& found,
+                                const PillarBoundaries& boundaries,
+                                const GridVectoriseOptions& options, GridVectorisation& out) {
+  const double res = grid.resolution_m;
   // Whole cells of gap, at most kMaxJoinGapCells.
   const double gap_cells =
       std::min(std::floor(options.max_join_gap_m / res + 1e-9), kMaxJoinGapCells);
-  const auto groups = GroupsOfBlobs(mask, labels, blobs, static_cast<int>(gap_cells));
-  // Classify the blobs: specks, pillars, walls, and the rest left out.
-  std::vector<bool> is_wall(static_cast<size_t>(count), false);
-  for (int i = 1; i < count; ++i) {
+  const auto groups = GroupsOfBlobs(mask, found.labels, found.blobs, static_cast<int>(gap_cells));
+  std::vector<bool> is_wall(found.blobs.size(), false);
+  for (int i = 1; i < found.Count(); ++i) {
     const BlobGroup& group = groups[static_cast<size_t>(i)];
     if (group.cells <= options.max_speck_cells) {
       ++out.specks_left_out;
       continue;
     }
-    const int slot = pillar_slot[static_cast<size_t>(i)];
-    if (slot >= 0 && boundary[static_cast<size_t>(slot)].size() >= 6) {
-      const auto circle = FitPillar(boundary[static_cast<size_t>(slot)], res);
+    const int slot = boundaries.slot[static_cast<size_t>(i)];
+    if (slot >= 0 && boundaries.cells[static_cast<size_t>(slot)].size() >= 6) {
+      const auto circle = FitPillar(boundaries.cells[static_cast<size_t>(slot)], res);
       if (circle && circle->radius >= options.min_pillar_radius_m &&
           circle->radius <= options.max_pillar_radius_m &&
           circle->rms_m <= options.max_pillar_rms_cells * res) {
@@ -400,84 +445,94 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
       ++out.blobs_left_out;
     }
   }
+  return is_wall;
+}
 
-  // Face cells of the wall blobs: the points the walls are fitted to.
-  cv::Mat faces(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
-  FaceCells face_cells(grid);
-  for (int r = 0; r < grid.height; ++r) {
-    for (int c = 0; c < grid.width; ++c) {
-      if (!is_wall[static_cast<size_t>(labels.at<int>(r, c))] || !face(c, r)) continue;
-      faces.at<uint8_t>(r, c) = 255;
-      face_cells.Add(c, r);
+// One proposal refitted on its own (see WallCandidates).
+struct Candidate {
+  FittedWall fit;
+  std::vector<std::vector<Eigen::Vector2d>> runs;
+  std::vector<long long> cells;  // keys of the cells fitted, each once
+  size_t on_line = 0;            // cells within kOnLineCells of the line
+  bool dropped = false;
+};
+
+// A Hough segment (cell coordinates) refitted on the face cells: first on
+// those along it, then on its whole line until its cells settle; nullopt when
+// no run of cells long enough is left.
+std::optional<Candidate> Refit(const cv::Vec4i& s, const OccupancyGrid& grid,
+                               const FaceCells& face_cells, const GridVectoriseOptions& options,
+                               RefitBudget& budget) {
+  const double res = grid.resolution_m;
+  const Eigen::Vector2d a = grid.CellCentre(s[0], s[1]), b = grid.CellCentre(s[2], s[3]);
+  if ((b - a).norm() < 1e-9) return std::nullopt;
+  Line proposed;
+  proposed.normal = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
+  proposed.r = proposed.normal.dot(a);
+  const Eigen::Vector2d mid = (a + b) / 2.0;
+  // Start: the cells along the proposed segment (and a gap beyond its ends).
+  const Eigen::Vector2d direction = proposed.Direction();
+  const double half = (b - a).norm() / 2.0 + options.max_gap_m;
+  std::vector<Eigen::Vector2d> start;
+  for (const auto& p : face_cells.Near(proposed, options.proposal_capture_cells * res, budget))
+    if (std::abs(direction.dot(p - mid)) <= half) start.push_back(p);
+  auto runs = Runs(start, options.max_gap_m, options.min_wall_length_m);
+  if (runs.empty()) return std::nullopt;
+  // Then the whole line, refitted until its cells settle (first with the
+  // wider capture, so that a slightly turned start swings back): every piece
+  // of the line (across doors) is fitted jointly.
+  FittedWall fit = FitWall(Joined(runs));
+  for (int iteration = 0; iteration < 4 && !runs.empty(); ++iteration) {
+    const double capture =
+        (iteration < 2 ? options.proposal_capture_cells : options.capture_cells) * res;
+    runs = Runs(face_cells.Near(LineOf(fit), capture, budget), options.max_gap_m,
+                options.min_wall_length_m);
+    if (!runs.empty()) fit = FitWall(Joined(runs));
+  }
+  if (runs.empty()) return std::nullopt;
+  Candidate candidate{fit, runs, {}, 0, false};
+  const Line fitted = LineOf(fit);
+  for (const auto& run : runs) {
+    for (const auto& p : run) {
+      candidate.cells.push_back(face_cells.KeyOf(p));
+      candidate.on_line += fitted.Distance(p) <= kOnLineCells * res;
     }
   }
-  out.face_cells = face_cells.Points().size();
+  // Each cell once (a cell centre far from the origin may round into its
+  // neighbour's cell).
+  std::sort(candidate.cells.begin(), candidate.cells.end());
+  candidate.cells.erase(std::unique(candidate.cells.begin(), candidate.cells.end()),
+                        candidate.cells.end());
+  return candidate;
+}
 
+// The walls' Hough proposals, longest first, each refitted on its own;
+// proposals that end on the same cells (near-parallel, sharing half of them)
+// are one wall, and the fit with the most cells within ~half a cell of its
+// line wins (not simply the most cells: a line slanting across a thick
+// wall's two faces collects as many cells as either face, but few of them
+// lie on it). Those that lost are marked dropped.
+std::vector<Candidate> WallCandidates(const OccupancyGrid& grid, const cv::Mat& faces,
+                                      const FaceCells& face_cells,
+                                      const GridVectoriseOptions& options) {
+  const double res = grid.resolution_m;
   std::vector<cv::Vec4i> proposals;
-  if (out.face_cells > 0) {
+  if (!face_cells.Points().empty()) {
     cv::HoughLinesP(faces, proposals, 1.0, CV_PI / 720.0, options.hough_votes,
                     options.min_wall_length_m / res, options.max_gap_m / res);
   }
   auto length = [](const cv::Vec4i& s) { return std::hypot(s[2] - s[0], s[3] - s[1]); };
   std::stable_sort(proposals.begin(), proposals.end(),
                    [&](const auto& l, const auto& m) { return length(l) > length(m); });
-
-  // Each proposal is refitted on its own; proposals that end on the same
-  // cells (near-parallel, sharing half of them) are one wall, and the fit
-  // with the most cells within ~half a cell of its line wins (not simply the
-  // most cells: a line slanting across a thick wall's two faces collects as
-  // many cells as either face, but few of them lie on it).
-  struct Candidate {
-    FittedWall fit;
-    std::vector<std::vector<Eigen::Vector2d>> runs;
-    std::vector<long long> cells;  // keys of the cells fitted, each once
-    size_t on_line = 0;            // cells within kOnLineCells of the line
-    bool dropped = false;
-  };
   std::vector<Candidate> candidates;
   RefitBudget budget(options.max_refit_work);
   std::unordered_map<long long, std::vector<size_t>> candidates_of_cell;
   std::vector<size_t> sharers;  // per cell shared, the earlier candidate sharing it
   for (const auto& s : proposals) {
-    const Eigen::Vector2d a = grid.CellCentre(s[0], s[1]), b = grid.CellCentre(s[2], s[3]);
-    if ((b - a).norm() < 1e-9) continue;
-    Line proposed;
-    proposed.normal = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
-    proposed.r = proposed.normal.dot(a);
-    const Eigen::Vector2d mid = (a + b) / 2.0;
-    // Start: the cells along the proposed segment (and a gap beyond its ends).
-    const Eigen::Vector2d direction = proposed.Direction();
-    const double half = (b - a).norm() / 2.0 + options.max_gap_m;
-    std::vector<Eigen::Vector2d> start;
-    for (const auto& p : face_cells.Near(proposed, options.proposal_capture_cells * res, budget))
-      if (std::abs(direction.dot(p - mid)) <= half) start.push_back(p);
-    auto runs = Runs(start, options.max_gap_m, options.min_wall_length_m);
-    if (runs.empty()) continue;
-    // Then the whole line, refitted until its cells settle (first with the
-    // wider capture, so that a slightly turned start swings back): every piece
-    // of the line (across doors) is fitted jointly.
-    FittedWall fit = FitWall(Joined(runs));
-    for (int iteration = 0; iteration < 4 && !runs.empty(); ++iteration) {
-      const double capture =
-          (iteration < 2 ? options.proposal_capture_cells : options.capture_cells) * res;
-      runs = Runs(face_cells.Near(LineOf(fit), capture, budget), options.max_gap_m,
-                  options.min_wall_length_m);
-      if (!runs.empty()) fit = FitWall(Joined(runs));
-    }
-    if (runs.empty()) continue;
-    Candidate candidate{fit, runs, {}, 0, false};
-    const Line fitted = LineOf(fit);
-    for (const auto& run : runs) {
-      for (const auto& p : run) {
-        candidate.cells.push_back(face_cells.KeyOf(p));
-        candidate.on_line += fitted.Distance(p) <= kOnLineCells * res;
-      }
-    }
-    // Each cell once (a cell centre far from the origin may round into its
-    // neighbour's cell).
-    std::sort(candidate.cells.begin(), candidate.cells.end());
-    candidate.cells.erase(std::unique(candidate.cells.begin(), candidate.cells.end()),
-                          candidate.cells.end());
+    auto refit = Refit(s, grid, face_cells, options, budget);
+    if (!refit) continue;
+    Candidate& candidate = *refit;
+    const Line fitted = LineOf(candidate.fit);
     // The earlier candidates that share cells with this one, in the order
     // they came, with how many cells each shares (found by cell: comparing
     // with every earlier candidate made a noisy grid's import quadratic).
@@ -510,6 +565,12 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
       candidates_of_cell[key].push_back(candidates.size());
     candidates.push_back(std::move(candidate));
   }
+  return candidates;
+}
+
+// Each run of a wall that won is one wall piece, from its first cell to its
+// last along the fitted line.
+void AppendWallPieces(const std::vector<Candidate>& candidates, std::vector<FittedWall>& walls) {
   for (const auto& candidate : candidates) {
     if (candidate.dropped) continue;
     const Line fitted = LineOf(candidate.fit);
@@ -525,9 +586,35 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
       piece.a = foot + lo * fitted.Direction();
       piece.b = foot + hi * fitted.Direction();
       piece.points = run.size();
-      out.walls.push_back(piece);
+      walls.push_back(piece);
     }
   }
+}
+
+}  // namespace
+
+GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOptions& options) {
+  CheckOptions(options);
+  GridVectorisation out;
+  out.cells = grid.cells.size();
+  const CellKinds kinds(grid, options);
+  const cv::Mat mask = OccupiedMask(grid, kinds, options, out.occupied_cells);
+  const Blobs found = FindBlobs(mask, options);
+  const PillarBoundaries boundaries = PillarShapedBoundaries(grid, kinds, found, options);
+  const std::vector<bool> is_wall = ClassifyBlobs(grid, mask, found, boundaries, options, out);
+
+  // Face cells of the wall blobs: the points the walls are fitted to.
+  cv::Mat faces(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
+  FaceCells face_cells(grid);
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      if (!is_wall[static_cast<size_t>(found.labels.at<int>(r, c))] || !kinds.Face(c, r)) continue;
+      faces.at<uint8_t>(r, c) = 255;
+      face_cells.Add(c, r);
+    }
+  }
+  out.face_cells = face_cells.Points().size();
+  AppendWallPieces(WallCandidates(grid, faces, face_cells, options), out.walls);
   // Refused before the corners are joined (the slowest step on such grids):
   // no world could hold these walls.
   if (out.walls.size() > world_model::WorldLimits::kDefaultMaxWalls)
@@ -536,7 +623,7 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
                                 std::to_string(world_model::WorldLimits::kDefaultMaxWalls) +
                                 " walls per map: is it noise rather than a map?");
   CornerJoinOptions corners = options.corners;
-  corners.max_end_distance_m = std::max(corners.max_end_distance_m, 3.0 * res);
+  corners.max_end_distance_m = std::max(corners.max_end_distance_m, 3.0 * grid.resolution_m);
   out.corners_joined = JoinCorners(out.walls, corners);
   out.short_after_joining = DropShortWalls(out.walls, options.min_wall_length_m);
   return out;
