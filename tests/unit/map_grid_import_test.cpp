@@ -62,10 +62,30 @@ OccupancyGrid Exported(const world_model::WorldModel& world, double resolution =
   return map_building::RasteriseWorld(world, options);
 }
 
-// Every wall of `world` has an imported wall on its line within `tolerance_m`;
-// prints the offsets and angles.
+// Whether imported wall `w` lies on the line of true wall a-b (within
+// `tolerance_m` at both its ends and `angle_rad`) and within its extent
+// (plus `end_m`).
+bool OnWall(const FittedWall& w, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+            double tolerance_m, double angle_rad, double end_m) {
+  const Eigen::Vector2d d = (b - a).normalized();
+  const Eigen::Vector2d n(-d.y(), d.x());
+  const double length = (b - a).norm();
+  const double angle = std::abs(std::asin(std::clamp(
+      d.x() * (w.b - w.a).normalized().y() - d.y() * (w.b - w.a).normalized().x(), -1.0, 1.0)));
+  for (const Eigen::Vector2d& end : {w.a, w.b}) {
+    const double along = d.dot(end - a);
+    if (std::abs(n.dot(end - a)) > tolerance_m || along < -end_m || along > length + end_m)
+      return false;
+  }
+  return angle <= angle_rad;
+}
+
+// Every wall of `world` has an imported wall on its line within `tolerance_m`,
+// the imported walls on its line cover it but for `end_m` at each end (not
+// truncated), and every imported wall lies on a wall of `world` (none
+// spurious); prints the offsets and angles.
 void ExpectWallsRecovered(const world_model::WorldModel& world, const GridVectorisation& result,
-                          double tolerance_m, double angle_tolerance_rad) {
+                          double tolerance_m, double angle_tolerance_rad, double end_m = 0.1) {
   double worst = 0.0;
   for (const auto& wall : world.Walls()) {
     const Match m = BestMatch(result.walls, wall.a, wall.b);
@@ -74,6 +94,31 @@ void ExpectWallsRecovered(const world_model::WorldModel& world, const GridVector
     EXPECT_LE(m.offset_m, tolerance_m) << "wall " << wall.id;
     EXPECT_LE(m.angle_rad, angle_tolerance_rad) << "wall " << wall.id;
     if (std::isfinite(m.offset_m)) worst = std::max(worst, m.offset_m);
+    // Not truncated: the pieces on its line cover it (a door in it is two walls).
+    const Eigen::Vector2d d = (wall.b - wall.a).normalized();
+    const double length = (wall.b - wall.a).norm();
+    std::vector<std::pair<double, double>> pieces;
+    for (const auto& w : result.walls) {
+      if (!OnWall(w, wall.a, wall.b, tolerance_m, angle_tolerance_rad, end_m)) continue;
+      const double ta = d.dot(w.a - wall.a), tb = d.dot(w.b - wall.a);
+      pieces.emplace_back(std::min(ta, tb), std::max(ta, tb));
+    }
+    std::sort(pieces.begin(), pieces.end());
+    double covered_to = end_m;  // the first end_m need not be covered
+    for (const auto& [from, to] : pieces) {
+      if (from > covered_to + 1e-9) break;
+      covered_to = std::max(covered_to, to);
+    }
+    EXPECT_GE(covered_to, length - end_m)
+        << "wall " << wall.id << " (" << length << " m) covered only to " << covered_to << " m";
+  }
+  // None spurious.
+  for (const auto& w : result.walls) {
+    bool on_a_wall = false;
+    for (const auto& wall : world.Walls())
+      on_a_wall = on_a_wall || OnWall(w, wall.a, wall.b, tolerance_m, angle_tolerance_rad, end_m);
+    EXPECT_TRUE(on_a_wall) << "imported wall (" << w.a.transpose() << ") - (" << w.b.transpose()
+                           << ") lies on no wall of the map";
   }
   std::cout << "  worst wall offset " << worst * 1000.0 << " mm over " << world.Walls().size()
             << " walls\n";
