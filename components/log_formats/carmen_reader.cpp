@@ -170,8 +170,6 @@ CarmenReader::ParseResult CarmenReader::Malformed(std::string reason) {
 }
 
 CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRecord& r) {
-  constexpr auto kRecord = ParseResult::kRecord;
-  constexpr auto kSkipped = ParseResult::kSkipped;
   const Fields f = SplitFields(text);
   const std::string_view tag = f.front();
   r = CarmenRecord{};
@@ -180,129 +178,142 @@ CarmenReader::ParseResult CarmenReader::Parse(const std::string& text, CarmenRec
     return Malformed("not a CARMEN message (the line does not start with a message name)");
   }
   r.tag = std::string(tag);
-  FieldReader in(f);
-  const auto bad = [this, &in] { return Malformed(in.reason); };
-  if (tag == "ODOM") {
-    if (f.size() != 1 + kOdomFields) {
-      return Malformed(
-          "ODOM needs 9 fields (x y theta tv rv accel ipc_timestamp hostname "
-          "logger_timestamp), found " +
-          std::to_string(f.size() - 1));
-    }
-    geometry::Pose2D p;
-    double accel;
-    if (!in.Pose(1, "pose", &p) || !in.Finite(4, "tv", &r.linear) ||
-        !in.Finite(5, "rv", &r.angular) || !in.Finite(6, "accel", &accel) ||
-        !in.Finite(7, "ipc_timestamp", &r.stamp)) {
-      return bad();
-    }
-    r.kind = CarmenRecord::Kind::kOdometry;
-    r.robot_pose = p;
-    return kRecord;
+  if (tag == "ODOM") return ParseOdometry(f, r);
+  if (tag == "FLASER" || tag == "RLASER") return ParseFlaser(f, r);
+  const bool robot_laser = tag.rfind("ROBOTLASER", 0) == 0;
+  if (robot_laser || tag.rfind("RAWLASER", 0) == 0) return ParseLaser(f, robot_laser, r);
+  if (tag == "PARAM") return ParseParam(f);
+  return Skip(r.tag);
+}
+
+CarmenReader::ParseResult CarmenReader::ParseOdometry(const Fields& f, CarmenRecord& r) {
+  if (f.size() != 1 + kOdomFields) {
+    return Malformed(
+        "ODOM needs 9 fields (x y theta tv rv accel ipc_timestamp hostname "
+        "logger_timestamp), found " +
+        std::to_string(f.size() - 1));
   }
-  if (tag == "FLASER" || tag == "RLASER") {
-    uint64_t n = 0;
-    if (f.size() < 2 || !in.Count(1, "beam count", &n)) {
-      return f.size() < 2 ? Malformed("no beam count") : bad();
+  FieldReader in(f);
+  geometry::Pose2D p;
+  double accel;
+  if (!in.Pose(1, "pose", &p) || !in.Finite(4, "tv", &r.linear) ||
+      !in.Finite(5, "rv", &r.angular) || !in.Finite(6, "accel", &accel) ||
+      !in.Finite(7, "ipc_timestamp", &r.stamp)) {
+    return Malformed(in.reason);
+  }
+  r.kind = CarmenRecord::Kind::kOdometry;
+  r.robot_pose = p;
+  return ParseResult::kRecord;
+}
+
+CarmenReader::ParseResult CarmenReader::ParseFlaser(const Fields& f, CarmenRecord& r) {
+  FieldReader in(f);
+  uint64_t n = 0;
+  if (f.size() < 2 || !in.Count(1, "beam count", &n)) {
+    return Malformed(f.size() < 2 ? "no beam count" : in.reason);
+  }
+  if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
+  const size_t fixed = 2 + kFlaserTail;
+  if (f.size() != fixed + n) {
+    if (f.size() < fixed) {
+      return Malformed(std::to_string(n) + " beams declared, so " + std::to_string(fixed + n) +
+                       " fields expected; found " + std::to_string(f.size()));
     }
-    if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
-    const size_t fixed = 2 + kFlaserTail;
-    if (f.size() != fixed + n) {
-      if (f.size() < fixed) {
-        return Malformed(std::to_string(n) + " beams declared, so " + std::to_string(fixed + n) +
-                         " fields expected; found " + std::to_string(f.size()));
-      }
-      return Malformed(BeamsVersusValues(n, f.size() - fixed));
-    }
+    return Malformed(BeamsVersusValues(n, f.size() - fixed));
+  }
+  geometry::Pose2D laser, robot;
+  if (!in.Ranges(2, n, &r.ranges) || !in.Pose(2 + n, "laser", &laser) ||
+      !in.Pose(5 + n, "odometry", &robot) || !in.Finite(8 + n, "ipc_timestamp", &r.stamp)) {
+    return Malformed(in.reason);
+  }
+  FlaserGeometry(n, &r.start_angle, &r.angular_resolution);
+  r.kind = CarmenRecord::Kind::kScan;
+  r.laser_pose = laser;
+  r.robot_pose = robot;
+  return ParseResult::kRecord;
+}
+
+CarmenReader::ParseResult CarmenReader::ParseLaser(const Fields& f, bool robot_laser,
+                                                   CarmenRecord& r) {
+  const size_t tail = robot_laser ? kRobotLaserTail : kStampFields;
+  if (f.size() < kLaserHeader + 1 + tail) {
+    return Malformed("too few fields for " + r.tag + ": " + std::to_string(f.size()) +
+                     " (at least " + std::to_string(kLaserHeader + 1 + tail) + ")");
+  }
+  FieldReader in(f);
+  int64_t type, remission_mode;
+  double fov, accuracy;
+  uint64_t n = 0, m = 0;
+  if (!in.Integer(1, "laser_type", &type) || !in.Finite(2, "start_angle", &r.start_angle) ||
+      !in.Finite(3, "fov", &fov) || !in.Finite(4, "angular_resolution", &r.angular_resolution) ||
+      !in.Finite(5, "maximum_range", &r.max_range) || !in.Finite(6, "accuracy", &accuracy) ||
+      !in.Integer(7, "remission_mode", &remission_mode) || !in.Count(8, "num_readings", &n)) {
+    return Malformed(in.reason);
+  }
+  if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
+  // Every beam's angle start + i * res must be a direction: a resolution of
+  // 1e308 is finite but its later beams' angles are not.
+  constexpr double kTurn = 2.0 * M_PI + 1e-6;
+  if (!(std::abs(r.start_angle) <= kTurn) ||
+      !(std::abs(r.angular_resolution) * static_cast<double>(n > 0 ? n - 1 : 0) <= kTurn)) {
+    return Malformed("start_angle " + Quote(f[2]) + " and angular_resolution " + Quote(f[4]) +
+                     " over " + std::to_string(n) +
+                     " beams do not lie within one turn (|angle| <= 2 pi)");
+  }
+  const size_t remissions_at = kLaserHeader + n;  // the num_remissions field
+  const auto declared_m =
+      remissions_at < f.size() ? ParseCount(f[remissions_at]) : std::optional<uint64_t>();
+  if (!declared_m || *declared_m > f.size() || remissions_at + 1 + *declared_m + tail != f.size()) {
+    return Malformed(LaserCountMismatch(f, n, tail));
+  }
+  m = *declared_m;
+  if (m > limits_.max_beams) return Malformed(OverLimit(m, "remissions", limits_.max_beams));
+  if (!in.Ranges(kLaserHeader, n, &r.ranges) || !in.Numbers(remissions_at + 1, m, "remission")) {
+    return Malformed(in.reason);
+  }
+  size_t next = remissions_at + 1 + m;
+  if (robot_laser) {
     geometry::Pose2D laser, robot;
-    if (!in.Ranges(2, n, &r.ranges) || !in.Pose(2 + n, "laser", &laser) ||
-        !in.Pose(5 + n, "odometry", &robot) || !in.Finite(8 + n, "ipc_timestamp", &r.stamp)) {
-      return bad();
+    double fsd, ssd, turn;
+    if (!in.Pose(next, "laser", &laser) || !in.Pose(next + 3, "robot", &robot) ||
+        !in.Finite(next + 6, "tv", &r.linear) || !in.Finite(next + 7, "rv", &r.angular) ||
+        !in.Finite(next + 8, "forward_safety_dist", &fsd) ||
+        !in.Finite(next + 9, "side_safety_dist", &ssd) ||
+        !in.Finite(next + 10, "turn_axis", &turn)) {
+      return Malformed(in.reason);
     }
-    FlaserGeometry(n, &r.start_angle, &r.angular_resolution);
-    r.kind = CarmenRecord::Kind::kScan;
     r.laser_pose = laser;
     r.robot_pose = robot;
-    return kRecord;
+    next += 11;
   }
-  const bool robot_laser = tag.rfind("ROBOTLASER", 0) == 0;
-  if (robot_laser || tag.rfind("RAWLASER", 0) == 0) {
-    const size_t tail = robot_laser ? kRobotLaserTail : kStampFields;
-    if (f.size() < kLaserHeader + 1 + tail) {
-      return Malformed("too few fields for " + r.tag + ": " + std::to_string(f.size()) +
-                       " (at least " + std::to_string(kLaserHeader + 1 + tail) + ")");
+  if (!in.Finite(next, "ipc_timestamp", &r.stamp)) return Malformed(in.reason);
+  r.kind = CarmenRecord::Kind::kScan;
+  return ParseResult::kRecord;
+}
+
+CarmenReader::ParseResult CarmenReader::ParseParam(const Fields& f) {
+  if (f.size() >= 3 && f[1] == "structloc_laser_time_increment") {
+    const auto value = ParseFinite(f[2]);
+    if (!value || *value < 0.0 || *value > kMaxTimeIncrementS) {
+      return Malformed("structloc_laser_time_increment " + Quote(f[2]) +
+                       " is not a time between 0 and 1 s");
     }
-    int64_t type, remission_mode;
-    double fov, accuracy;
-    uint64_t n = 0, m = 0;
-    if (!in.Integer(1, "laser_type", &type) || !in.Finite(2, "start_angle", &r.start_angle) ||
-        !in.Finite(3, "fov", &fov) || !in.Finite(4, "angular_resolution", &r.angular_resolution) ||
-        !in.Finite(5, "maximum_range", &r.max_range) || !in.Finite(6, "accuracy", &accuracy) ||
-        !in.Integer(7, "remission_mode", &remission_mode) || !in.Count(8, "num_readings", &n)) {
-      return bad();
-    }
-    if (n > limits_.max_beams) return Malformed(OverLimit(n, "beams", limits_.max_beams));
-    // Every beam's angle start + i * res must be a direction: a resolution of
-    // 1e308 is finite but its later beams' angles are not.
-    constexpr double kTurn = 2.0 * M_PI + 1e-6;
-    if (!(std::abs(r.start_angle) <= kTurn) ||
-        !(std::abs(r.angular_resolution) * static_cast<double>(n > 0 ? n - 1 : 0) <= kTurn)) {
-      return Malformed("start_angle " + Quote(f[2]) + " and angular_resolution " + Quote(f[4]) +
-                       " over " + std::to_string(n) +
-                       " beams do not lie within one turn (|angle| <= 2 pi)");
-    }
-    const size_t remissions_at = kLaserHeader + n;  // the num_remissions field
-    const auto declared_m =
-        remissions_at < f.size() ? ParseCount(f[remissions_at]) : std::optional<uint64_t>();
-    if (!declared_m || *declared_m > f.size() ||
-        remissions_at + 1 + *declared_m + tail != f.size()) {
-      return Malformed(LaserCountMismatch(f, n, tail));
-    }
-    m = *declared_m;
-    if (m > limits_.max_beams) return Malformed(OverLimit(m, "remissions", limits_.max_beams));
-    if (!in.Ranges(kLaserHeader, n, &r.ranges) || !in.Numbers(remissions_at + 1, m, "remission")) {
-      return bad();
-    }
-    size_t next = remissions_at + 1 + m;
-    if (robot_laser) {
-      geometry::Pose2D laser, robot;
-      double fsd, ssd, turn;
-      if (!in.Pose(next, "laser", &laser) || !in.Pose(next + 3, "robot", &robot) ||
-          !in.Finite(next + 6, "tv", &r.linear) || !in.Finite(next + 7, "rv", &r.angular) ||
-          !in.Finite(next + 8, "forward_safety_dist", &fsd) ||
-          !in.Finite(next + 9, "side_safety_dist", &ssd) ||
-          !in.Finite(next + 10, "turn_axis", &turn)) {
-        return bad();
-      }
-      r.laser_pose = laser;
-      r.robot_pose = robot;
-      next += 11;
-    }
-    if (!in.Finite(next, "ipc_timestamp", &r.stamp)) return bad();
-    r.kind = CarmenRecord::Kind::kScan;
-    return kRecord;
+    time_increment_ = *value;
   }
-  if (tag == "PARAM") {
-    if (f.size() >= 3 && f[1] == "structloc_laser_time_increment") {
-      const auto value = ParseFinite(f[2]);
-      if (!value || *value < 0.0 || *value > kMaxTimeIncrementS) {
-        return Malformed("structloc_laser_time_increment " + Quote(f[2]) +
-                         " is not a time between 0 and 1 s");
-      }
-      time_increment_ = *value;
-    }
-    ++stats_.skipped["PARAM"];
-    return kSkipped;
-  }
+  ++stats_.skipped["PARAM"];
+  return ParseResult::kSkipped;
+}
+
+CarmenReader::ParseResult CarmenReader::Skip(const std::string& tag) {
   // Counted by name for the first few kinds only: a log of endless made-up
   // tags must not grow this map without bound.
   constexpr size_t kMaxSkippedKinds = 32;
-  if (stats_.skipped.count(r.tag) != 0 || stats_.skipped.size() < kMaxSkippedKinds) {
-    ++stats_.skipped[r.tag];
+  if (stats_.skipped.count(tag) != 0 || stats_.skipped.size() < kMaxSkippedKinds) {
+    ++stats_.skipped[tag];
   } else {
     ++stats_.skipped["(other kinds)"];
   }
-  return kSkipped;
+  return ParseResult::kSkipped;
 }
 
 bool CarmenReader::Next(CarmenRecord& record) {

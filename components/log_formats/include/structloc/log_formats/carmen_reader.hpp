@@ -19,6 +19,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -83,6 +84,13 @@ class CarmenReader {
  private:
   enum class ParseResult { kRecord, kSkipped, kMalformed };
   ParseResult Parse(const std::string& line, CarmenRecord& record);
+  // One per message kind, on the line's fields (the tag first).
+  using FieldViews = std::vector<std::string_view>;
+  ParseResult ParseOdometry(const FieldViews& f, CarmenRecord& record);
+  ParseResult ParseFlaser(const FieldViews& f, CarmenRecord& record);
+  ParseResult ParseLaser(const FieldViews& f, bool robot_laser, CarmenRecord& record);
+  ParseResult ParseParam(const FieldViews& f);
+  ParseResult Skip(const std::string& tag);
   ParseResult Malformed(std::string reason);
   std::string path_;
   CarmenLimits limits_;
