@@ -5,6 +5,7 @@
 // replace existing ones only when complete.
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "map_action.hpp"
@@ -44,16 +45,14 @@ void DrawPlot(const map_building::OccupancyGrid& grid, int occupied_min_value,
   canvas.WriteTo(file);
 }
 
-}  // namespace
-
-int MapImportGridCommand(const Invocation& inv) {
-  const map_building::GridVectoriseOptions defaults;
+// The command's options, with the vectoriser's defaults in their help.
+std::vector<config::OptionSpec> Specs(const map_building::GridVectoriseOptions& defaults) {
   auto number = [](double v) {
     std::ostringstream s;
     s << v;
     return s.str();
   };
-  const std::vector<config::OptionSpec> specs = {
+  return {
       {"grid", true, "map_server YAML (with its PGM or PNG image) to import"},
       {"out", true, "world XML to write"},
       {"plot", true, "PNG: the occupied cells with the imported map over them"},
@@ -92,30 +91,69 @@ int MapImportGridCommand(const Invocation& inv) {
            std::to_string(defaults.max_refit_work) +
            "; the real recordings' grids need under 200000)"},
   };
-  return RunMapAction(inv, "import", specs, [&](const config::CommandLine& cli) {
+}
+
+// A work limit of the command line: a count from 1 to 1e12.
+size_t Limit(const config::CommandLine& cli, const char* option, size_t fallback) {
+  return static_cast<size_t>(
+      cli.IntegerIn(option, static_cast<long long>(fallback), 1, 1000000000000LL));
+}
+
+// The vectoriser's options from the command line (bounded as the help says).
+map_building::GridVectoriseOptions VectoriseOptions(
+    const config::CommandLine& cli, const map_building::GridVectoriseOptions& defaults) {
+  map_building::GridVectoriseOptions options;
+  options.min_wall_length_m =
+      cli.NumberIn("min-wall-length", defaults.min_wall_length_m, 1e-3, 1e3);
+  options.max_gap_m = cli.NumberIn("max-gap", defaults.max_gap_m, 1e-3, 1e3);
+  options.min_wall_blob_size_m =
+      cli.NumberIn("min-wall-blob", defaults.min_wall_blob_size_m, 0.0, 1e3);
+  options.max_join_gap_m = cli.NumberIn("join-gap", defaults.max_join_gap_m, 0.0, 1.0);
+  options.max_pillar_radius_m = cli.NumberIn("max-pillar-radius", defaults.max_pillar_radius_m,
+                                             defaults.min_pillar_radius_m, 1e3);
+  options.max_face_cells = Limit(cli, "max-face-cells", defaults.max_face_cells);
+  options.max_blobs = Limit(cli, "max-blobs", defaults.max_blobs);
+  options.max_refit_work = Limit(cli, "max-refit-work", defaults.max_refit_work);
+  return options;
+}
+
+// What was read, made and left out, and where it was written.
+void PrintSummary(const std::string& grid_path, const map_building::OccupancyGrid& grid,
+                  const map_building::GridVectorisation& result,
+                  const map_building::GridVectoriseOptions& options,
+                  const world_model::WorldModel& world, const std::string& out_path,
+                  const std::optional<std::string>& plot_path) {
+  std::cout << "structloc map import: " << grid_path << ": " << result.cells << " cells read ("
+            << grid.width << " x " << grid.height << " of " << grid.resolution_m << " m), "
+            << result.occupied_cells << " occupied, " << result.face_cells
+            << " facing free space in " << result.wall_blobs << " wall blobs\n"
+            << "  " << world.Walls().size() << " walls, " << world.Corners().size() << " corners ("
+            << result.corners_joined << " wall ends joined; " << result.short_after_joining
+            << " walls shorter than " << options.min_wall_length_m << " m after that, dropped), "
+            << world.Cylinders().size() << " pillars\n"
+            << "  left out: " << result.blobs_left_out
+            << " blobs too small for a wall, alone or with the blobs near them, and not round "
+               "(furniture), "
+            << result.specks_left_out << " specks of at most " << options.max_speck_cells
+            << " cells (noise)\n"
+            << "  wrote " << out_path;
+  if (plot_path) std::cout << " and " << *plot_path;
+  std::cout << "\n";
+}
+
+}  // namespace
+
+int MapImportGridCommand(const Invocation& inv) {
+  const map_building::GridVectoriseOptions defaults;
+  return RunMapAction(inv, "import", Specs(defaults), [&](const config::CommandLine& cli) {
     const std::string grid_path = cli.Required("grid");
     const std::string out_path = cli.Required("out");
     const auto plot_path = cli.Get("plot");
     if (plot_path) rendering::MapCanvas::CheckPictureName(*plot_path);
-    map_building::GridVectoriseOptions options;
-    options.min_wall_length_m =
-        cli.NumberIn("min-wall-length", defaults.min_wall_length_m, 1e-3, 1e3);
-    options.max_gap_m = cli.NumberIn("max-gap", defaults.max_gap_m, 1e-3, 1e3);
-    options.min_wall_blob_size_m =
-        cli.NumberIn("min-wall-blob", defaults.min_wall_blob_size_m, 0.0, 1e3);
-    options.max_join_gap_m = cli.NumberIn("join-gap", defaults.max_join_gap_m, 0.0, 1.0);
-    options.max_pillar_radius_m = cli.NumberIn("max-pillar-radius", defaults.max_pillar_radius_m,
-                                               defaults.min_pillar_radius_m, 1e3);
-    const auto limit = [&](const char* option, size_t fallback) {
-      return static_cast<size_t>(
-          cli.IntegerIn(option, static_cast<long long>(fallback), 1, 1000000000000LL));
-    };
-    options.max_face_cells = limit("max-face-cells", defaults.max_face_cells);
-    options.max_blobs = limit("max-blobs", defaults.max_blobs);
-    options.max_refit_work = limit("max-refit-work", defaults.max_refit_work);
+    map_building::GridVectoriseOptions options = VectoriseOptions(cli, defaults);
     map_formats::GridMapReadOptions read;
     read.ignore_unknown_keys = cli.Has("ignore-unknown-keys");
-    read.max_cells = limit("max-cells", read.max_cells);
+    read.max_cells = Limit(cli, "max-cells", read.max_cells);
     const std::string name = cli.GetOr("name", std::filesystem::path(grid_path).stem().string());
 
     map_formats::GridMapSource source;
@@ -168,22 +206,7 @@ int MapImportGridCommand(const Invocation& inv) {
     out.Flush();
     out.Commit();
     if (plot) plot->Commit();
-    std::cout << "structloc map import: " << grid_path << ": " << result.cells << " cells read ("
-              << grid.width << " x " << grid.height << " of " << grid.resolution_m << " m), "
-              << result.occupied_cells << " occupied, " << result.face_cells
-              << " facing free space in " << result.wall_blobs << " wall blobs\n"
-              << "  " << world.Walls().size() << " walls, " << world.Corners().size()
-              << " corners (" << result.corners_joined << " wall ends joined; "
-              << result.short_after_joining << " walls shorter than " << options.min_wall_length_m
-              << " m after that, dropped), " << world.Cylinders().size() << " pillars\n"
-              << "  left out: " << result.blobs_left_out
-              << " blobs too small for a wall, alone or with the blobs near them, and not round "
-                 "(furniture), "
-              << result.specks_left_out << " specks of at most " << options.max_speck_cells
-              << " cells (noise)\n"
-              << "  wrote " << out_path;
-    if (plot_path) std::cout << " and " << *plot_path;
-    std::cout << "\n";
+    PrintSummary(grid_path, grid, result, options, world, out_path, plot_path);
     return 0;
   });
 }
