@@ -49,11 +49,8 @@ std::string Mutated(const TempDir& dir, const std::string& relative, const std::
 // prints it: the shipped file states only what differs from the defaults),
 // with `from` replaced by `to` (which must occur), written into `dir`.
 std::string MutatedParams(const TempDir& dir, const std::string& from, const std::string& to) {
-  std::string text = testing::WholeParamsText(SourcePath("maps/params/office_sick.xml"));
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from << " not in\n" << text;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return dir.Write("office_sick_whole.xml", text);
+  return testing::EditedWholeParams(dir, SourcePath("maps/params/office_sick.xml"), from, to,
+                                    "office_sick_whole.xml");
 }
 
 // Expects `read(path)` to throw a ConfigError whose message starts with

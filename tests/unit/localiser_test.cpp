@@ -5,7 +5,6 @@
 #include "test_paths.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "structloc/localisation_core/localiser/localiser.hpp"
@@ -49,11 +48,8 @@ TEST(LocaliserOptions, DefaultsAreTheThesisTable6Values) {
 
 std::string EditedCopy(const testing::TempDir& temp, const std::string& from,
                        const std::string& to) {
-  std::string text = testing::WholeParamsText(testing::SourcePath("maps/params/thesis_table6.xml"));
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  text.replace(pos, from.size(), to);
-  return temp.Write("params.xml", text);
+  return testing::EditedWholeParams(temp, testing::SourcePath("maps/params/thesis_table6.xml"),
+                                    from, to);
 }
 
 TEST(LocaliserOptions, ListingCoversEveryKeyOfTheShippedFilesWithItsDefault) {

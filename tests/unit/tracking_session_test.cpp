@@ -4,7 +4,6 @@
 // <tracking> block of the parameter files.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <random>
 
 #include "office_scene.hpp"
@@ -62,15 +61,8 @@ TEST_F(SessionTest, ShippedParameterFilesCarryTheTrackerOptions) {
 
 TEST_F(SessionTest, MissingOrUnknownTrackingKeysAreErrors) {
   testing::TempDir dir;
-  const std::string text = testing::WholeParamsText(kParams);
   auto write = [&](const std::string& from, const std::string& to) {
-    std::string changed = text;
-    const auto at = changed.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    changed.replace(at, from.size(), to);
-    const std::string path = dir.Path() + "/params.xml";
-    std::ofstream(path) << changed;
-    return path;
+    return testing::EditedWholeParams(dir, kParams, from, to);
   };
   EXPECT_THROW(LoadSessionOptions(write(" state_period_s=\"2\"", "")), config::ConfigError);
   EXPECT_THROW(LoadSessionOptions(write("deskew=\"true\"", "deskew=\"true\" speed=\"1\"")),

@@ -120,8 +120,8 @@ struct GlobalResult {
   std::vector<GlobalCandidate> candidates;
   size_t scans = 1;  // scans searched together: the newest and those before it
   size_t points_used = 0;
-  // The search's work (GlobalSearch's units: about 0.5-1 ms per 60000 on
-  // our machines), for the callers that budget their searches.
+  // The search's work in GlobalSearch's units (see Advance), for the
+  // callers that budget their searches.
   uint64_t work = 0;
   std::string reason;  // why not found or ambiguous, for the user
 };
