@@ -80,73 +80,82 @@ bool Start(const NodeLaunch& node, Running& running) {
   return true;
 }
 
-}  // namespace
-
-int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
-              ShutdownSignal& shutdown) {
-  std::vector<Running> nodes(description.nodes.size());
-  const auto start = Clock::now();
+// Why the launch ends, and with which result so far.
+struct LaunchEnd {
+  bool ended = false;
   std::string reason = "stop signal";
   int result = 0;
-  bool ended = false;
+};
+
+// One poll of a running node: its output relayed; ended, it is respawned
+// later (respawn="true") or it ends the launch (failed when it died).
+void Watch(const NodeLaunch& node, Running& running, Clock::time_point now, LaunchEnd& end) {
+  const auto code = running.child->Poll();
+  Relay(node, running, code.has_value());
+  if (!code) return;
+  if (node.respawn) {
+    std::cout << "[launch] " << node.name << " ended with " << DescribeExit(*running.child, *code)
+              << "; respawning in " << node.respawn_delay_s << " s" << std::endl;
+    running.child.reset();
+    running.restart_at =
+        now + std::chrono::microseconds(static_cast<long>(node.respawn_delay_s * 1e6));
+    return;
+  }
+  // A node that finished its job ends the launch; one that died fails it.
+  end.reason = node.name + " ended with " + DescribeExit(*running.child, *code);
+  if (*code != 0) {
+    std::cerr << "[launch] ERROR: " << node.name << " died with "
+              << DescribeExit(*running.child, *code)
+              << " and has no respawn=\"true\": stopping the launch" << std::endl;
+    end.result = 1;
+  }
+  end.ended = true;
+}
+
+// Starts every node and keeps them running (respawning those that ask for
+// it) until a stop signal, the duration, or a node that ends the launch.
+LaunchEnd Supervise(const LaunchDescription& description, const LaunchRunOptions& options,
+                    ShutdownSignal& shutdown, std::vector<Running>& nodes) {
+  const auto start = Clock::now();
+  LaunchEnd end;
   // A node that cannot be (re)started fails the launch, as one that dies does.
   const auto start_or_fail = [&](const NodeLaunch& node, Running& running, const char* what) {
     if (Start(node, running)) return;
-    reason = node.name + " could not be " + what;
-    result = 1;
-    ended = true;
+    end = {true, node.name + " could not be " + what, 1};
   };
-  for (size_t i = 0; i < nodes.size() && !ended; ++i) {
+  for (size_t i = 0; i < nodes.size() && !end.ended; ++i) {
     start_or_fail(description.nodes[i], nodes[i], "started");
   }
-  while (!ended && !shutdown.WaitFor(std::chrono::milliseconds(50))) {
+  while (!end.ended && !shutdown.WaitFor(std::chrono::milliseconds(50))) {
     const auto now = Clock::now();
-    for (size_t i = 0; i < nodes.size() && !ended; ++i) {
-      const NodeLaunch& node = description.nodes[i];
+    for (size_t i = 0; i < nodes.size() && !end.ended; ++i) {
       Running& running = nodes[i];
-      if (running.restart_at) {
-        if (now >= *running.restart_at) {
-          ++running.respawns;
-          start_or_fail(node, running, "respawned");
-        }
-        continue;
+      if (!running.restart_at) {
+        Watch(description.nodes[i], running, now, end);
+      } else if (now >= *running.restart_at) {
+        ++running.respawns;
+        start_or_fail(description.nodes[i], running, "respawned");
       }
-      const auto code = running.child->Poll();
-      Relay(node, running, code.has_value());
-      if (!code) continue;
-      if (node.respawn) {
-        std::cout << "[launch] " << node.name << " ended with "
-                  << DescribeExit(*running.child, *code) << "; respawning in "
-                  << node.respawn_delay_s << " s" << std::endl;
-        running.child.reset();
-        running.restart_at =
-            now + std::chrono::microseconds(static_cast<long>(node.respawn_delay_s * 1e6));
-        continue;
-      }
-      // A node that finished its job ends the launch; one that died fails it.
-      reason = node.name + " ended with " + DescribeExit(*running.child, *code);
-      if (*code != 0) {
-        std::cerr << "[launch] ERROR: " << node.name << " died with "
-                  << DescribeExit(*running.child, *code)
-                  << " and has no respawn=\"true\": stopping the launch" << std::endl;
-        result = 1;
-      }
-      ended = true;
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    if (!ended && options.duration_s && elapsed >= *options.duration_s) {
-      reason = "duration of " + std::to_string(*options.duration_s) + " s reached";
-      ended = true;
+    if (!end.ended && options.duration_s && elapsed >= *options.duration_s) {
+      end.reason = "duration of " + std::to_string(*options.duration_s) + " s reached";
+      end.ended = true;
     }
   }
-  std::cout << "[launch] stopping all nodes (" << reason << ")" << std::endl;
-  // As ros2 launch does: SIGINT to every node at once, SIGTERM to those still
-  // running after the grace, SIGKILL to those still running 2 s later; all
-  // nodes together, their output relayed all the while (a node writing much
-  // as it stops must not block on a full pipe).
+  return end;
+}
+
+// As ros2 launch does: SIGINT to every node at once, SIGTERM to those still
+// running after the grace, SIGKILL to those still running 2 s later; all
+// nodes together, their output relayed all the while (a node writing much
+// as it stops must not block on a full pipe). Returns the last signal sent
+// to each node (0: none).
+std::vector<int> StopAll(const LaunchDescription& description, const LaunchRunOptions& options,
+                         std::vector<Running>& nodes) {
   const double escalation_s[] = {options.stop_grace_s, 2.0, 5.0};
   const int escalation_signal[] = {SIGINT, SIGTERM, SIGKILL};
-  std::vector<int> stopped_by(nodes.size(), 0);  // the last signal we sent it
+  std::vector<int> stopped_by(nodes.size(), 0);
   for (int step = 0; step < 3; ++step) {
     bool any = false;
     for (size_t i = 0; i < nodes.size(); ++i) {
@@ -168,6 +177,13 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
       if (running) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   }
+  return stopped_by;
+}
+
+// Each node's exit, said; 1 when one failed (not stopped by our SIGINT).
+int ReportExits(const LaunchDescription& description, std::vector<Running>& nodes,
+                const std::vector<int>& stopped_by) {
+  int result = 0;
   for (size_t i = 0; i < nodes.size(); ++i) {
     if (!nodes[i].child) continue;
     Relay(description.nodes[i], nodes[i], true);
@@ -188,6 +204,18 @@ int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& opti
     if (code != 0 && !asked) result = 1;
   }
   return result;
+}
+
+}  // namespace
+
+int RunLaunch(const LaunchDescription& description, const LaunchRunOptions& options,
+              ShutdownSignal& shutdown) {
+  std::vector<Running> nodes(description.nodes.size());
+  const LaunchEnd end = Supervise(description, options, shutdown, nodes);
+  std::cout << "[launch] stopping all nodes (" << end.reason << ")" << std::endl;
+  const auto stopped_by = StopAll(description, options, nodes);
+  const int exits = ReportExits(description, nodes, stopped_by);
+  return end.result != 0 ? end.result : exits;
 }
 
 }  // namespace structloc::process

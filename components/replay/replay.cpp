@@ -13,11 +13,10 @@
 #include "structloc/config/install_layout.hpp"
 #include "structloc/config/output_file.hpp"
 #include "structloc/config/strict_xml.hpp"
-#include "structloc/localisation_core/global/global_start.hpp"
-#include "structloc/localisation_core/global/kidnap_watch.hpp"
 #include "structloc/localisation_core/localiser/localiser_options.hpp"
 #include "structloc/localisation_core/scan/laser_preset.hpp"
 #include "structloc/localisation_core/scan/prefilter.hpp"
+#include "structloc/localisation_core/start_up/start_up_policy.hpp"
 #include "structloc/localisation_core/tracking/tracking_session.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/rendering/map_canvas.hpp"
@@ -104,7 +103,7 @@ class Replayer {
       Drain(false);
       if (o_.progress && records % 2000 == 0) o_.progress(report_.scans_used, -1.0);
     }
-    if (!session_ && !initial_pose_) {
+    if (!initial_pose_) {
       report_.log = reader_->Stats();
       throw std::runtime_error(o_.log_path + ": the log ended before any scan was located " +
                                "globally; give --initial-pose \"X Y THETA\"; nothing written\n" +
@@ -157,14 +156,13 @@ class Replayer {
   }
 
   // A laser line: the start-up's until a pose is given or found, then the
-  // session's (odometry before the session waits for it, see AddOdometry).
+  // session's (odometry before the first laser line waits for the session
+  // that line starts, see AddOdometry).
   void AddScan(const log_formats::CarmenRecord& r) {
     if (report_.parameters.empty()) ChoosePreset(r);  // given or chosen once
+    if (!session_) StartSession(&r);
     if (r.robot_pose) AddOdometry(r.stamp, *r.robot_pose);
-    if (!session_) {
-      if (!initial_pose_ && !LocateGlobally(r)) return;
-      StartSession(&r);
-    }
+    if (!initial_pose_ && !LocateGlobally(r)) return;
     session_->AddScan(ToSessionScan(r), r.stamp);
   }
 
@@ -188,39 +186,30 @@ class Replayer {
     return params_.sensor_mount;
   }
 
-  // The robot's start-up and the kidnap watch's search (built once, for the
-  // laser at `mount`; throws std::invalid_argument as GlobalLocaliser does).
-  void StartGlobal(const geometry::Pose2D& mount) {
-    if (global_) return;
-    global_ = std::make_unique<localisation_core::GlobalStart>(
-        *world_, mount, Eigen::Matrix3d::Identity(), o_.global,
-        localisation_core::RecentScansOptions{}, o_.hypotheses);
-  }
-
-  // Tries the scan against the whole map, or weighs the hypotheses held
-  // (GlobalStart, as the component starts a robot); true when a pose was
-  // found or committed, which then becomes the initial pose. Throws when the
-  // last allowed scan gave none.
+  // Without a pose: the scan goes to the start-up policy (the global
+  // search, or the hypotheses held weighed), as the component starts a
+  // robot; true when it found or committed a pose, which the session then
+  // tracks from. Throws when the last allowed scan gave none.
   bool LocateGlobally(const log_formats::CarmenRecord& r) {
     ++global_scans_;
-    StartGlobal(SensorMount(&r));
-    if (global_->HoldingHypotheses()) ++held_scans_;
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto scan = ToSessionScan(r);
-    auto attempt = r.robot_pose ? global_->Try(scan, *r.robot_pose) : global_->Try(scan);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (attempt.searched) {
-      report_.global_attempts.push_back(
-          {global_scans_, r.line, r.stamp, std::move(attempt.result), seconds});
-    }
-    if (attempt.found) {
-      initial_pose_ = attempt.found->pose;
-      if (attempt.travel_m) {
-        report_.commit = ReplayReport::Commit{global_scans_,     r.line,         r.stamp,
-                                              *attempt.travel_m, attempt.seeded, held_scans_};
+    if (start_up_->HeldHypotheses() > 0) ++held_scans_;
+    if (auto search = start_up_->SearchAt(*session_, ToSessionScan(r))) {
+      start_up_->Run(*search);
+      const auto outcome = start_up_->Apply(*session_, *search, r.stamp);
+      auto& attempt = *search->global;
+      if (attempt.searched) {
+        report_.global_attempts.push_back(
+            {global_scans_, r.line, r.stamp, std::move(attempt.result), search->seconds});
       }
-      return true;
+      if (outcome.pose_set) {
+        initial_pose_ = attempt.found->pose;
+        report_.initial_pose = *initial_pose_;
+        if (attempt.travel_m) {
+          report_.commit = ReplayReport::Commit{global_scans_,     r.line,         r.stamp,
+                                                *attempt.travel_m, attempt.seeded, held_scans_};
+        }
+        return true;
+      }
     }
     ++report_.scans_rejected["before the global localisation found the robot"];
     if (o_.global_attempts > 0 && global_scans_ >= o_.global_attempts) {
@@ -234,17 +223,34 @@ class Replayer {
     return false;
   }
 
-  // Starts the session at the first laser line (nullptr: the log has none),
-  // whose laser and robot poses give the sensor mounting (else the
-  // parameters'), so that the session starts with its final options.
+  // Starts the session and the start-up policy at the first laser line
+  // (nullptr: the log has none), whose laser and robot poses give the sensor
+  // mounting (else the parameters'), so that both start with their final
+  // options. The log's initial pose is that of its first laser line: a fact,
+  // not a hint to confirm. Throws std::invalid_argument when the robot must
+  // be located globally on a map too large for the search's grid.
   void StartSession(const log_formats::CarmenRecord* first_scan) {
     report_.sensor_mount = SensorMount(first_scan);
     params_.sensor_mount = report_.sensor_mount;
-    report_.initial_pose = *initial_pose_;
     params_.max_beams = std::max(params_.max_beams, 4096);
     session_ = std::make_unique<TrackingSession>(world_.get(), params_, session_options_,
                                                  localisation_core::Scheduling::kInOrder);
-    session_->ExpectInitialPose(*initial_pose_, TrackingSession::InitialPoseWhen::kAtFirstScan);
+    localisation_core::StartUpOptions start;
+    start.global = o_.global;
+    start.hypotheses = o_.hypotheses;
+    start.kidnap = o_.kidnap;
+    start.confirm_given_poses = false;
+    start_up_ = std::make_unique<localisation_core::StartUpPolicy>(
+        world_.get(), report_.sensor_mount, session_options_, start);
+    if (world_ && !start_up_->CanSearch()) {
+      if (!initial_pose_) throw std::invalid_argument(start_up_->NoSearchReason());
+      report_.kidnap_watch_off = start_up_->NoSearchReason();
+    }
+    if (initial_pose_) {
+      report_.initial_pose = *initial_pose_;
+      start_up_->GivenAtStart(*session_, *initial_pose_,
+                              TrackingSession::InitialPoseWhen::kAtFirstScan, "--initial-pose");
+    }
     for (const auto& odometry : early_odometry_) AddOdometry(odometry.stamp, odometry.pose);
     early_odometry_.clear();
   }
@@ -305,7 +311,7 @@ class Replayer {
       report_.reacquisitions.push_back({report.stamp, report.pose.pose, report.jump});
     }
     Emit(scan, report.pose.pose);
-    WatchForKidnapping(scan, report);
+    WatchForKidnapping(report);
     // A fix for calibration only where the scan alone pinned every direction.
     if (fixes_ && !report.lost && !r.lost) {
       const auto& c = report.pose.covariance;
@@ -313,49 +319,18 @@ class Replayer {
     }
   }
 
-  // After a tracked scan: a robot whose scans the tracked pose has not
-  // explained for a while is searched for on the whole map, as the component
-  // does (KidnapWatch, GlobalStart); found far away, the tracking jumps there
-  // and the kidnapping is reported.
-  void WatchForKidnapping(const localisation_core::SessionScan& scan, const ScanReport& report) {
-    if (!report.odometry || !report_.kidnap_watch_off.empty()) return;
-    if (!watch_) {
-      try {
-        StartGlobal(report_.sensor_mount);
-      } catch (const std::invalid_argument& e) {  // a map too large for the search's grid
-        report_.kidnap_watch_off = e.what();
-        return;
-      }
-      global_->ForgetRecentScans();
-      watch_ = std::make_unique<localisation_core::KidnapWatch>(global_->Localiser(),
-                                                                report_.sensor_mount, o_.kidnap);
-    }
-    // The points only when the watch uses them (the share, or a search's answer).
-    std::vector<Eigen::Vector2d> points;
-    if (watch_->CheckDue(report.stamp, report.lost)) points = localisation_core::LaserPoints(scan);
-    const bool due = watch_->Observe(points, report.stamp, report.pose.pose, report.lost);
-    if (!watch_->InDoubt()) {
-      if (doubting_) global_->ForgetRecentScans();
-      doubting_ = false;
-      return;
-    }
-    doubting_ = true;
-    if (!due && !global_->HoldingHypotheses()) return;
-    if (due) watch_->Searched(report.stamp);
-    const auto attempt = global_->Try(scan, *report.odometry);
-    report_.kidnap_searches += attempt.searched ? 1 : 0;
-    watch_->Spent(attempt.result.work);
-    if (!attempt.found) return;
-    if (points.empty()) points = localisation_core::LaserPoints(scan);
-    if (const auto kidnapping =
-            watch_->Jumped(report.stamp, points, attempt.found->pose, report.pose.pose)) {
-      report_.kidnappings.push_back(*kidnapping);
-      session_->SetInitialPose(
-          {report.stamp, kidnapping->to, session_options_.tracker.InitialCovariance()},
-          "the search for a kidnapped robot", report.stamp);
-    }
-    global_->ForgetRecentScans();
-    doubting_ = false;
+  // After a tracked scan: the start-up policy's kidnap watch, and its search
+  // when one is due, run at once (the component runs it on a thread of its
+  // own); a robot found far away moves the tracking there.
+  void WatchForKidnapping(const ScanReport& report) {
+    if (!report.odometry || !start_up_->CanSearch()) return;
+    std::vector<std::string> sentences;
+    auto search = start_up_->Watch(*session_, report, sentences);
+    if (!search) return;
+    start_up_->Run(*search);
+    report_.kidnap_searches += search->global->searched ? 1 : 0;
+    const auto outcome = start_up_->Apply(*session_, *search, report.stamp);
+    if (outcome.kidnapping) report_.kidnappings.push_back(*outcome.kidnapping);
   }
 
   void PassThrough(const localisation_core::SessionScan& scan, const ScanReport& report,
@@ -486,13 +461,11 @@ class Replayer {
   std::unique_ptr<config::OutputFile> plot_;
   localisation_core::LocaliserOptions params_;
   localisation_core::SessionOptions session_options_;
-  std::unique_ptr<TrackingSession> session_;      // from the first (located) laser line on
-  std::optional<geometry::Pose2D> initial_pose_;  // given, or found by global_
-  std::unique_ptr<localisation_core::GlobalStart> global_;  // without an initial pose
+  std::unique_ptr<TrackingSession> session_;                    // from the first laser line on
+  std::unique_ptr<localisation_core::StartUpPolicy> start_up_;  // with the session
+  std::optional<geometry::Pose2D> initial_pose_;                // given, or found by start_up_
   size_t global_scans_ = 0;  // scans it has tried (searched or weighed hypotheses with)
   size_t held_scans_ = 0;    // of them, with hypotheses held
-  std::unique_ptr<localisation_core::KidnapWatch> watch_;  // once tracking
-  bool doubting_ = false;  // the watch was in doubt at the last tracked scan
   std::deque<log_formats::StampedPose> early_odometry_;
   std::vector<log_formats::StampedPose> odometry_only_;
   std::optional<geometry::Pose2D> first_odometry_;  // of the first scan handled

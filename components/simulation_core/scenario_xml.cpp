@@ -55,6 +55,94 @@ std::string Resolve(const std::string& scenario_path, const std::string& relativ
       .string();
 }
 
+// <laser> with its blocked sectors (none may wrap through +-pi).
+void ReadLaser(const XmlFile& file, const tinyxml2::XMLElement& e, const ScenarioLimits& limits,
+               LaserSpec& l) {
+  LaserAttributes(limits).Load(file, e, l);
+  if (l.max_range_m <= l.min_range_m) file.Fail(e, "laser: max_range_m must be > min_range_m");
+  config::RequireChildNames(file, e, {"blocked"});
+  for (const auto* b = e.FirstChildElement(); b != nullptr; b = b->NextSiblingElement()) {
+    AttributeReader ba(file, *b);
+    const double from = ba.Double("from_rad"), to = ba.Double("to_rad");
+    ba.Finish();
+    if (from > to) {
+      ba.Fail(
+          "from_rad > to_rad: a sector must not wrap through +-pi; write it as two "
+          "<blocked> elements, one ending at pi and one starting at -pi");
+    }
+    l.blocked_sectors.emplace_back(from, to);
+  }
+}
+
+// The <teleport>s, in time order, each naming a waypoint of the path.
+void ReadTeleports(const XmlFile& file, const tinyxml2::XMLElement& root,
+                   const world_model::WorldLimits& limits, Scenario& s) {
+  for (const auto* t = root.FirstChildElement("teleport"); t != nullptr;
+       t = t->NextSiblingElement("teleport")) {
+    AttributeReader a(file, *t);
+    Teleport teleport;
+    teleport.at_s = a.DoubleIn("at_s", 0.0, s.duration_s);
+    teleport.pose = {Coordinate(a, "x", limits), Coordinate(a, "y", limits),
+                     a.DoubleIn("theta", -geometry::kPi, geometry::kPi)};
+    const double next = a.DoubleIn("next_waypoint", 0.0, 1e6);
+    a.Finish();
+    if (next != std::floor(next) || next >= static_cast<double>(s.path.waypoints.size())) {
+      file.Fail(*t, "next_waypoint must be the index of one of the path's " +
+                        std::to_string(s.path.waypoints.size()) + " waypoints");
+    }
+    teleport.next_waypoint = static_cast<size_t>(next);
+    if (!s.teleports.empty() && teleport.at_s <= s.teleports.back().at_s)
+      file.Fail(*t, "teleports must be in time order");
+    s.teleports.push_back(teleport);
+  }
+}
+
+// A <box>: its four sides as segments.
+void ReadBox(AttributeReader& a, const world_model::WorldLimits& limits,
+             world_model::Scene& obstacles) {
+  const Eigen::Vector2d c(Coordinate(a, "x", limits), Coordinate(a, "y", limits));
+  const double w = Size(a, "width_m", limits.max_abs_coordinate_m);
+  const double h = Size(a, "depth_m", limits.max_abs_coordinate_m);
+  const double yaw = a.Double("theta");
+  a.Finish();
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  const Eigen::Vector2d corners[4] = {
+      {-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
+  for (int k = 0; k < 4; ++k) {
+    const auto& p = corners[k];
+    const auto& q = corners[(k + 1) % 4];
+    obstacles.segments.push_back(
+        {c + Eigen::Vector2d(cy * p.x() - sy * p.y(), sy * p.x() + cy * p.y()),
+         c + Eigen::Vector2d(cy * q.x() - sy * q.y(), sy * q.x() + cy * q.y())});
+  }
+}
+
+// <obstacles>: boxes, cylinders and people walking their waypoints.
+void ReadObstacles(const XmlFile& file, const tinyxml2::XMLElement& obstacles,
+                   const world_model::WorldLimits& limits, Scenario& s) {
+  config::RequireChildNames(file, obstacles, {"box", "cylinder", "person"});
+  const auto person_attributes = PersonAttributes(limits);
+  for (const auto* o = obstacles.FirstChildElement(); o != nullptr; o = o->NextSiblingElement()) {
+    const std::string kind = o->Name();
+    if (kind == "person") {
+      Person p;
+      person_attributes.Load(file, *o, p);
+      p.waypoints = ReadWaypoints(file, *o, limits);
+      if (p.waypoints.size() < 2) file.Fail(*o, "a person needs at least two <waypoint>s");
+      s.people.push_back(p);
+      continue;
+    }
+    AttributeReader a(file, *o);
+    if (kind == "box") {
+      ReadBox(a, limits, s.obstacles);
+    } else {
+      s.obstacles.circles.push_back({{Coordinate(a, "x", limits), Coordinate(a, "y", limits)},
+                                     Size(a, "radius_m", limits.max_radius_m)});
+      a.Finish();
+    }
+  }
+}
+
 }  // namespace
 
 kinematics::RobotParameters Scenario::TrueParameters() const {
@@ -98,24 +186,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
   }
   InitialPoseAttributes(geometry_limits)
       .Load(file, Required(file, root, "initial_pose"), s.initial_pose);
-  {
-    const auto& e = Required(file, root, "laser");
-    auto& l = s.laser;
-    LaserAttributes(limits).Load(file, e, l);
-    if (l.max_range_m <= l.min_range_m) file.Fail(e, "laser: max_range_m must be > min_range_m");
-    config::RequireChildNames(file, e, {"blocked"});
-    for (const auto* b = e.FirstChildElement(); b != nullptr; b = b->NextSiblingElement()) {
-      AttributeReader ba(file, *b);
-      const double from = ba.Double("from_rad"), to = ba.Double("to_rad");
-      ba.Finish();
-      if (from > to) {
-        ba.Fail(
-            "from_rad > to_rad: a sector must not wrap through +-pi; write it as two "
-            "<blocked> elements, one ending at pi and one starting at -pi");
-      }
-      l.blocked_sectors.emplace_back(from, to);
-    }
-  }
+  ReadLaser(file, Required(file, root, "laser"), limits, s.laser);
   {
     const auto& e = Required(file, root, "path");
     PathAttributes().Load(file, e, s.path);
@@ -124,64 +195,9 @@ Scenario LoadScenario(const std::string& path, const ScenarioLimits& limits) {
       file.Fail(e, "needs at least one <waypoint>");
     }
   }
-  for (const auto* t = root.FirstChildElement("teleport"); t != nullptr;
-       t = t->NextSiblingElement("teleport")) {
-    AttributeReader a(file, *t);
-    Teleport teleport;
-    teleport.at_s = a.DoubleIn("at_s", 0.0, s.duration_s);
-    teleport.pose = {Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits),
-                     a.DoubleIn("theta", -geometry::kPi, geometry::kPi)};
-    const double next = a.DoubleIn("next_waypoint", 0.0, 1e6);
-    a.Finish();
-    if (next != std::floor(next) || next >= static_cast<double>(s.path.waypoints.size())) {
-      file.Fail(*t, "next_waypoint must be the index of one of the path's " +
-                        std::to_string(s.path.waypoints.size()) + " waypoints");
-    }
-    teleport.next_waypoint = static_cast<size_t>(next);
-    if (!s.teleports.empty() && teleport.at_s <= s.teleports.back().at_s)
-      file.Fail(*t, "teleports must be in time order");
-    s.teleports.push_back(teleport);
-  }
-  if (const auto* obstacles = root.FirstChildElement("obstacles")) {
-    config::RequireChildNames(file, *obstacles, {"box", "cylinder", "person"});
-    const auto person_attributes = PersonAttributes(geometry_limits);
-    for (const auto* o = obstacles->FirstChildElement(); o != nullptr;
-         o = o->NextSiblingElement()) {
-      const std::string kind = o->Name();
-      if (kind == "person") {
-        Person p;
-        person_attributes.Load(file, *o, p);
-        p.waypoints = ReadWaypoints(file, *o, geometry_limits);
-        if (p.waypoints.size() < 2) file.Fail(*o, "a person needs at least two <waypoint>s");
-        s.people.push_back(p);
-        continue;
-      }
-      AttributeReader a(file, *o);
-      if (kind == "box") {
-        const Eigen::Vector2d c(Coordinate(a, "x", geometry_limits),
-                                Coordinate(a, "y", geometry_limits));
-        const double w = Size(a, "width_m", geometry_limits.max_abs_coordinate_m);
-        const double h = Size(a, "depth_m", geometry_limits.max_abs_coordinate_m);
-        const double yaw = a.Double("theta");
-        a.Finish();
-        const double cy = std::cos(yaw), sy = std::sin(yaw);
-        const Eigen::Vector2d corners[4] = {
-            {-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
-        for (int k = 0; k < 4; ++k) {
-          const auto& p = corners[k];
-          const auto& q = corners[(k + 1) % 4];
-          s.obstacles.segments.push_back(
-              {c + Eigen::Vector2d(cy * p.x() - sy * p.y(), sy * p.x() + cy * p.y()),
-               c + Eigen::Vector2d(cy * q.x() - sy * q.y(), sy * q.x() + cy * q.y())});
-        }
-      } else {
-        s.obstacles.circles.push_back(
-            {{Coordinate(a, "x", geometry_limits), Coordinate(a, "y", geometry_limits)},
-             Size(a, "radius_m", geometry_limits.max_radius_m)});
-        a.Finish();
-      }
-    }
-  }
+  ReadTeleports(file, root, geometry_limits, s);
+  if (const auto* obstacles = root.FirstChildElement("obstacles"))
+    ReadObstacles(file, *obstacles, geometry_limits, s);
   return s;
 }
 

@@ -14,7 +14,7 @@
 #                      built from 182-909, localised on 0-181);
 #             grid     imported from a 5 cm grid ray-cast from that same part.
 # Pictures of map, scans and trajectories go to OUT_DIR (one PNG per row).
-# The same bars are checked by ctest (tests/real_data/real_tracking_test.cpp, label shared_data).
+# The same bars are checked by ctest (tests/real_data/tracking_real_logs_test.cpp, label shared_data).
 #
 # Usage: tests/evaluation/real_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: real_evaluation, build, ../shared/data)

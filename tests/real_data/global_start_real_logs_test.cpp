@@ -7,7 +7,7 @@
 // 98 % of the starts, and never to a wrong one. Odometry is re-synthesised from
 // the corrected poses with the evaluation's documented errors (1.5 % scale,
 // 0.3 deg/m heading drift, 5 mm and 0.1 deg of noise per sqrt(m)). The maps
-// were built from these recordings (see global_localisation_real_logs_test).
+// were built from these recordings (see global_localiser_real_logs_test).
 // STRUCTLOC_REAL_STARTS sets the number of starts (default 50; the figures in
 // docs/measurements/method.md are from 200). Label shared_data.
 #include <gtest/gtest.h>

@@ -192,30 +192,84 @@ std::optional<TrackedPose> PoseTracker::Latest() const {
                      filter_.PoseCovariance()};
 }
 
-PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double waited_s) {
-  if (scan.count == 0 || scan.ranges == nullptr) return Reject(Rejection::kEmptyScan);
+std::optional<Rejection> PoseTracker::ScanProblem(const ScanInput& scan) const {
+  if (scan.count == 0 || scan.ranges == nullptr) return Rejection::kEmptyScan;
   if (!std::isfinite(scan.angle_increment) || scan.angle_increment == 0.0 ||
       !std::isfinite(scan.angle_min) || !std::isfinite(scan.stamp) ||
       !std::isfinite(scan.time_increment) || scan.time_increment < 0) {
-    return Reject(Rejection::kBadScanGeometry);
+    return Rejection::kBadScanGeometry;
   }
   if (scan.time_increment * static_cast<double>(scan.count) > options_.max_scan_duration_s) {
-    return Reject(Rejection::kScanTooLong);
+    return Rejection::kScanTooLong;
   }
   if (scan.count > static_cast<size_t>(localiser_.Options().max_beams)) {
-    return Reject(Rejection::kTooManyBeams);
+    return Rejection::kTooManyBeams;
   }
   if (std::isfinite(scan.angle_max)) {
     const double implied = (scan.angle_max - scan.angle_min) / scan.angle_increment + 1.0;
     if (std::abs(implied - static_cast<double>(scan.count)) > 1.01) {
-      return Reject(Rejection::kBeamCountMismatch);
+      return Rejection::kBeamCountMismatch;
     }
   }
-  if (!(scan.stamp > last_scan_stamp_)) return Reject(Rejection::kScanOutOfOrder);
-  if (history_.Empty()) return Reject(Rejection::kNoOdometry);
-  if (scan.stamp > history_.Newest() + options_.max_future_s)
-    return Reject(Rejection::kScanInFuture);
-  if (!initialised_) return Reject(Rejection::kNoInitialPose);
+  if (!(scan.stamp > last_scan_stamp_)) return Rejection::kScanOutOfOrder;
+  if (history_.Empty()) return Rejection::kNoOdometry;
+  if (scan.stamp > history_.Newest() + options_.max_future_s) return Rejection::kScanInFuture;
+  if (!initialised_) return Rejection::kNoInitialPose;
+  return std::nullopt;
+}
+
+UpdateInput PoseTracker::PriorInput(const ScanInput& scan, bool deskew) const {
+  UpdateInput in;
+  in.scan.ranges = scan.ranges;
+  in.scan.count = scan.count;
+  in.scan.angle_min = scan.angle_min;
+  in.scan.angle_increment = scan.angle_increment;
+  in.scan.time_increment = scan.time_increment;
+  in.scan.range_min = scan.range_min;
+  in.scan.range_max = scan.range_max;
+  in.odometry_pose = filter_.Pose();
+  in.odometry_covariance = filter_.PoseCovariance();
+  in.motion = deskew ? &motion_ : nullptr;
+  return in;
+}
+
+double PoseTracker::CheckCorrection(const ScanInput& scan, const geometry::Pose2D& prior,
+                                    const LocalisationResult& r, bool* refused) {
+  CollectCheckPoints(scan);
+  // The correction must not make the map explain less of the scan. Below a
+  // centimetre and a quarter of a degree the scan cannot tell: checked once.
+  double share = ExplainedShare(prior);
+  const bool usable = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
+  const geometry::Pose2D moved = geometry::Between(prior, r.pose);
+  if (usable && (moved.Translation().norm() > 0.01 || std::abs(moved.theta) > 0.005)) {
+    const double corrected = ExplainedShare(r.pose);
+    *refused = corrected < share - options_.min_share_drop;
+    if (!*refused) share = corrected;
+  }
+  if (*refused) ++stats_.corrections_refused;
+  return share;
+}
+
+void PoseTracker::JudgeLost(const LocalisationResult& r, const Eigen::Matrix3d& covariance,
+                            ScanOutcome& out) {
+  const double sigma_xy =
+      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>())
+                    .eigenvalues()
+                    .maxCoeff());
+  const bool contradicted = r.lost_reason == LostReason::kCorrectionTooLarge ||
+                            r.lost_reason == LostReason::kSolverFailed;
+  if (!out.lost && out.pinned_directions == 0 && !out.reacquired &&
+      (contradicted || sigma_xy > options_.lost_sigma_m)) {
+    out.lost = true;
+    out.lost_reason = contradicted
+                          ? ToString(r.lost_reason)
+                          : "position uncertainty beyond lost_sigma_m without a usable scan";
+  }
+  if (out.lost) ++stats_.scans_lost;
+}
+
+PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double waited_s) {
+  if (const auto problem = ScanProblem(scan)) return Reject(*problem);
   const double last_beam = scan.stamp + scan.time_increment * static_cast<double>(scan.count - 1);
   const double uncovered = last_beam - history_.Newest();
   if (uncovered > options_.max_extrapolation_s && waited_s < options_.odometry_wait_s) {
@@ -243,17 +297,7 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
   // The prior: the filter carried forward by the (calibrated) odometry step.
   filter_.Predict(geometry::Between(odom_at_last_update_, odom));
   odom_at_last_update_ = odom;
-  UpdateInput in;
-  in.scan.ranges = scan.ranges;
-  in.scan.count = scan.count;
-  in.scan.angle_min = scan.angle_min;
-  in.scan.angle_increment = scan.angle_increment;
-  in.scan.time_increment = scan.time_increment;
-  in.scan.range_min = scan.range_min;
-  in.scan.range_max = scan.range_max;
-  in.odometry_pose = filter_.Pose();
-  in.odometry_covariance = filter_.PoseCovariance();
-  in.motion = deskew ? &motion_ : nullptr;
+  const UpdateInput in = PriorInput(scan, deskew);
   const LocalisationResult& r = localiser_.Update(in);
   ScanOutcome out;
   if (r.rejection != nullptr) {
@@ -262,23 +306,10 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     return Reject(Rejection::kLocaliserRejected, r.rejection);
   }
   ++stats_.scans_processed;
-  const bool usable = !r.lost || r.lost_reason == LostReason::kUnderdetermined;
   bool refused = false;
   double share = -1.0;
   const auto check_start = std::chrono::steady_clock::now();
-  if (search_ != nullptr) {
-    CollectCheckPoints(scan);
-    // The correction must not make the map explain less of the scan. Below a
-    // centimetre and a quarter of a degree the scan cannot tell: checked once.
-    share = ExplainedShare(in.odometry_pose);
-    const geometry::Pose2D moved = geometry::Between(in.odometry_pose, r.pose);
-    if (usable && (moved.Translation().norm() > 0.01 || std::abs(moved.theta) > 0.005)) {
-      const double corrected = ExplainedShare(r.pose);
-      refused = corrected < share - options_.min_share_drop;
-      if (!refused) share = corrected;
-    }
-    if (refused) ++stats_.corrections_refused;
-  }
+  if (search_ != nullptr) share = CheckCorrection(scan, in.odometry_pose, r, &refused);
   out.check_us = MicrosecondsSince(check_start);
   out.pinned_directions = refused ? 0 : Correct(r, in, odom);
   map_to_odom_ = geometry::Compose(filter_.Pose(), geometry::Inverse(odom));
@@ -289,20 +320,7 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
     out.search_us = MicrosecondsSince(search_start);
   }
   const Eigen::Matrix3d covariance = filter_.PoseCovariance();
-  const double sigma_xy =
-      std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance.topLeftCorner<2, 2>())
-                    .eigenvalues()
-                    .maxCoeff());
-  const bool contradicted = r.lost_reason == LostReason::kCorrectionTooLarge ||
-                            r.lost_reason == LostReason::kSolverFailed;
-  if (!out.lost && out.pinned_directions == 0 && !out.reacquired &&
-      (contradicted || sigma_xy > options_.lost_sigma_m)) {
-    out.lost = true;
-    out.lost_reason = contradicted
-                          ? ToString(r.lost_reason)
-                          : "position uncertainty beyond lost_sigma_m without a usable scan";
-  }
-  if (out.lost) ++stats_.scans_lost;
+  JudgeLost(r, covariance, out);
   out.verdict = ScanVerdict::kProcessed;
   out.result = &r;
   out.pose = {scan.stamp, filter_.Pose(), covariance};

@@ -1,5 +1,7 @@
 // The localisation component: converts and moves messages around the DDS-free
-// localisation_core::TrackingSession (tracking_session.hpp), which holds the policy. DDS listener
+// localisation_core::TrackingSession (tracking_session.hpp) and
+// StartUpPolicy (start_up_policy.hpp), which hold the policies; the searches
+// the start-up policy asks for run on a thread of their own. DDS listener
 // threads only copy scans, odometry and initial poses into the session's inbox
 // and notify; a worker thread takes them, runs the session (one scan slot: the
 // newest scan wins) and publishes the pose, the map -> odom transform, the
@@ -25,9 +27,7 @@
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/localisation/pose_saver.hpp"
 #include "structloc/localisation/pose_state_file.hpp"
-#include "structloc/localisation_core/global/global_start.hpp"
-#include "structloc/localisation_core/global/kidnap_watch.hpp"
-#include "structloc/localisation_core/global/pose_hint_check.hpp"
+#include "structloc/localisation_core/start_up/start_up_policy.hpp"
 #include "structloc/localisation_core/tracking/session_inbox.hpp"
 #include "structloc/localisation_core/tracking/tracking_session.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
@@ -55,35 +55,13 @@ class LocalisationComponent : public dds_common::Component {
  private:
   void Worker();
   void PublishDiagnostics(double now);
-  // What a search for a robot without a pose found, for the worker to apply.
-  struct SearchAnswer {
-    uint64_t generation = 0;  // search_generation_ when it started
-    double stamp = 0.0;       // of the scan searched
-    std::optional<localisation_core::GlobalStart::Attempt> global;
-    std::optional<localisation_core::PoseHintCheck::Outcome> hint;
-    std::optional<localisation_core::PoseHintCheck> hint_check;  // after the check
-    // A search for a tracked robot that may have been carried away: the
-    // pose tracked at the scan and the scan's laser-frame points.
-    std::optional<geometry::Pose2D> tracked;
-    std::vector<Eigen::Vector2d> points;
-  };
-  // Without a pose, at a scan: starts a search on a thread of its own (the
-  // worker keeps taking scans and odometry meanwhile) when none is running:
-  // the pose hint checked by a local search around it, else the scan against
-  // the whole map.
-  void StartSearch(const localisation_core::SessionScan& scan);
-  // A finished search's answer, applied when nothing it was started for has
-  // changed since (a pose given, a relocalisation asked for).
-  void ApplySearch(const SearchAnswer& answer, double now);
-  void ApplyGlobal(const localisation_core::GlobalStart::Attempt& attempt, double stamp,
-                   double now);
-  void ApplyHint(const localisation_core::PoseHintCheck::Outcome& outcome, double now);
-  // After a tracked scan: the kidnap watch, and its search when one is due.
-  void WatchForKidnapping(const localisation_core::ScanReport& report);
-  void ApplyKidnapSearch(const SearchAnswer& answer, double now);
-  void EndKidnapDoubt();
-  // A given pose that just started tracking, taken back as a hint.
-  void TakeBackAsHint();
+  void Log(const std::string& sentence);
+  // Runs a search the start-up policy asked for on a thread of its own (the
+  // worker keeps taking scans and odometry meanwhile).
+  void Launch(std::optional<localisation_core::StartUpSearch> search);
+  // A finished search's answer, handed back to the start-up policy, and the
+  // hypotheses it left for the worker to publish.
+  void TakeBack(double now);
 
   LocalisationComponentOptions options_;
   std::unique_ptr<world_model::WorldModel> world_;
@@ -99,37 +77,20 @@ class LocalisationComponent : public dds_common::Component {
   localisation_core::SessionInbox inbox_;  // listeners -> worker; its own lock
   std::mutex session_mutex_;  // the worker (updates) and the main thread (diagnostics, saving)
   localisation_core::TrackingSession session_;
-  // Locates a robot without a pose (none given, none saved, or asked to).
-  std::unique_ptr<localisation_core::GlobalStart> global_;
-  // Where a pose given on the command line or rt/initialpose came from, until
-  // the session has started tracking from it and it is taken back as a hint
-  // (empty: none waiting).
-  std::string given_pose_source_;
-  // A hint until it is confirmed, or given up on.
-  std::optional<localisation_core::PoseHintCheck> pose_hint_check_;
-  localisation_core::PoseHintCheckOptions hint_check_options_;
+  // How the robot gets a pose and gets it back: the global search, pose
+  // hints, the kidnap watch.
+  localisation_core::StartUpPolicy start_up_;
   std::atomic<bool> relocalise_requested_{false};
-  // The search under way (global_ and a copy of the hint check are its own
-  // until it ends; the worker then only reads global_->Localiser(), whose
-  // const methods change nothing, for the kidnap watch), and the generation
-  // that outdates its answer.
-  std::future<SearchAnswer> search_;
-  uint64_t search_generation_ = 0;
-  bool forget_recent_scans_ = false;  // once no search uses global_
-  // Hypotheses held after the last global attempt applied (diagnostics), and
-  // the messages saying so, for the worker to publish outside the lock.
-  size_t held_hypotheses_ = 0;
+  // The search under way (its answer is the start-up policy's to apply;
+  // meanwhile the worker only asks the policy what needs no search).
+  std::future<localisation_core::StartUpSearch> search_;
+  // The hypotheses held after a global attempt, for the worker to publish
+  // outside the lock.
   struct StartUpMessages {
     geometry_msgs::msg::PoseArray poses;
     structloc_msgs::msg::LocalisationStatus status;
   };
   std::optional<StartUpMessages> start_up_out_;
-  // Whether the tracked robot was carried away (with global_); in doubt, and
-  // hypotheses held by its searches (searched again at every scan).
-  std::unique_ptr<localisation_core::KidnapWatch> kidnap_watch_;
-  bool kidnap_doubt_ = false;
-  size_t kidnap_hypotheses_ = 0;
-  size_t kidnappings_ = 0;
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;          // the diagnostics headline last printed
   std::unique_ptr<PoseSaver> pose_saver_;  // with a state file

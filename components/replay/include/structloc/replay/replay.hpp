@@ -9,8 +9,9 @@
 // written to temporary files renamed only when the run succeeded, and never
 // over an input. A run that localises no scan is an error.
 //
-// Without an initial pose the robot is first located globally as the
-// localisation component locates it (localisation_core::GlobalStart): the
+// Without an initial pose the robot is first located globally by the start-up
+// policy the localisation component follows (localisation_core::StartUpPolicy,
+// its searches run inline here): the
 // scans are tried one after the other against the whole map, each with the
 // scans of the last metres placed by the log's odometry, until one gives a
 // "found" pose; an ambiguous answer starts hypotheses that the following

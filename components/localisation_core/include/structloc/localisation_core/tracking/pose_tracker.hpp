@@ -183,6 +183,19 @@ class PoseTracker {
 
  private:
   ScanOutcome Reject(Rejection r, const char* detail = nullptr);
+  // What the scan's own geometry and its place in time refuse it for, if anything.
+  std::optional<Rejection> ScanProblem(const ScanInput& scan) const;
+  // The localiser's input: the scan and the filter's prior (de-skewed by
+  // motion_ when `deskew`).
+  UpdateInput PriorInput(const ScanInput& scan, bool deskew) const;
+  // The whole-scan check of the localiser's correction of `prior`: the share
+  // of the scan the map explains at the pose kept, and whether the
+  // correction is refused for explaining clearly less.
+  double CheckCorrection(const ScanInput& scan, const geometry::Pose2D& prior,
+                         const LocalisationResult& r, bool* refused);
+  // The lost verdict: the localiser contradicted, or nothing pinned the pose
+  // while its spread grew beyond lost_sigma_m.
+  void JudgeLost(const LocalisationResult& r, const Eigen::Matrix3d& covariance, ScanOutcome& out);
   // Fuses a localised scan into the filter; returns the directions corrected.
   int Correct(const LocalisationResult& r, const UpdateInput& in, const geometry::Pose2D& odom);
   // The whole-scan check's points (laser frame) of this scan, and their share
