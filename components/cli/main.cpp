@@ -1,4 +1,4 @@
-// structloc: the command-line front end (launch, demo and, as they land,
+// structloc: the command-line front end (launch, demo, record and, as they land,
 // simulate, replay, calibrate, render, params, topics, map, synthesise-odometry). Each
 // subcommand calls the same core libraries as the components.
 #include <cstring>
@@ -26,6 +26,10 @@ const Subcommand kSubcommands[] = {
     {"watch", structloc::cli::WatchCommand,
      "[--domain N] [--participant-profile P] [--timeout-s S] ...  judge a running simulated "
      "robot's localisation against ground truth (exit 0: the demo's bar met)"},
+    {"record", structloc::cli::RecordCommand,
+     "--out RUN.log [--domain N] [--sensor-mount \"X Y THETA\"] [--encoders-out E.csv] "
+     "[--truth-out T.tum] [--duration-s S] [--quiet-s S]  record a robot's laser and odometry "
+     "from DDS into a CARMEN log"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,

@@ -23,5 +23,6 @@ int ParamsCommand(const Invocation& invocation);
 int TopicsCommand(const Invocation& invocation);
 int MapCommand(const Invocation& invocation);
 int SynthesiseOdometryCommand(const Invocation& invocation);
+int RecordCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

@@ -53,6 +53,7 @@ inline constexpr int kFleetDomainsFirst = 21;
 inline constexpr int kFleetDomainsMost = 30;
 inline constexpr int kLatencyBenchmark = 90;
 inline constexpr int kSoakBenchmark = 86;
+inline constexpr int kRecordCli = 91;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kQosProfiles,
@@ -84,7 +85,8 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kCycloneInterop,
                                     kFleetBenchmark,
                                     kLatencyBenchmark,
-                                    kSoakBenchmark};
+                                    kSoakBenchmark,
+                                    kRecordCli};
 
 constexpr bool AllDistinctAndSafe() {
   for (size_t i = 0; i < kAll.size(); ++i) {
