@@ -21,7 +21,7 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 packages=(
   build-essential cmake g++ make pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
-  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libtinyxml2-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
+  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libtinyxml2-dev libceres-dev zlib1g-dev libyaml-cpp-dev libdxflib-dev
   procps openssl
 )
 

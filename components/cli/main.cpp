@@ -1,4 +1,4 @@
-// structloc: the command-line front end (launch, demo, record and, as they land,
+// structloc: the command-line front end (launch, demo, record, slam and, as they land,
 // simulate, replay, calibrate, render, params, topics, map, synthesise-odometry). Each
 // subcommand calls the same core libraries as the components.
 #include <cstring>
@@ -30,6 +30,9 @@ const Subcommand kSubcommands[] = {
      "--out RUN.log [--domain N] [--sensor-mount \"X Y THETA\"] [--encoders-out E.csv] "
      "[--truth-out T.tum] [--duration-s S] [--quiet-s S]  record a robot's laser and odometry "
      "from DDS into a CARMEN log"},
+    {"slam", structloc::cli::SlamCommand,
+     "--log RAW.log --poses-out POSES.tum [--out WORLD.xml] [--relations R] [--params P.xml]  "
+     "the robot's path (and its wall map) from raw odometry and scans"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,

@@ -24,5 +24,6 @@ int TopicsCommand(const Invocation& invocation);
 int MapCommand(const Invocation& invocation);
 int SynthesiseOdometryCommand(const Invocation& invocation);
 int RecordCommand(const Invocation& invocation);
+int SlamCommand(const Invocation& invocation);
 
 }  // namespace structloc::cli

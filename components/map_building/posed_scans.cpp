@@ -25,7 +25,10 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
     PosedScan scan;
     scan.index = log.scans.size();
     scan.line = record.line;
+    scan.stamp = record.stamp;
     scan.laser_pose = *pose;
+    if (record.laser_pose && record.robot_pose && geometry::IsFinite(*record.robot_pose))
+      scan.robot_pose = record.robot_pose;
     scan.angular_resolution = record.angular_resolution;
     scan.beams = record.ranges.size();
     scan.points.reserve(record.ranges.size());

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,7 +24,11 @@ struct PosedScanOptions {
 struct PosedScan {
   size_t index = 0;             // scan number in the log, from 0
   size_t line = 0;              // line in the log
+  double stamp = 0.0;           // the line's (ipc) timestamp
   geometry::Pose2D laser_pose;  // map frame
+  // The robot's pose in the same frame, when the line gives it too (with the
+  // laser pose it gives the mounting).
+  std::optional<geometry::Pose2D> robot_pose;
   // Readings within the range limits, in beam order, in the laser frame, with
   // the range of each (a jump in range separates objects).
   std::vector<Eigen::Vector2d> points;

@@ -1,0 +1,133 @@
+// "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
+// [--relations R] [--params MAP_BUILD.xml]": the robot's path from its raw
+// odometry and scans (slam_core::Slam: keyframes matched, loops closed, the
+// pose graph optimised with Ceres), then, with --out, the wall map built on
+// those poses as "structloc map build" builds one. With --relations, the
+// path is judged by Kuemmerle et al.'s relation metric beside raw odometry.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "file_names.hpp"
+#include "structloc/config/command_line.hpp"
+#include "structloc/config/output_file.hpp"
+#include "structloc/log_formats/recording_writers.hpp"
+#include "structloc/log_formats/relations_reader.hpp"
+#include "structloc/map_building/map_builder.hpp"
+#include "structloc/replay/relation_error.hpp"
+#include "structloc/slam_core/slam.hpp"
+#include "structloc/world_model/world_model_xml.hpp"
+#include "subcommands.hpp"
+
+namespace structloc::cli {
+namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+void PrintRelations(const char* what, const replay::RelationError& e) {
+  std::printf("  %-12s %.3f +- %.3f m, %.2f +- %.2f deg (%zu relations", what, e.translation_mean_m,
+              e.translation_std_m, kDeg * e.rotation_mean_rad, kDeg * e.rotation_std_rad, e.used);
+  if (e.missing > 0) std::printf(", %zu without both scans", e.missing);
+  std::printf(")\n");
+}
+
+}  // namespace
+
+int SlamCommand(const Invocation& inv) {
+  const std::vector<config::OptionSpec> specs = {
+      {"log", true, "CARMEN log with raw odometry (the robot or laser pose of each laser line)"},
+      {"poses-out", true, "the robot's path, one TUM line per scan (t x y z qx qy qz qw)"},
+      {"out", true, "also build the wall map on that path and write it (world XML)"},
+      {"params", true,
+       "map-build options (<map_build_params>, see structloc params --map-build); their range "
+       "limits also choose the readings SLAM matches"},
+      {"relations", true,
+       "judge the path by this relations file (Kuemmerle et al. 2009), beside raw odometry"},
+  };
+  try {
+    const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
+    const std::string log_path = cli.Required("log");
+    const std::string poses_path = cli.Required("poses-out");
+    const std::string params_path = cli.GetOr("params", "");
+    const auto build = params_path.empty() ? map_building::MapBuildOptions{}
+                                           : map_building::LoadMapBuildOptions(params_path);
+    std::vector<std::string> inputs{log_path};
+    if (!params_path.empty()) inputs.push_back(params_path);
+    std::vector<log_formats::Relation> relations;
+    if (cli.Has("relations")) {
+      relations = log_formats::ReadRelations(cli.Required("relations"));
+      inputs.push_back(cli.Required("relations"));
+    }
+    log_formats::TumWriter poses_out(poses_path, inputs);
+    inputs.push_back(poses_path);
+    std::optional<config::OutputFile> world_out;
+    if (cli.Has("out")) world_out.emplace(cli.Required("out"), inputs);
+
+    const auto start = std::chrono::steady_clock::now();
+    auto log = map_building::ReadPosedScans(log_path, build.scans);
+    // The laser on the robot, from the first line with both poses.
+    geometry::Pose2D mount;
+    for (const auto& s : log.scans) {
+      if (!s.robot_pose) continue;
+      mount = geometry::Between(*s.robot_pose, s.laser_pose);
+      break;
+    }
+    const geometry::Pose2D unmount = geometry::Inverse(mount);
+    // SLAM in the laser's frame: its odometric pose and its own readings.
+    slam_core::Slam slam;
+    for (size_t i = 0; i < log.scans.size(); ++i) {
+      const auto& s = log.scans[i];
+      slam.Add({s.stamp, s.laser_pose, s.points});
+      if ((i + 1) % 1000 == 0) {
+        std::printf("  %zu of %zu scans, %zu keyframes, %zu loops closed\n", i + 1,
+                    log.scans.size(), slam.Stats().keyframes, slam.Stats().loops_closed);
+        std::fflush(stdout);
+      }
+    }
+    slam.Finish();
+    const auto laser_path = slam.Trajectory();
+    std::vector<log_formats::StampedPose> path, odometry;
+    for (size_t i = 0; i < laser_path.size(); ++i) {
+      path.push_back({laser_path[i].stamp, geometry::Compose(laser_path[i].pose, unmount)});
+      odometry.push_back({log.scans[i].stamp, geometry::Compose(log.scans[i].laser_pose, unmount)});
+      poses_out.Pose(path.back().stamp, path.back().pose);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto& st = slam.Stats();
+    std::printf(
+        "structloc slam: %zu scans in %.1f s: %zu keyframes (%zu steps on odometry alone), "
+        "%zu loops closed of %zu tried\n",
+        st.scans, seconds, st.keyframes, st.odometry_edges, st.loops_closed, st.loops_tried);
+    if (!relations.empty()) {
+      std::printf("relation errors (Kuemmerle et al. 2009):\n");
+      PrintRelations("slam", replay::CompareRelations(path, relations));
+      PrintRelations("odometry", replay::CompareRelations(odometry, relations));
+    }
+    if (world_out) {
+      for (size_t i = 0; i < log.scans.size(); ++i) log.scans[i].laser_pose = laser_path[i].pose;
+      const auto result = map_building::BuildMap(log.scans, build);
+      const auto world =
+          map_building::MakeWorld(Stem(log_path, "slam"), result.walls, result.pillars);
+      world_model::WriteWorldModel(world,
+                                   {"Built by `structloc slam` from " + FileName(log_path) + ": " +
+                                    std::to_string(result.walls.size()) + " walls, " +
+                                    std::to_string(world.Cylinders().size()) + " pillars."},
+                                   world_out->Stream());
+      std::printf("  %zu walls and %zu pillars in %s\n", result.walls.size(),
+                  world.Cylinders().size(), cli.Required("out").c_str());
+      world_out->Flush();
+    }
+    poses_out.Close();
+    if (world_out) world_out->Commit();
+    return 0;
+  } catch (const config::ConfigError& e) {
+    std::cerr << "structloc slam: " << e.what() << "\n" << config::CommandLine::Usage(specs);
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "structloc slam: " << e.what() << std::endl;
+    return 1;
+  }
+}
+
+}  // namespace structloc::cli

@@ -1,0 +1,65 @@
+// The SLAM front end's measurement: where a scan was taken relative to a
+// reference (the points of the scans before it, or of a place seen long
+// ago), by point-to-line ICP (Censi's PL-ICP idea: each point pulled onto
+// the line through its nearest reference points, which converges far
+// faster than point-to-point on walls), with the covariance the match
+// supports and how much of the scan it explains, for the caller to refuse a
+// poor match. DDS-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <unordered_map>
+#include <vector>
+
+#include "structloc/geometry/pose2d.hpp"
+
+namespace structloc::slam_core {
+
+struct ScanMatchOptions {
+  int iterations = 30;
+  // Pairs are sought this far first, then the distance shrinks to the last.
+  double first_pair_distance_m = 1.0;
+  double last_pair_distance_m = 0.2;
+  double normal_radius_m = 0.25;  // reference neighbours that give a point's line
+  double point_sigma_m = 0.03;    // a point's noise along the normal (range noise, walls)
+  // Neighbouring points see the same stretch of wall, their errors are not
+  // independent: the covariance counts one point in this many.
+  double correlated_points = 10.0;
+  double min_sigma_xy_m = 0.01;  // the covariance never claims better than these
+  double min_sigma_theta_rad = 0.003;
+};
+
+struct ScanMatch {
+  geometry::Pose2D pose;  // of the scan's frame in the reference's frame
+  // Large along what the points do not pin (a corridor's length); identity
+  // when too few points paired to say anything.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  double inlier_share = 0.0;  // of the scan's points within last_pair_distance_m of a line
+  double rms_m = 0.0;         // of those points' distances
+  int pairs = 0;
+  bool constrained = false;  // every direction pinned (not a featureless corridor)
+};
+
+// Reference points with the direction of the surface through each, indexed
+// for nearest-neighbour lookups.
+class ReferencePoints {
+ public:
+  ReferencePoints(const std::vector<Eigen::Vector2d>& points, const ScanMatchOptions& options);
+  // The nearest point with a surface within `max_distance_m` of `p` (-1: none).
+  int Nearest(const Eigen::Vector2d& p, double max_distance_m) const;
+  const Eigen::Vector2d& Point(int i) const { return points_[i]; }
+  const Eigen::Vector2d& Normal(int i) const { return normals_[i]; }
+  size_t Size() const { return points_.size(); }
+
+ private:
+  static long long Key(long long cx, long long cy) { return cx * 2000003LL + cy; }
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<Eigen::Vector2d> normals_;
+  double cell_m_;
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,
+                    const geometry::Pose2D& guess, const ScanMatchOptions& options = {});
+
+}  // namespace structloc::slam_core

@@ -1,0 +1,113 @@
+// SLAM from raw odometry and scans (thesis 6.5.5: the robot maps its own
+// building): a keyframe every few decimetres of travel, matched against the
+// keyframes just before it (point-to-line ICP, ScanMatcher) for a relative
+// pose with its covariance, odometry's step where the match pins too little;
+// loops closed by matching the new keyframe against places seen long ago
+// near where the graph puts it, accepted only where the match explains most
+// of the scan tightly, and entered through a robust loss; the pose graph
+// optimised with Ceres (PoseGraph) after each loop closed and at the end.
+// Scans between keyframes are matched against their keyframe's submap too
+// (odometry's step where that fails), without entering the graph. DDS-free.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "structloc/log_formats/tum_reader.hpp"
+#include "structloc/slam_core/pose_graph.hpp"
+#include "structloc/slam_core/scan_matcher.hpp"
+
+namespace structloc::slam_core {
+
+struct SlamOptions {
+  double keyframe_distance_m = 0.3;  // a keyframe after this much travel ...
+  double keyframe_angle_rad = 0.25;  // ... or this much turn
+  int submap_keyframes = 8;          // the keyframes a new one is matched against
+  // A sequential match is taken when it explains this share of the scan and
+  // moves the odometric guess by at most max_match_correction_m plus
+  // max_match_correction_share of the step.
+  double min_match_share = 0.5;
+  double max_match_correction_m = 0.3;
+  double max_match_correction_share = 0.5;
+  // Odometry's standard deviation per metre and per radian travelled (the
+  // edge where no match pins the step).
+  double odometry_sigma_per_m = 0.1;
+  double odometry_sigma_per_rad = 0.1;
+  // Loop closure: keyframes at least this many before the new one ...
+  int loop_min_separation = 30;
+  // ... whose estimate is within this radius of the new one's, widened by
+  // this share of the path since the last loop closed (the drift the graph
+  // may hold since), at most the last:
+  double loop_radius_m = 2.0;
+  double loop_radius_per_m = 0.05;
+  double loop_max_radius_m = 8.0;
+  int loop_candidates = 3;        // the nearest tried per keyframe
+  int loop_submap_keyframes = 4;  // each side of the candidate, its reference
+  double loop_min_share = 0.7;    // the scan explained by the old place ...
+  double loop_max_rms_m = 0.05;   // ... this tightly
+  ScanMatchOptions match;
+  // ICP from the graph's guess, pairing from farther away than a step's.
+  ScanMatchOptions loop_match{30, 2.0, 0.15, 0.25, 0.03, 10.0, 0.01, 0.003};
+  PoseGraphOptions graph;
+};
+
+// One scan: the robot's odometric pose and the readings in the robot frame.
+struct SlamScan {
+  double stamp = 0.0;
+  geometry::Pose2D odometry;
+  std::vector<Eigen::Vector2d> points;
+};
+
+struct SlamStats {
+  size_t scans = 0;
+  size_t keyframes = 0;
+  size_t odometry_edges = 0;  // steps no match pinned
+  size_t loops_tried = 0;
+  size_t loops_closed = 0;
+  size_t optimisations = 0;
+};
+
+class Slam {
+ public:
+  explicit Slam(const SlamOptions& options = {});
+  void Add(const SlamScan& scan);
+  // The final optimisation.
+  void Finish();
+  // The robot pose of every scan added, in the frame of the first scan's odometry.
+  std::vector<log_formats::StampedPose> Trajectory() const;
+  const SlamStats& Stats() const { return stats_; }
+  const std::vector<PoseGraphEdge>& Edges() const { return edges_; }
+
+ private:
+  struct Keyframe {
+    geometry::Pose2D odometry;
+    std::vector<Eigen::Vector2d> points;
+  };
+  struct ScanEntry {
+    double stamp;
+    size_t keyframe;
+    geometry::Pose2D offset;  // its pose in the keyframe's frame
+  };
+  void AddKeyframe(const SlamScan& scan);
+  // The step from the last keyframe to `scan`: matched against the keyframes
+  // before it when the match is good, else odometry's; `matched` says which.
+  geometry::Pose2D Step(const SlamScan& scan, bool* matched, ScanMatch* match);
+  // The points of keyframes first..last (clamped) in the frame of keyframe `frame`.
+  std::vector<Eigen::Vector2d> Reference(int first, int last, int frame) const;
+  void CloseLoops(int k);
+  void Optimise();
+
+  SlamOptions options_;
+  std::vector<Keyframe> keyframes_;
+  std::vector<geometry::Pose2D> poses_;  // keyframe estimates
+  std::vector<PoseGraphEdge> edges_;
+  std::vector<ScanEntry> scans_;
+  double travel_since_loop_m_ = 0.0;  // odometric path since a loop last closed
+  // The last keyframe's reference (its submap, in its frame), built once.
+  std::unique_ptr<ReferencePoints> reference_;
+  SlamStats stats_;
+};
+
+}  // namespace structloc::slam_core

@@ -1,0 +1,152 @@
+// Point-to-line ICP (see header).
+#include "structloc/slam_core/scan_matcher.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace structloc::slam_core {
+namespace {
+
+// Every point of `points` within `radius` of `centre`, through the cells.
+template <class Visit>
+void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, double cell_m,
+                 const Eigen::Vector2d& centre, double radius,
+                 long long (*key)(long long, long long), Visit visit) {
+  const long long cx = static_cast<long long>(std::floor(centre.x() / cell_m));
+  const long long cy = static_cast<long long>(std::floor(centre.y() / cell_m));
+  const long long reach = static_cast<long long>(std::ceil(radius / cell_m));
+  for (long long dx = -reach; dx <= reach; ++dx) {
+    for (long long dy = -reach; dy <= reach; ++dy) {
+      const auto it = cells.find(key(cx + dx, cy + dy));
+      if (it == cells.end()) continue;
+      for (int i : it->second) visit(i);
+    }
+  }
+}
+
+}  // namespace
+
+ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
+                                 const ScanMatchOptions& options)
+    : cell_m_(options.normal_radius_m) {
+  std::unordered_map<long long, std::vector<int>> all;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    all[Key(static_cast<long long>(std::floor(p.x() / cell_m_)),
+            static_cast<long long>(std::floor(p.y() / cell_m_)))]
+        .push_back(static_cast<int>(i));
+  }
+  const double r2 = options.normal_radius_m * options.normal_radius_m;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& c = points[i];
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    int n = 0;
+    ForEachNear(all, cell_m_, c, options.normal_radius_m, &Key, [&](int j) {
+      const Eigen::Vector2d d = points[j] - c;
+      if (d.squaredNorm() > r2) return;
+      mean += points[j];
+      scatter += points[j] * points[j].transpose();
+      ++n;
+    });
+    if (n < 4) continue;  // too few neighbours for a line
+    mean /= n;
+    const Eigen::Matrix2d covariance = scatter / n - mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
+    // A surface: spread along one direction, thin across it.
+    if (!(eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1))) continue;
+    const int k = static_cast<int>(points_.size());
+    points_.push_back(c);
+    normals_.push_back(eigen.eigenvectors().col(0).normalized());
+    cells_[Key(static_cast<long long>(std::floor(c.x() / cell_m_)),
+               static_cast<long long>(std::floor(c.y() / cell_m_)))]
+        .push_back(k);
+  }
+}
+
+int ReferencePoints::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
+  int best = -1;
+  double best_d2 = max_distance_m * max_distance_m;
+  ForEachNear(cells_, cell_m_, p, max_distance_m, &Key, [&](int i) {
+    const double d2 = (points_[i] - p).squaredNorm();
+    if (d2 <= best_d2) {
+      best_d2 = d2;
+      best = i;
+    }
+  });
+  return best;
+}
+
+ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,
+                    const geometry::Pose2D& guess, const ScanMatchOptions& options) {
+  ScanMatch match;
+  geometry::Pose2D pose = guess;
+  const double huber = 2.0 * options.point_sigma_m;
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    // The pairing distance shrinks over the first half, then holds.
+    const double f = std::min(1.0, 2.0 * iteration / std::max(1, options.iterations - 1));
+    const double reach = options.first_pair_distance_m +
+                         f * (options.last_pair_distance_m - options.first_pair_distance_m);
+    const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (const auto& p : points) {
+      const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x, s * p.x() + c * p.y() + pose.y);
+      const int i = reference.Nearest(q, reach);
+      if (i < 0) continue;
+      const Eigen::Vector2d& n = reference.Normal(i);
+      const double e = n.dot(q - reference.Point(i));
+      const Eigen::Vector3d j(
+          n.x(), n.y(), n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y())));
+      const double w = std::abs(e) <= huber ? 1.0 : huber / std::abs(e);
+      h += w * j * j.transpose();
+      g += w * j * e;
+    }
+    if (h.determinant() <= 1e-12) break;
+    const Eigen::Vector3d step = -h.ldlt().solve(g);
+    pose = {pose.x + step(0), pose.y + step(1), geometry::WrapAngle(pose.theta + step(2))};
+    if (f >= 1.0 && step.head<2>().norm() < 1e-5 && std::abs(step(2)) < 1e-6) break;
+  }
+  // The final pairing: what the match explains, and its covariance.
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  double sum_e2 = 0.0;
+  for (const auto& p : points) {
+    const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x, s * p.x() + c * p.y() + pose.y);
+    const int i = reference.Nearest(q, options.last_pair_distance_m);
+    if (i < 0) continue;
+    const Eigen::Vector2d& n = reference.Normal(i);
+    const double e = n.dot(q - reference.Point(i));
+    const Eigen::Vector3d j(n.x(), n.y(),
+                            n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y())));
+    hessian += j * j.transpose();
+    sum_e2 += e * e;
+    ++match.pairs;
+  }
+  match.pose = pose;
+  match.inlier_share = points.empty() ? 0.0 : static_cast<double>(match.pairs) / points.size();
+  match.rms_m = match.pairs > 0 ? std::sqrt(sum_e2 / match.pairs) : 0.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> xy(hessian.topLeftCorner<2, 2>());
+  // Pinned in every direction: walls of more than one direction, each seen
+  // by a good share of the pairs.
+  match.constrained = match.pairs > 10 && xy.eigenvalues()(0) > 0.05 * match.pairs &&
+                      hessian(2, 2) > 0.0 && std::abs(hessian.determinant()) > 1e-9;
+  if (match.pairs > 10) {
+    // Along a corridor the walls pin nothing: the covariance there grows as
+    // large as the regularisation lets it, and a graph takes the match only
+    // for what it pins.
+    const double sigma2 =
+        std::max(options.point_sigma_m * options.point_sigma_m, match.rms_m * match.rms_m);
+    const Eigen::Matrix3d regularised = hessian + 1e-4 * Eigen::Matrix3d::Identity();
+    match.covariance = options.correlated_points * sigma2 * regularised.inverse();
+    match.covariance(0, 0) = std::max(match.covariance(0, 0), std::pow(options.min_sigma_xy_m, 2));
+    match.covariance(1, 1) = std::max(match.covariance(1, 1), std::pow(options.min_sigma_xy_m, 2));
+    match.covariance(2, 2) =
+        std::max(match.covariance(2, 2), std::pow(options.min_sigma_theta_rad, 2));
+  }
+  return match;
+}
+
+}  // namespace structloc::slam_core

@@ -1,0 +1,157 @@
+// SLAM from raw odometry and scans (see header).
+#include "structloc/slam_core/slam.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace structloc::slam_core {
+namespace {
+
+Eigen::Matrix3d Information(const Eigen::Matrix3d& covariance) {
+  return covariance.inverse();
+}
+
+}  // namespace
+
+Slam::Slam(const SlamOptions& options) : options_(options) {}
+
+void Slam::Add(const SlamScan& scan) {
+  ++stats_.scans;
+  if (!keyframes_.empty()) {
+    const geometry::Pose2D odometry = geometry::Between(keyframes_.back().odometry, scan.odometry);
+    if (odometry.Translation().norm() < options_.keyframe_distance_m &&
+        std::abs(odometry.theta) < options_.keyframe_angle_rad) {
+      bool matched = false;
+      ScanMatch match;
+      scans_.push_back({scan.stamp, keyframes_.size() - 1, Step(scan, &matched, &match)});
+      return;
+    }
+  }
+  AddKeyframe(scan);
+  scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
+}
+
+geometry::Pose2D Slam::Step(const SlamScan& scan, bool* matched, ScanMatch* match) {
+  const geometry::Pose2D step = geometry::Between(keyframes_.back().odometry, scan.odometry);
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  if (!reference_) {
+    reference_ = std::make_unique<ReferencePoints>(
+        Reference(last - options_.submap_keyframes + 1, last, last), options_.match);
+  }
+  *match = MatchScan(*reference_, scan.points, step, options_.match);
+  const double travel = step.Translation().norm();
+  travel_since_loop_m_ += travel;
+  const geometry::Pose2D correction = geometry::Between(step, match->pose);
+  *matched = match->constrained && match->inlier_share >= options_.min_match_share &&
+             correction.Translation().norm() <=
+                 options_.max_match_correction_m + options_.max_match_correction_share * travel;
+  return *matched ? match->pose : step;
+}
+
+std::vector<Eigen::Vector2d> Slam::Reference(int first, int last, int frame) const {
+  first = std::max(first, 0);
+  last = std::min(last, static_cast<int>(keyframes_.size()) - 1);
+  std::vector<Eigen::Vector2d> points;
+  for (int k = first; k <= last; ++k) {
+    const geometry::Pose2D to_frame = geometry::Between(poses_[frame], poses_[k]);
+    for (const auto& p : keyframes_[k].points) points.push_back(to_frame.Apply(p));
+  }
+  return points;
+}
+
+void Slam::AddKeyframe(const SlamScan& scan) {
+  if (keyframes_.empty()) {
+    keyframes_.push_back({scan.odometry, scan.points});
+    poses_.push_back(scan.odometry);
+    ++stats_.keyframes;
+    return;
+  }
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  const geometry::Pose2D step = geometry::Between(keyframes_.back().odometry, scan.odometry);
+  const double travel = step.Translation().norm();
+  // The step as the keyframes before see it, else as odometry counted it.
+  bool taken = false;
+  ScanMatch match;
+  Step(scan, &taken, &match);
+  reference_.reset();  // the next keyframe's submap ends with this one
+  PoseGraphEdge edge;
+  edge.from = last;
+  edge.to = last + 1;
+  if (taken) {
+    edge.measured = match.pose;
+    edge.information = Information(match.covariance);
+  } else {
+    ++stats_.odometry_edges;
+    edge.measured = step;
+    const double sxy = std::max(0.01, options_.odometry_sigma_per_m * travel);
+    const double st =
+        std::max(0.005, options_.odometry_sigma_per_rad * std::abs(step.theta) + 0.02 * travel);
+    edge.information =
+        Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (st * st)).asDiagonal();
+  }
+  edges_.push_back(edge);
+  keyframes_.push_back({scan.odometry, scan.points});
+  poses_.push_back(geometry::Compose(poses_[last], edge.measured));
+  ++stats_.keyframes;
+  CloseLoops(last + 1);
+}
+
+void Slam::CloseLoops(int k) {
+  const double radius =
+      std::min(options_.loop_max_radius_m,
+               options_.loop_radius_m + options_.loop_radius_per_m * travel_since_loop_m_);
+  std::vector<std::pair<double, int>> near;
+  for (int j = 0; j + options_.loop_min_separation <= k; ++j) {
+    const double d = (poses_[j].Translation() - poses_[k].Translation()).norm();
+    if (d <= radius) near.push_back({d, j});
+  }
+  std::sort(near.begin(), near.end());
+  if (near.size() > static_cast<size_t>(options_.loop_candidates))
+    near.resize(options_.loop_candidates);
+  const size_t edges_before = edges_.size();
+  for (const auto& [distance, j] : near) {
+    ++stats_.loops_tried;
+    const ReferencePoints reference(
+        Reference(j - options_.loop_submap_keyframes, j + options_.loop_submap_keyframes, j),
+        options_.loop_match);
+    const ScanMatch match = MatchScan(reference, keyframes_[k].points,
+                                      geometry::Between(poses_[j], poses_[k]), options_.loop_match);
+    if (!match.constrained || match.inlier_share < options_.loop_min_share ||
+        match.rms_m > options_.loop_max_rms_m) {
+      continue;
+    }
+    PoseGraphEdge edge;
+    edge.from = j;
+    edge.to = k;
+    edge.measured = match.pose;
+    edge.information = Information(match.covariance);
+    edge.robust = true;
+    edges_.push_back(edge);
+  }
+  const size_t closed = edges_.size() - edges_before;
+  if (closed == 0) return;
+  stats_.loops_closed += closed;
+  travel_since_loop_m_ = 0.0;
+  Optimise();
+}
+
+void Slam::Optimise() {
+  OptimisePoseGraph(poses_, edges_, options_.graph);
+  ++stats_.optimisations;
+}
+
+void Slam::Finish() {
+  Optimise();
+}
+
+std::vector<log_formats::StampedPose> Slam::Trajectory() const {
+  std::vector<log_formats::StampedPose> out;
+  out.reserve(scans_.size());
+  for (const auto& s : scans_) {
+    out.push_back({s.stamp, geometry::Compose(poses_[s.keyframe], s.offset)});
+  }
+  return out;
+}
+
+}  // namespace structloc::slam_core
