@@ -2,10 +2,18 @@
 // tour, record writes its laser and odometry to a CARMEN log (the mounting
 // from rt/tf_static), its wheel encoders and ground truth beside it, and
 // replay localises the recorded log as accurately as the demo's bar asks.
+// Then the map from the raw recording: `structloc slam` corrects the tour's
+// poses and builds a map on them, and replay localises the log on that map.
+// A self-built map has a frame of its own, so both are judged after one
+// rigid alignment to the truth: the SLAM path by the real recordings' bars
+// with odometry errors (RMSE <= 50 mm, max <= 200 mm), the localisation on
+// the self-built map by the demo's (10 mm, 30 mm).
 // Stopped by Ctrl-C mid-run, record writes everything it received: a log
 // that reads without a malformed line.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <string>
@@ -14,6 +22,7 @@
 #include "dds_test_support.hpp"
 #include "live_accuracy.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
+#include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/replay/replay.hpp"
 #include "structloc/simulation_core/scenario.hpp"
@@ -42,6 +51,45 @@ process::ChildProcess StartSimulator() {
        "--wait-for-subscribers", "1", "--exit-when-done"});
 }
 
+// RMSE and max of `estimate` against `truth` (stamps within 11 ms) after the
+// rigid motion that fits them best (2-D Umeyama without scale).
+std::pair<double, double> AlignedError(const std::vector<log_formats::StampedPose>& estimate,
+                                       const std::vector<log_formats::StampedPose>& truth) {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;
+  size_t j = 0;
+  for (const auto& e : estimate) {
+    while (j + 1 < truth.size() && truth[j + 1].stamp <= e.stamp) ++j;
+    for (size_t k = j; k < std::min(j + 2, truth.size()); ++k) {
+      if (std::abs(truth[k].stamp - e.stamp) > 0.011) continue;
+      pairs.push_back({e.pose.Translation(), truth[k].pose.Translation()});
+      break;
+    }
+  }
+  if (pairs.empty()) return {1e9, 1e9};
+  Eigen::Vector2d me = Eigen::Vector2d::Zero(), mt = Eigen::Vector2d::Zero();
+  for (const auto& [e, t] : pairs) {
+    me += e;
+    mt += t;
+  }
+  me /= static_cast<double>(pairs.size());
+  mt /= static_cast<double>(pairs.size());
+  double sc = 0.0, ss = 0.0;
+  for (const auto& [e, t] : pairs) {
+    const Eigen::Vector2d a = e - me, b = t - mt;
+    sc += a.dot(b);
+    ss += a.x() * b.y() - a.y() * b.x();
+  }
+  const double theta = std::atan2(ss, sc);
+  const Eigen::Rotation2Dd r(theta);
+  double sum = 0.0, worst = 0.0;
+  for (const auto& [e, t] : pairs) {
+    const double d = (r * (e - me) + mt - t).norm();
+    sum += d * d;
+    worst = std::max(worst, d);
+  }
+  return {std::sqrt(sum / static_cast<double>(pairs.size())), worst};
+}
+
 size_t Lines(const std::string& path) {
   std::ifstream in(path);
   size_t n = 0;
@@ -49,7 +97,7 @@ size_t Lines(const std::string& path) {
   return n;
 }
 
-TEST(RecordCli, ARecordedTourReplaysAsAccuratelyAsTheDemo) {
+TEST(RecordCli, ARecordedTourReplaysAndMapsItself) {
   const testing::TempDir temp;
   const std::string log = temp / "run.log", truth = temp / "truth.tum";
   const std::string encoders = temp / "encoders.csv";
@@ -92,6 +140,32 @@ TEST(RecordCli, ARecordedTourReplaysAsAccuratelyAsTheDemo) {
   EXPECT_EQ(report.scans_used, scans);
   ASSERT_TRUE(report.estimate_error);
   testing::ExpectDemoAccuracy(*report.estimate_error, "the recorded tour replayed");
+
+  // The map from the raw recording, and localisation on it.
+  const std::string world = temp / "slam_world.xml", slam_path = temp / "slam.tum";
+  const auto slam =
+      testing::RunCli({"slam", "--log", log, "--poses-out", slam_path, "--out", world}, 300s);
+  ASSERT_EQ(slam.exit_code, 0) << slam.output;
+  const auto truth_poses = log_formats::ReadTum(truth);
+  const auto path = log_formats::ReadTum(slam_path);
+  ASSERT_EQ(path.size(), scans);
+  const auto [slam_rmse, slam_max] = AlignedError(path, truth_poses);
+  std::printf("slam path, aligned: RMSE %.1f mm, max %.1f mm\n", 1e3 * slam_rmse, 1e3 * slam_max);
+  EXPECT_LE(slam_rmse, 0.05);
+  EXPECT_LE(slam_max, 0.2);
+  replay::ReplayOptions on_own = o;
+  on_own.map_path = world;
+  on_own.initial_pose = path.front().pose;
+  on_own.truth_path.clear();
+  on_own.out_tum = temp / "on_own_map.tum";
+  const auto own = replay::RunReplay(on_own);
+  EXPECT_EQ(own.scans_used, scans);
+  EXPECT_EQ(own.scans_lost, 0u);
+  const auto [own_rmse, own_max] = AlignedError(own.estimate, truth_poses);
+  std::printf("localised on the self-built map, aligned: RMSE %.1f mm, max %.1f mm\n",
+              1e3 * own_rmse, 1e3 * own_max);
+  EXPECT_LE(own_rmse, 0.01);
+  EXPECT_LE(own_max, 0.03);
 }
 
 TEST(RecordCli, CtrlCMidRunWritesEverythingReceived) {
