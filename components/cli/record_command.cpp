@@ -153,17 +153,15 @@ int RecordCommand(const Invocation& inv) {
     const auto node_options = dds_common::NodeOptionsFrom(cli, "record", "operator");
 
     Recorder r;
-    std::vector<std::string>& outputs = r.outputs;
-    outputs.push_back(out);
+    r.outputs.push_back(out);
     r.log = std::make_unique<log_formats::CarmenWriter>(out);
     r.log->Comment("recorded by structloc record from DDS domain " +
                    std::to_string(node_options.domain_id));
     r.recording = std::make_unique<log_formats::CarmenRecording>(*r.log, mount);
     if (cli.Has("truth-out")) {
-      r.truth = std::make_unique<log_formats::TumWriter>(cli.Required("truth-out"), outputs);
+      r.truth = std::make_unique<log_formats::TumWriter>(cli.Required("truth-out"), r.outputs);
+      r.outputs.push_back(cli.Required("truth-out"));
     }
-    if (cli.Has("truth-out") && cli.Has("encoders-out"))
-      outputs.push_back(cli.Required("truth-out"));
     if (cli.Has("encoders-out")) r.encoders_path = cli.Required("encoders-out");
 
     dds_common::Node node(node_options);

@@ -1,25 +1,10 @@
 // The relation metric (see header).
 #include "structloc/replay/relation_error.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <optional>
 
 namespace structloc::replay {
 namespace {
-
-std::optional<geometry::Pose2D> PoseAt(const std::vector<log_formats::StampedPose>& trajectory,
-                                       double t, double tolerance_s) {
-  auto it =
-      std::lower_bound(trajectory.begin(), trajectory.end(), t,
-                       [](const log_formats::StampedPose& p, double s) { return p.stamp < s; });
-  const log_formats::StampedPose* best = nullptr;
-  if (it != trajectory.end()) best = &*it;
-  if (it != trajectory.begin() && (!best || t - (it - 1)->stamp < best->stamp - t))
-    best = &*(it - 1);
-  if (!best || std::abs(best->stamp - t) > tolerance_s) return std::nullopt;
-  return best->pose;
-}
 
 void MeanAndStd(const std::vector<double>& v, double& mean, double& std) {
   mean = 0.0;
@@ -38,13 +23,13 @@ RelationError CompareRelations(const std::vector<log_formats::StampedPose>& traj
   RelationError out;
   std::vector<double> translation, rotation;
   for (const auto& r : relations) {
-    const auto a = PoseAt(trajectory, r.t1, tolerance_s);
-    const auto b = PoseAt(trajectory, r.t2, tolerance_s);
-    if (!a || !b) {
+    const auto* a = log_formats::Nearest(trajectory, r.t1, tolerance_s);
+    const auto* b = log_formats::Nearest(trajectory, r.t2, tolerance_s);
+    if (a == nullptr || b == nullptr) {
       ++out.missing;
       continue;
     }
-    const geometry::Pose2D estimated = geometry::Between(*a, *b);
+    const geometry::Pose2D estimated = geometry::Between(a->pose, b->pose);
     translation.push_back(std::hypot(estimated.x - r.relative.x, estimated.y - r.relative.y));
     rotation.push_back(std::abs(geometry::WrapAngle(estimated.theta - r.relative.theta)));
   }

@@ -26,6 +26,20 @@ void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, d
   }
 }
 
+// Point `p` of the scan at `pose` paired with the nearest reference point
+// within `reach`: its distance along that point's normal and the derivative
+// of that distance by (x, y, theta); false when it has no partner.
+bool Pair(const ReferencePoints& reference, const geometry::Pose2D& pose, double c, double s,
+          const Eigen::Vector2d& p, double reach, double* e, Eigen::Vector3d* j) {
+  const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x, s * p.x() + c * p.y() + pose.y);
+  const int i = reference.Nearest(q, reach);
+  if (i < 0) return false;
+  const Eigen::Vector2d& n = reference.Normal(i);
+  *e = n.dot(q - reference.Point(i));
+  *j = {n.x(), n.y(), n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y()))};
+  return true;
+}
+
 }  // namespace
 
 ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
@@ -94,13 +108,9 @@ ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::V
     Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     for (const auto& p : points) {
-      const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x, s * p.x() + c * p.y() + pose.y);
-      const int i = reference.Nearest(q, reach);
-      if (i < 0) continue;
-      const Eigen::Vector2d& n = reference.Normal(i);
-      const double e = n.dot(q - reference.Point(i));
-      const Eigen::Vector3d j(
-          n.x(), n.y(), n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y())));
+      double e = 0.0;
+      Eigen::Vector3d j;
+      if (!Pair(reference, pose, c, s, p, reach, &e, &j)) continue;
       const double w = std::abs(e) <= huber ? 1.0 : huber / std::abs(e);
       h += w * j * j.transpose();
       g += w * j * e;
@@ -114,13 +124,9 @@ ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::V
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
   double sum_e2 = 0.0;
   for (const auto& p : points) {
-    const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x, s * p.x() + c * p.y() + pose.y);
-    const int i = reference.Nearest(q, options.last_pair_distance_m);
-    if (i < 0) continue;
-    const Eigen::Vector2d& n = reference.Normal(i);
-    const double e = n.dot(q - reference.Point(i));
-    const Eigen::Vector3d j(n.x(), n.y(),
-                            n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y())));
+    double e = 0.0;
+    Eigen::Vector3d j;
+    if (!Pair(reference, pose, c, s, p, options.last_pair_distance_m, &e, &j)) continue;
     hessian += j * j.transpose();
     sum_e2 += e * e;
     ++match.pairs;

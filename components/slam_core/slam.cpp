@@ -22,9 +22,7 @@ void Slam::Add(const SlamScan& scan) {
     const geometry::Pose2D odometry = geometry::Between(keyframes_.back().odometry, scan.odometry);
     if (odometry.Translation().norm() < options_.keyframe_distance_m &&
         std::abs(odometry.theta) < options_.keyframe_angle_rad) {
-      bool matched = false;
-      ScanMatch match;
-      scans_.push_back({scan.stamp, keyframes_.size() - 1, Step(scan, &matched, &match)});
+      scans_.push_back({scan.stamp, keyframes_.size() - 1, MatchStep(scan).Pose()});
       return;
     }
   }
@@ -32,21 +30,23 @@ void Slam::Add(const SlamScan& scan) {
   scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
 }
 
-geometry::Pose2D Slam::Step(const SlamScan& scan, bool* matched, ScanMatch* match) {
-  const geometry::Pose2D step = geometry::Between(keyframes_.back().odometry, scan.odometry);
+Slam::Step Slam::MatchStep(const SlamScan& scan) {
+  Step out;
+  const geometry::Pose2D& step = out.odometry =
+      geometry::Between(keyframes_.back().odometry, scan.odometry);
   const int last = static_cast<int>(keyframes_.size()) - 1;
   if (!reference_) {
     reference_ = std::make_unique<ReferencePoints>(
         Reference(last - options_.submap_keyframes + 1, last, last), options_.match);
   }
-  *match = MatchScan(*reference_, scan.points, step, options_.match);
+  out.match = MatchScan(*reference_, scan.points, step, options_.match);
   const double travel = step.Translation().norm();
   travel_since_loop_m_ += travel;
-  const geometry::Pose2D correction = geometry::Between(step, match->pose);
-  *matched = match->constrained && match->inlier_share >= options_.min_match_share &&
-             correction.Translation().norm() <=
-                 options_.max_match_correction_m + options_.max_match_correction_share * travel;
-  return *matched ? match->pose : step;
+  const geometry::Pose2D correction = geometry::Between(step, out.match.pose);
+  out.taken = out.match.constrained && out.match.inlier_share >= options_.min_match_share &&
+              correction.Translation().norm() <=
+                  options_.max_match_correction_m + options_.max_match_correction_share * travel;
+  return out;
 }
 
 std::vector<Eigen::Vector2d> Slam::Reference(int first, int last, int frame) const {
@@ -68,19 +68,17 @@ void Slam::AddKeyframe(const SlamScan& scan) {
     return;
   }
   const int last = static_cast<int>(keyframes_.size()) - 1;
-  const geometry::Pose2D step = geometry::Between(keyframes_.back().odometry, scan.odometry);
-  const double travel = step.Translation().norm();
   // The step as the keyframes before see it, else as odometry counted it.
-  bool taken = false;
-  ScanMatch match;
-  Step(scan, &taken, &match);
+  const Step matched = MatchStep(scan);
+  const geometry::Pose2D& step = matched.odometry;
+  const double travel = step.Translation().norm();
   reference_.reset();  // the next keyframe's submap ends with this one
   PoseGraphEdge edge;
   edge.from = last;
   edge.to = last + 1;
-  if (taken) {
-    edge.measured = match.pose;
-    edge.information = Information(match.covariance);
+  if (matched.taken) {
+    edge.measured = matched.match.pose;
+    edge.information = Information(matched.match.covariance);
   } else {
     ++stats_.odometry_edges;
     edge.measured = step;

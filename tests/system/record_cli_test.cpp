@@ -56,14 +56,9 @@ process::ChildProcess StartSimulator() {
 std::pair<double, double> AlignedError(const std::vector<log_formats::StampedPose>& estimate,
                                        const std::vector<log_formats::StampedPose>& truth) {
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;
-  size_t j = 0;
   for (const auto& e : estimate) {
-    while (j + 1 < truth.size() && truth[j + 1].stamp <= e.stamp) ++j;
-    for (size_t k = j; k < std::min(j + 2, truth.size()); ++k) {
-      if (std::abs(truth[k].stamp - e.stamp) > 0.011) continue;
-      pairs.push_back({e.pose.Translation(), truth[k].pose.Translation()});
-      break;
-    }
+    if (const auto* t = log_formats::Nearest(truth, e.stamp, 0.011))
+      pairs.push_back({e.pose.Translation(), t->pose.Translation()});
   }
   if (pairs.empty()) return {1e9, 1e9};
   Eigen::Vector2d me = Eigen::Vector2d::Zero(), mt = Eigen::Vector2d::Zero();

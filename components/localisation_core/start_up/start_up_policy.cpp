@@ -47,6 +47,16 @@ std::string DescribeSearch(const GlobalStart::Attempt& attempt, double stamp) {
   return s.str();
 }
 
+// The robot's odometric pose at `t`: the one given with the scan, else the
+// session's when odometry on both sides of `t` places it (not the newest
+// sample held beyond it).
+std::optional<geometry::Pose2D> OdometryAt(const TrackingSession& session,
+                                           const std::optional<geometry::Pose2D>& given, double t) {
+  if (given) return given;
+  if (session.OdometryCovers(t)) return session.OdometryAt(t);
+  return std::nullopt;
+}
+
 }  // namespace
 
 StartUpPolicy::StartUpPolicy(const world_model::WorldModel* world,
@@ -161,10 +171,8 @@ std::optional<StartUpSearch> StartUpPolicy::SearchAt(const TrackingSession& sess
     search.hint_check = *hint_;
     return search;
   }
-  // The scans of the last metres count with this one when odometry on both
-  // sides of its stamp places it (not the newest sample held beyond it).
-  std::optional<geometry::Pose2D> odometry = scan.odometry;
-  if (!odometry && session.OdometryCovers(t)) odometry = session.OdometryAt(t);
+  // The scans of the last metres count with this one when odometry places it.
+  const auto odometry = OdometryAt(session, scan.odometry, t);
   // Hypotheses held are carried by odometry: a scan it does not place yet
   // waits for the next.
   if (!odometry && global_->HoldingHypotheses()) return std::nullopt;
@@ -195,9 +203,7 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
     doubt_ = true;
   }
   if (search_out_ || (!due && !global_->HoldingHypotheses())) return std::nullopt;
-  std::optional<geometry::Pose2D> odometry = report.odometry;
-  if (!odometry && session.OdometryCovers(report.stamp))
-    odometry = session.OdometryAt(report.stamp);
+  const auto odometry = OdometryAt(session, report.odometry, report.stamp);
   if (!odometry) return std::nullopt;
   if (due) watch_->Searched(report.stamp);
   auto search = Hand(StartUpSearch::Kind::kKidnap, report.scan);

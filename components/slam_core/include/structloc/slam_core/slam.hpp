@@ -91,9 +91,16 @@ class Slam {
     geometry::Pose2D offset;  // its pose in the keyframe's frame
   };
   void AddKeyframe(const SlamScan& scan);
-  // The step from the last keyframe to `scan`: matched against the keyframes
-  // before it when the match is good, else odometry's; `matched` says which.
-  geometry::Pose2D Step(const SlamScan& scan, bool* matched, ScanMatch* match);
+  // The step from the last keyframe to `scan`: the match against the
+  // keyframes before it, and whether it is good enough to take over
+  // odometry's step.
+  struct Step {
+    geometry::Pose2D odometry;
+    ScanMatch match;
+    bool taken = false;
+    geometry::Pose2D Pose() const { return taken ? match.pose : odometry; }
+  };
+  Step MatchStep(const SlamScan& scan);
   // The points of keyframes first..last (clamped) in the frame of keyframe `frame`.
   std::vector<Eigen::Vector2d> Reference(int first, int last, int frame) const;
   void CloseLoops(int k);
