@@ -38,8 +38,11 @@ struct SlamOptions {
   // Loop closure: keyframes at least this many before the new one ...
   int loop_min_separation = 30;
   // ... whose estimate is within this radius of the new one's, widened by
-  // this share of the path since the last loop closed (the drift the graph
-  // may hold since), at most the last:
+  // this share of the distance counted since the last loop closed, at most
+  // the last. The count adds every scan's odometric distance from its
+  // keyframe, so it runs several times faster than the path itself; the
+  // radius was chosen with that count, and counting the path alone changes
+  // the results (see the maps guide).
   double loop_radius_m = 2.0;
   double loop_radius_per_m = 0.05;
   double loop_max_radius_m = 8.0;
@@ -111,7 +114,9 @@ class Slam {
   std::vector<geometry::Pose2D> poses_;  // keyframe estimates
   std::vector<PoseGraphEdge> edges_;
   std::vector<ScanEntry> scans_;
-  double travel_since_loop_m_ = 0.0;  // odometric path since a loop last closed
+  // Every scan's odometric distance from its keyframe, summed since a loop
+  // last closed (see loop_radius_per_m).
+  double travel_since_loop_m_ = 0.0;
   // The last keyframe's reference (its submap, in its frame), built once.
   std::unique_ptr<ReferencePoints> reference_;
   SlamStats stats_;
