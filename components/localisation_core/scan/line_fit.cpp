@@ -5,11 +5,14 @@ namespace structloc::localisation_core {
 
 void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
                     std::vector<WindowLine>& out) {
-  out.clear();
   const size_t n = points.Size();
   const size_t o = static_cast<size_t>(options.window_points);
-  if (n < o) return;
+  if (n < o) {
+    out.clear();
+    return;
+  }
   const size_t windows = points.wraps ? n : n - o + 1;
+  out.resize(windows);  // every field of every window is written below
   const double max_sse = options.max_rms_m * options.max_rms_m * static_cast<double>(o);
   const double ox = points.x[0], oy = points.y[0];
   LineSums sums;
@@ -21,11 +24,10 @@ void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
       sums.Remove(points.x[leaving] - ox, points.y[leaving] - oy);
       sums.Add(points.x[entering] - ox, points.y[entering] - oy);
     }
-    WindowLine w;
+    WindowLine& w = out[i];
     w.line = FitLine(sums, ox, oy);
     w.first = static_cast<int>(i);
     w.valid = !w.line.degenerate && w.line.sse <= max_sse;
-    out.push_back(w);
   }
 }
 

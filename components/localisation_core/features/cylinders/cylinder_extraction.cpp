@@ -9,19 +9,20 @@ namespace structloc::localisation_core {
 void CylinderWork::Reserve(size_t points, size_t expected) {
   sums.reserve(expected);
   point_label.reserve(points);
+  members.reserve(points);
 }
 
 namespace {
 // Geometric fit of the centre with a known radius (Gauss-Newton), over the
-// points labelled `label`; returns the covariance of the centre.
-bool RefineCentre(const ScanPoints& points, const std::vector<int>& labels, int label,
-                  double radius, double floor2, Eigen::Vector2d& centre, Eigen::Matrix2d& cov) {
+// points `members` (indices in scan order); returns the covariance of the centre.
+bool RefineCentre(const ScanPoints& points, const std::vector<int>& members, double radius,
+                  double floor2, Eigen::Vector2d& centre, Eigen::Matrix2d& cov) {
   for (int iteration = 0; iteration < 10; ++iteration) {
     Eigen::Matrix2d jtj = Eigen::Matrix2d::Zero();
     Eigen::Vector2d jtr = Eigen::Vector2d::Zero();
     double sse = 0.0, n = 0.0;
-    for (size_t k = 0; k < points.Size(); ++k) {
-      if (labels[k] != label) continue;
+    for (const int m : members) {
+      const size_t k = static_cast<size_t>(m);
       const Eigen::Vector2d d(points.x[k] - centre.x(), points.y[k] - centre.y());
       const double dist = d.norm();
       if (dist < 1e-9) continue;
@@ -91,8 +92,11 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     PointCluster c = s.ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m);
     Eigen::Vector2d refined = c.mean;
     Eigen::Matrix2d cov;
-    if (RefineCentre(points, work.point_label, static_cast<int>(e), expected.cylinders[e].radius,
-                     floor2, refined, cov) &&
+    work.members.clear();
+    for (size_t k = 0; k < np; ++k) {
+      if (work.point_label[k] == static_cast<int>(e)) work.members.push_back(static_cast<int>(k));
+    }
+    if (RefineCentre(points, work.members, expected.cylinders[e].radius, floor2, refined, cov) &&
         (refined - c.mean).norm() < o.gate_m) {
       c.refined = refined;
       c.covariance = cov;

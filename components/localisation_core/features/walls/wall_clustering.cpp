@@ -57,17 +57,15 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
     double best_d = 3.0;  // > 2 = outside both gates
     for (size_t e = 0; e < expected.walls.size(); ++e) {
       const auto& x = expected.walls[e];
-      double dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
-      double r = l.r;
-      if (dot < 0.0) {  // the fit's normal points the other way: flip it
-        dot = -dot;
-        r = -r;
-      }
-      if (dot < min_dot) continue;
-      const double dr = r - x.r;
-      if (dr * dr * inv_r2 > 1.0) continue;
-      const double d = dr * dr * inv_r2 + (1.0 - dot) * inv_a2;
-      if (d >= best_d) continue;
+      // A fit whose normal points the other way is flipped (sign of the dot
+      // product); the three cheap gates are one test, so that the branch is
+      // taken about once per window and predicted.
+      const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
+      const double dot = std::abs(signed_dot);
+      const double dr = std::copysign(l.r, signed_dot) - x.r;
+      const double dr2 = dr * dr * inv_r2;
+      const double d = dr2 + (1.0 - dot) * inv_a2;
+      if (!((dot >= min_dot) & (dr2 <= 1.0) & (d < best_d))) continue;
       if (check_extent || mahalanobis) {
         const double t = -x.world_s * (pose.x + v.x()) + x.world_c * (pose.y + v.y());
         const ExpectedExtent* wall = nullptr;

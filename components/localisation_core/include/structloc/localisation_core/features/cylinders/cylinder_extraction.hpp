@@ -37,6 +37,7 @@ inline CircleFit FitCircle(const ScanPoints& points, size_t first, size_t count)
 struct CylinderWork {
   std::vector<PointSums> sums;
   std::vector<int> point_label;
+  std::vector<int> members;  // one pillar's points, for its refinement
   void Reserve(size_t points, size_t expected);
 };
 
