@@ -98,6 +98,7 @@ PoseTracker::PoseTracker(const world_model::WorldModel& world,
     search_ = std::make_unique<GlobalLocaliser>(world, GlobalLocaliserOptions{});
     check_points_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
     check_directions_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
+    check_verdicts_.reserve(2 * static_cast<size_t>(search_->Options().max_points) + 1);
   }
   options_.Validate();
   motion_.Reserve(static_cast<size_t>(localiser_options.max_beams));
@@ -329,6 +330,7 @@ PoseTracker::ScanOutcome PoseTracker::ProcessScan(const ScanInput& scan, double 
 
 void PoseTracker::CollectCheckPoints(const ScanInput& scan) {
   check_points_.clear();
+  check_verdicts_.clear();
   const auto& o = search_->Options();
   const double lo = std::max(o.min_range_m, scan.range_min);
   const double hi = std::min(o.max_range_m, scan.range_max > 0 ? scan.range_max : o.max_range_m);
@@ -351,9 +353,9 @@ void PoseTracker::CollectCheckPoints(const ScanInput& scan) {
   }
 }
 
-double PoseTracker::ExplainedShare(const geometry::Pose2D& pose) const {
-  return search_->ExplainedShare(check_points_,
-                                 geometry::Compose(pose, localiser_.Options().sensor_mount));
+double PoseTracker::ExplainedShare(const geometry::Pose2D& pose) {
+  return search_->ExplainedShare(
+      check_points_, geometry::Compose(pose, localiser_.Options().sensor_mount), check_verdicts_);
 }
 
 void PoseTracker::Reacquire(const ScanInput& scan, ScanOutcome& out) {

@@ -159,6 +159,16 @@ class GlobalLocaliser {
                         const geometry::Pose2D& laser_pose) const {
     return RankScore(usable_points, {}, laser_pose);
   }
+  // Whether each point's beam passes through a wall before its end, as
+  // ExplainedShare judges it; kUnknown until a share has needed it.
+  enum class BeamVerdict : unsigned char { kUnknown, kClear, kBlocked };
+  // ExplainedShare of the same points at nearby poses (a tracker's prior and
+  // its correction, centimetres apart): a beam's verdict is taken at the first
+  // pose that needs it and kept in `verdicts` (one per point, kUnknown at
+  // first) for the others, so that each beam is traced through the map once.
+  double ExplainedShare(const std::vector<Eigen::Vector2d>& usable_points,
+                        const geometry::Pose2D& laser_pose,
+                        std::vector<BeamVerdict>& verdicts) const;
 
   // The points of a scan (laser frame) that a pose is fitted with and
   // weighed by: those within the options' range limits, evenly thinned to at
@@ -206,6 +216,9 @@ class GlobalLocaliser {
   // A point's gain in the ranking field at `pose`, 0 when its beam from
   // `origin` (map frame) passes through a wall before it.
   double RankGain(const Eigen::Vector2d& origin, const Eigen::Vector2d& point_in_map) const;
+  // Whether the beam from `origin` to `point_in_map` crosses a wall more than
+  // see_through_margin_m before its end.
+  bool SeenThroughWall(const Eigen::Vector2d& origin, const Eigen::Vector2d& point_in_map) const;
   bool CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   bool InWindow(const geometry::Pose2D& pose, const SearchWindow& window) const;
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame
@@ -256,9 +269,12 @@ class GlobalLocaliser {
   std::vector<float> fine_gain_;    // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;    // the same with the ranking truncation
   std::vector<float> coarse_gain_;  // the same with d shortened by coarse_blur_m
-  // Per cell: how far (in cells, centre to centre) the nearest cell a wall or
-  // pillar outline passes through is; 0 in such a cell.
-  std::vector<float> wall_distance_;
+  // Per cell: how far (in whole cells, centre to centre, rounded down and at
+  // most 255) the nearest cell a wall or pillar outline passes through is; 0
+  // in such a cell. A byte per cell, so that tracing a beam through the map
+  // finds the field in the cache more often (the result is the same: the
+  // trace only skips less far).
+  std::vector<uint8_t> wall_distance_;
   std::vector<Eigen::Vector2d> positions_;  // coarse candidate laser positions
 };
 

@@ -199,9 +199,10 @@ class PoseTracker {
   // Fuses a localised scan into the filter; returns the directions corrected.
   int Correct(const LocalisationResult& r, const UpdateInput& in, const geometry::Pose2D& odom);
   // The whole-scan check's points (laser frame) of this scan, and their share
-  // explained by the map at robot pose `pose`.
+  // explained by the map at robot pose `pose` (each beam traced through the
+  // map at the first pose asked about, the prior).
   void CollectCheckPoints(const ScanInput& scan);
-  double ExplainedShare(const geometry::Pose2D& pose) const;
+  double ExplainedShare(const geometry::Pose2D& pose);
   // Below min_explained_share for long enough: a local search, a slice per
   // scan, and the filter reset where it finds the scan explained.
   void Reacquire(const ScanInput& scan, ScanOutcome& out);
@@ -220,6 +221,7 @@ class PoseTracker {
   bool corrected_ = false;
   std::unique_ptr<GlobalLocaliser> search_;  // whole-scan check and re-acquisition
   std::vector<Eigen::Vector2d> check_points_;
+  std::vector<GlobalLocaliser::BeamVerdict> check_verdicts_;
   // The unit directions of the beams the check uses, for the scan geometry
   // they were computed for.
   struct CheckGeometry {
