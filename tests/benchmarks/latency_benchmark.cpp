@@ -14,6 +14,9 @@
 // with three walls of every four left out and the SICK preset (whole-scan check
 // on): the map explains too little of the scans, the tracker keeps searching
 // locally, and the latency is that of a searching tracker (CSV "" for none).
+// With "echo", a process of this benchmark's own stands in for the component
+// and answers each scan with a pose at once from its listener: the floor the
+// transport alone sets on this host (two DDS hops, the same QoS, no work).
 // Figures only: it asserts nothing.
 #include <unistd.h>
 
@@ -35,6 +38,7 @@
 #include "structloc/dds_common/node.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
+#include "structloc/process/shutdown_signal.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
 
@@ -44,8 +48,35 @@ using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
+namespace {
+
+// The "echo" mode's peer: a pose with the scan's stamp for every scan, written
+// from the listener; odometry is heard and dropped. Runs until SIGTERM.
+int EchoPeer(int domain, const std::string& qos_file) {
+  namespace dds_common = structloc::dds_common;
+  structloc::process::ShutdownSignal stop;
+  dds_common::Node node({"latency_echo", domain, qos_file, "structloc_localhost", "", {}});
+  auto pose = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+      dds_common::topics::kPose);
+  const auto odom = node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
+      dds_common::topics::kOdom, [](const nav_msgs::msg::Odometry&) {});
+  const auto scans = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
+      dds_common::topics::kScan, [&](const sensor_msgs::msg::LaserScan& m) {
+        geometry_msgs::msg::PoseWithCovarianceStamped answer;
+        answer.header(m.header());
+        pose.Write(answer);
+      });
+  while (!stop.WaitFor(std::chrono::milliseconds(100))) {
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   namespace dds_common = structloc::dds_common;
+  if (argc == 4 && std::string(argv[1]) == "echo-peer")
+    return EchoPeer(std::atoi(argv[2]), argv[3]);
   namespace simulation_core = structloc::simulation_core;
   namespace simulator = structloc::simulator;
   namespace process = structloc::process;
@@ -94,6 +125,7 @@ int main(int argc, char** argv) {
                                    "--qos",          options.qos_file,
                                    "--initial-pose", structloc::testing::PoseArgument(p)};
   const bool lost = argc > 4 && std::string(argv[4]) == "lost";
+  const bool echo = argc > 4 && std::string(argv[4]) == "echo";
   const std::string half_map =
       "/tmp/structloc_latency_half_map_" + std::to_string(getpid()) + ".xml";
   if (lost) {
@@ -107,8 +139,16 @@ int main(int argc, char** argv) {
     }
     args.insert(args.end(),
                 {"--map", half_map, "--params", source + "/maps/params/sick_lms2xx.xml"});
+  } else {
+    // Named, as the simulated robot's launch files do: without it the
+    // component waits for a first scan to choose its preset and subscribes
+    // to odometry only then, while this feeder waits for both readers.
+    args.insert(args.end(), {"--params", source + "/maps/params/office_sick.xml"});
   }
-  process::ChildProcess loc(std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation", args);
+  process::ChildProcess loc(
+      echo ? "/proc/self/exe" : std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
+      echo ? std::vector<std::string>{"echo-peer", std::to_string(domain), options.qos_file}
+           : args);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
