@@ -31,8 +31,9 @@ const Subcommand kSubcommands[] = {
      "[--truth-out T.tum] [--duration-s S] [--quiet-s S]  record a robot's laser and odometry "
      "from DDS into a CARMEN log"},
     {"slam", structloc::cli::SlamCommand,
-     "--log RAW.log --poses-out POSES.tum [--out WORLD.xml] [--relations R] [--params P.xml]  "
-     "the robot's path (and its wall map) from raw odometry and scans"},
+     "--log RAW.log --poses-out POSES.tum [--out WORLD.xml] [--plot P.png] [--relations R] "
+     "[--params P.xml] [--scans F:L]  the robot's path (and its wall map, checked) from raw "
+     "odometry and scans; Ctrl-C keeps what is done"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,

@@ -1,19 +1,26 @@
 // "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
-// [--relations R] [--params MAP_BUILD.xml]": the robot's path from its raw
-// odometry and scans (slam_core::Slam: keyframes matched, loops closed, the
-// pose graph optimised with Ceres), then, with --out, the wall map built on
-// those poses as "structloc map build" builds one. With --relations, the
-// path is judged by Kuemmerle et al.'s relation metric beside raw odometry.
+// [--plot P.png] [--relations R] [--params MAP_BUILD.xml] [--scans F:L]": the
+// robot's path from its raw odometry and scans (slam_core::Slam: keyframes
+// matched, loops closed, the pose graph optimised with Ceres), then, with
+// --out or --plot, the wall map built on those poses as "structloc map build"
+// builds one and checked against the same scans as "structloc map check"
+// checks one. With --relations, the path is judged by Kuemmerle et al.'s
+// relation metric beside raw odometry. Ctrl-C stops adding scans: the path
+// and map of the scans added so far are written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "file_names.hpp"
+#include "map_check_findings.hpp"
 #include "structloc/config/command_line.hpp"
 #include "structloc/config/output_file.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/log_formats/relations_reader.hpp"
 #include "structloc/map_building/map_builder.hpp"
+#include "structloc/map_building/map_check.hpp"
+#include "structloc/process/shutdown_signal.hpp"
+#include "structloc/rendering/map_canvas.hpp"
 #include "structloc/replay/relation_error.hpp"
 #include "structloc/slam_core/slam.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
@@ -43,7 +50,15 @@ int SlamCommand(const Invocation& inv) {
        "limits also choose the readings SLAM matches"},
       {"relations", true,
        "judge the path by this relations file (Kuemmerle et al. 2009), beside raw odometry"},
+      {"plot", true,
+       "PNG of the map built on the path over the readings, each wall coloured by the check "
+       "(as structloc map check draws it)"},
+      {"scans", true,
+       "use only the scans FIRST:LAST of the log (numbers from 0, LAST not included; default: "
+       "all)"},
   };
+  // First, before Ceres or anything else starts a thread that would inherit the signals.
+  process::ShutdownSignal shutdown;
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
     const std::string log_path = cli.Required("log");
@@ -60,11 +75,18 @@ int SlamCommand(const Invocation& inv) {
     }
     log_formats::TumWriter poses_out(poses_path, inputs);
     inputs.push_back(poses_path);
-    std::optional<config::OutputFile> world_out;
+    std::optional<config::OutputFile> world_out, plot;
     if (cli.Has("out")) world_out.emplace(cli.Required("out"), inputs);
+    if (cli.Has("plot")) {
+      rendering::MapCanvas::CheckPictureName(cli.Required("plot"));
+      if (world_out) inputs.push_back(world_out->Path());
+      plot.emplace(cli.Required("plot"), inputs);
+    }
+    const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
 
     const auto start = std::chrono::steady_clock::now();
     auto log = map_building::ReadPosedScans(log_path, build.scans);
+    map_building::KeepScans(log, range.first, range.second);
     // The laser on the robot, from the first line with both poses.
     geometry::Pose2D mount;
     for (const auto& s : log.scans) {
@@ -76,6 +98,12 @@ int SlamCommand(const Invocation& inv) {
     // SLAM in the laser's frame: its odometric pose and its own readings.
     slam_core::Slam slam;
     for (size_t i = 0; i < log.scans.size(); ++i) {
+      if (shutdown.WaitFor(std::chrono::milliseconds(0))) {
+        std::printf("  stopped (Ctrl-C) after %zu of %zu scans: the path and map so far\n", i,
+                    log.scans.size());
+        log.scans.resize(i);
+        break;
+      }
       const auto& s = log.scans[i];
       slam.Add({s.stamp, s.laser_pose, s.points});
       if ((i + 1) % 1000 == 0) {
@@ -104,22 +132,39 @@ int SlamCommand(const Invocation& inv) {
       PrintRelations("slam", replay::CompareRelations(path, relations));
       PrintRelations("odometry", replay::CompareRelations(odometry, relations));
     }
-    if (world_out) {
+    if (world_out || plot) {
       for (size_t i = 0; i < log.scans.size(); ++i) log.scans[i].laser_pose = laser_path[i].pose;
       const auto result = map_building::BuildMap(log.scans, build);
       const auto world =
           map_building::MakeWorld(Stem(log_path, "slam"), result.walls, result.pillars);
-      world_model::WriteWorldModel(world,
-                                   {"Built by `structloc slam` from " + FileName(log_path) + ": " +
-                                    std::to_string(result.walls.size()) + " walls, " +
-                                    std::to_string(world.Cylinders().size()) + " pillars."},
-                                   world_out->Stream());
-      std::printf("  %zu walls and %zu pillars in %s\n", result.walls.size(),
-                  world.Cylinders().size(), cli.Required("out").c_str());
-      world_out->Flush();
+      std::printf("  %zu walls and %zu pillars built on the path%s%s\n", result.walls.size(),
+                  world.Cylinders().size(), world_out ? " in " : "",
+                  world_out ? cli.Required("out").c_str() : "");
+      if (world_out) {
+        world_model::WriteWorldModel(world,
+                                     {"Built by `structloc slam` from " + FileName(log_path) +
+                                      ": " + std::to_string(result.walls.size()) + " walls, " +
+                                      std::to_string(world.Cylinders().size()) + " pillars."},
+                                     world_out->Stream());
+        world_out->Flush();
+      }
+      // The map against the scans it was built from, on the path found.
+      const map_building::MapCheckOptions check;
+      std::vector<Eigen::Vector2d> unexplained;
+      const auto report = map_building::CheckMap(world, log.scans, check, &unexplained);
+      std::cout << "map check of the built map against the scans on the path:\n";
+      PrintMapCheckFindings(world, report, check, build.scans.max_range_m);
+      if (plot) {
+        WriteMapPicture(
+            *plot, world,
+            MapCheckPicture("slam: " + FileName(log_path), log.scans, report, check, unexplained));
+        plot->Flush();
+        std::cout << "  picture: " << plot->Path() << "\n";
+      }
     }
     poses_out.Close();
     if (world_out) world_out->Commit();
+    if (plot) plot->Commit();
     return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << "structloc slam: " << e.what() << "\n" << config::CommandLine::Usage(specs);

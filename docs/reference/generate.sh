@@ -45,7 +45,7 @@ block() {  # a command's output in a text block
   echo "## structloc"
   echo
   block structloc --help
-  for sub in launch demo watch simulate replay calibrate render params topics synthesise-odometry; do
+  for sub in launch demo watch record slam simulate replay calibrate render params topics synthesise-odometry; do
     echo
     echo "### structloc $sub"
     echo

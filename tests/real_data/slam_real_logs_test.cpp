@@ -4,16 +4,25 @@
 // deg), so the metric is theirs. Then structloc slam's path must beat raw
 // odometry tenfold in translation and twofold in rotation: a regression
 // guard, well short of the particle-filter class (0.05 m, 1 deg) the SLAM
-// issue asks for, which is not met yet.
+// issue asks for, which is not met yet. Stopped by Ctrl-C part of the way,
+// `structloc slam` writes the path and map of the scans it had.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "structloc/log_formats/relations_reader.hpp"
+#include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/map_building/posed_scans.hpp"
+#include "structloc/process/child_process.hpp"
 #include "structloc/replay/relation_error.hpp"
 #include "structloc/slam_core/slam.hpp"
+#include "temp_dir.hpp"
 #include "test_paths.hpp"
+#include "wait_until.hpp"
 
 namespace structloc {
 namespace {
@@ -67,6 +76,28 @@ TEST(SlamOnRealLogs, TheMitPathBeatsRawOdometryByFar) {
   EXPECT_GT(st.loops_closed, 0u);
   EXPECT_LT(e.translation_mean_m, raw.translation_mean_m / 10.0);
   EXPECT_LT(e.rotation_mean_rad, raw.rotation_mean_rad / 2.0);
+}
+
+TEST(SlamOnRealLogs, CtrlCPartOfTheWayWritesThePathAndMapSoFar) {
+  using namespace std::chrono_literals;
+  const testing::TempDir temp;
+  const std::string poses = temp / "path.tum", world = temp / "world.xml";
+  process::ChildProcess slam(
+      std::string(STRUCTLOC_BIN_DIR) + "/structloc",
+      {"slam", "--log", testing::SourcePath("../shared/data/mit-csail.clf.gz"), "--poses-out",
+       poses, "--out", world});
+  ASSERT_TRUE(testing::WaitUntil(
+      [&] { return slam.CapturedOutput().find("1000 of 1988 scans") != std::string::npos; }, 120s))
+      << slam.CapturedOutput();
+  slam.Signal(SIGINT);
+  ASSERT_EQ(slam.WaitExit(120s), 0) << slam.CapturedOutput();
+  const std::string said = slam.CapturedOutput();
+  EXPECT_NE(said.find("stopped (Ctrl-C)"), std::string::npos) << said;
+  EXPECT_NE(said.find("map check of the built map"), std::string::npos) << said;
+  const auto path = log_formats::ReadTum(poses);
+  EXPECT_GE(path.size(), 1000u);
+  EXPECT_LT(path.size(), 1988u);
+  EXPECT_TRUE(std::filesystem::exists(world));
 }
 
 }  // namespace

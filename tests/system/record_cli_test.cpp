@@ -15,7 +15,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -138,9 +140,22 @@ TEST(RecordCli, ARecordedTourReplaysAndMapsItself) {
 
   // The map from the raw recording, and localisation on it.
   const std::string world = temp / "slam_world.xml", slam_path = temp / "slam.tum";
-  const auto slam =
-      testing::RunCli({"slam", "--log", log, "--poses-out", slam_path, "--out", world}, 300s);
+  const std::string picture = temp / "slam.png";
+  const auto slam = testing::RunCli(
+      {"slam", "--log", log, "--poses-out", slam_path, "--out", world, "--plot", picture}, 300s);
   ASSERT_EQ(slam.exit_code, 0) << slam.output;
+  // The built map checked against the scans it was built from: every wall
+  // seen by them, and most of their readings on a wall (people and the
+  // recording's noise aside).
+  std::smatch explained, walls;
+  ASSERT_TRUE(std::regex_search(slam.output, explained,
+                                std::regex("of a wall or pillar: ([0-9.]+) % explained")))
+      << slam.output;
+  EXPECT_GE(std::stod(explained[1]), 80.0) << slam.output;
+  ASSERT_TRUE(std::regex_search(slam.output, walls, std::regex(", ([0-9]+) never seen")))
+      << slam.output;
+  EXPECT_EQ(walls[1], "0") << slam.output;
+  EXPECT_TRUE(std::filesystem::exists(picture));
   const auto truth_poses = log_formats::ReadTum(truth);
   const auto path = log_formats::ReadTum(slam_path);
   ASSERT_EQ(path.size(), scans);
