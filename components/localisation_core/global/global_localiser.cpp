@@ -328,39 +328,18 @@ double GlobalLocaliser::ExplainedShare(const std::vector<Eigen::Vector2d>& point
                                        std::vector<BeamVerdict>& verdicts) const {
   if (points.empty()) return 0.0;
   verdicts.resize(points.size(), BeamVerdict::kUnknown);
-  // A chunk of points at a time: first their map places, with the field's
-  // cells asked for ahead (on a robot the searches between scans push the
-  // field out of the cache, and a lookup waiting for memory costs more than
-  // all the arithmetic), then their gains.
-  constexpr size_t kChunk = 64;
-  Eigen::Vector2d placed[kChunk];
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  const double res = options_.grid_resolution_m;
   double sum = 0.0;
-  for (size_t start = 0; start < points.size(); start += kChunk) {
-    const size_t end = std::min(points.size(), start + kChunk);
-    for (size_t i = start; i < end; ++i) {
-      const Eigen::Vector2d& p = points[i];
-      const Eigen::Vector2d q(pose.x + c * p.x() - s * p.y(), pose.y + s * p.x() + c * p.y());
-      placed[i - start] = q;
-      const double gx = (q.x() - cells_.x0) / res - 0.5, gy = (q.y() - cells_.y0) / res - 0.5;
-      if (gx >= 0.0 && gy >= 0.0 && gx + 1.0 < cells_.width && gy + 1.0 < cells_.height) {
-        const size_t cell = static_cast<size_t>(static_cast<int>(gy)) * cells_.width +
-                            static_cast<size_t>(static_cast<int>(gx));
-        __builtin_prefetch(&rank_gain_[cell]);
-        __builtin_prefetch(&rank_gain_[cell + static_cast<size_t>(cells_.width)]);
-      }
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = points[i];
+    const Eigen::Vector2d q(pose.x + c * p.x() - s * p.y(), pose.y + s * p.x() + c * p.y());
+    const double gain = Gain(rank_gain_, q.x(), q.y());
+    if (gain <= 0.0) continue;
+    if (verdicts[i] == BeamVerdict::kUnknown) {
+      verdicts[i] =
+          SeenThroughWall(pose.Translation(), q) ? BeamVerdict::kBlocked : BeamVerdict::kClear;
     }
-    for (size_t i = start; i < end; ++i) {
-      const Eigen::Vector2d& q = placed[i - start];
-      const double gain = Gain(rank_gain_, q.x(), q.y());
-      if (gain <= 0.0) continue;
-      if (verdicts[i] == BeamVerdict::kUnknown) {
-        verdicts[i] =
-            SeenThroughWall(pose.Translation(), q) ? BeamVerdict::kBlocked : BeamVerdict::kClear;
-      }
-      if (verdicts[i] == BeamVerdict::kClear) sum += gain;
-    }
+    if (verdicts[i] == BeamVerdict::kClear) sum += gain;
   }
   return sum / static_cast<double>(points.size());
 }
