@@ -58,6 +58,23 @@ bool IsAnnouncedCount(const std::string& kind, unsigned int code) {
 // differently from how this file pairs them.
 constexpr size_t kMaxLineBytes = DL_DXF_MAXLINE - 2;
 
+// A line as dxflib reads it: up to its first NUL (it handles C strings), its
+// trailing CR and LF dropped.
+std::string AsDxflibReadsIt(const std::string& line) {
+  std::string text = line.substr(0, line.find('\0'));
+  while (!text.empty() && (text.back() == '\r' || text.back() == '\n')) text.pop_back();
+  return text;
+}
+
+// An entity's name without blanks around it: dxflib keeps a value's blanks
+// in some versions and strips them in others; the guard takes the name that
+// checks more entities.
+std::string Unblanked(const std::string& text) {
+  const size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
 // Refuses, with the line, counts beyond kMaxAnnouncedCount in all before
 // dxflib reads the file (it allocates and zeroes for a count as soon as it
 // reads it, then frees at the entity's end: a thousand entities announcing a
@@ -77,12 +94,13 @@ void CheckAnnouncedCounts(const std::string& path) {
   for (size_t line = 1; std::getline(in, code_line) && std::getline(in, value); line += 2) {
     check_length(code_line, line);
     check_length(value, line + 1);
-    char* end = nullptr;
-    const long code = std::strtol(code_line.c_str(), &end, 10);
-    if (end == code_line.c_str() || code < 0) continue;  // dxflib judges the rest
-    if (!value.empty() && value.back() == '\r') value.pop_back();
+    // As dxflib reads a group code: a line that is no number (even an empty
+    // one) is code 0, and starts an entity.
+    const long code = std::strtol(AsDxflibReadsIt(code_line).c_str(), nullptr, 10);
+    if (code < 0) continue;  // dxflib judges the rest
+    value = AsDxflibReadsIt(value);
     if (code == 0) {
-      kind = value;
+      kind = Unblanked(value);
       continue;
     }
     if (!IsAnnouncedCount(kind, static_cast<unsigned int>(code))) continue;

@@ -197,6 +197,31 @@ TEST(ReaderBombs, DxfWhoseLongLineShiftsTheVertexCountPastTheGuard) {
            "DXF readers take at most"});
 }
 
+// dxflib reads a group code that is no number, even an empty line, as 0:
+// the LWPOLYLINE after it starts an entity (found by the fuzzer: 12.8 GB
+// asked for 400 million vertices).
+TEST(ReaderBombs, DxfWhosePolylineFollowsAnEmptyGroupCode) {
+  const TempDir dir;
+  const std::string path = dir.Write(
+      "empty_code.dxf", "0\nSECTION\n2\nENTITIES\n\nLWPOLYLINE\n8\nWALLS\n90\n400000101\n\n\377");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "announces 400000101 items"});
+}
+
+// dxflib reads a line up to its first NUL: "LWPOLYLINE" and then bytes it never sees.
+TEST(ReaderBombs, DxfWhosePolylineNameHidesANul) {
+  const TempDir dir;
+  const std::string path =
+      dir.Write("nul.dxf", "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE" + std::string(1, '\0') +
+                               "hidden\n8\nWALLS\n90\n400000101\n0\nENDSEC\n0\nEOF\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "announces 400000101 items"});
+}
+
 TEST(ReaderBombs, DxfOfAThousandPolylinesAnnouncingAMillionVerticesEach) {
   const TempDir dir;
   std::string text = "0\nSECTION\n2\nENTITIES\n";
