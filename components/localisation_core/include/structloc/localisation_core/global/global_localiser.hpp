@@ -154,18 +154,14 @@ class GlobalLocaliser {
   double Score(const std::vector<Eigen::Vector2d>& points,
                const geometry::Pose2D& laser_pose) const;
   double Score(const Readings& readings, const geometry::Pose2D& laser_pose) const;
-  // The same for points already within the options' range limits (no copy).
-  double ExplainedShare(const std::vector<Eigen::Vector2d>& usable_points,
-                        const geometry::Pose2D& laser_pose) const {
-    return RankScore(usable_points, {}, laser_pose);
-  }
   // Whether each point's beam passes through a wall before its end, as
   // ExplainedShare judges it; kUnknown until a share has needed it.
   enum class BeamVerdict : unsigned char { kUnknown, kClear, kBlocked };
-  // ExplainedShare of the same points at nearby poses (a tracker's prior and
-  // its correction, centimetres apart): a beam's verdict is taken at the first
-  // pose that needs it and kept in `verdicts` (one per point, kUnknown at
-  // first) for the others, so that each beam is traced through the map once.
+  // Score of points already within the options' range limits (no copy), at
+  // nearby poses (a tracker's prior and its correction, centimetres apart): a
+  // beam's verdict is taken at the first pose that needs it and kept in
+  // `verdicts` (one per point, kUnknown at first) for the others, so that
+  // each beam is traced through the map once.
   double ExplainedShare(const std::vector<Eigen::Vector2d>& usable_points,
                         const geometry::Pose2D& laser_pose,
                         std::vector<BeamVerdict>& verdicts) const;
