@@ -133,10 +133,6 @@ int RecordCommand(const Invocation& inv) {
   const auto specs = RecordOptions();
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
-    if (cli.Has("help")) {  // declared by the DDS options, so answered here
-      std::cout << "usage: structloc record [options]\n" << config::CommandLine::Usage(specs);
-      return 0;
-    }
     // First, before DDS starts the threads that would inherit the signals.
     process::ShutdownSignal shutdown;
     const std::string out = cli.Required("out");

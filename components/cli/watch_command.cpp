@@ -37,10 +37,6 @@ int WatchCommand(const Invocation& inv) {
                    "write the poses received to this TUM file (stamp x y z qx qy qz qw)"});
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
-    if (cli.Has("help")) {
-      std::cout << "usage: structloc watch [options]\n" << config::CommandLine::Usage(specs);
-      return 0;
-    }
     const auto timeout = std::chrono::duration<double>(cli.NumberIn("timeout-s", 600, 1, 86400));
     const auto quiet = std::chrono::duration<double>(cli.NumberIn("quiet-s", 3, 0.5, 600));
     LiveBar bar;

@@ -24,11 +24,9 @@ std::string ProgramName(const char* const* argv, int first) {
 
 CommandLine::CommandLine(int argc, const char* const* argv, int first,
                          const std::vector<OptionSpec>& specs) {
-  bool declares_help = false;
-  for (const auto& s : specs) declares_help = declares_help || s.name == "help";
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--help" && !declares_help) {
+    if (arg == "--help") {
       throw HelpRequested{"usage: " + ProgramName(argv, first) + " [options]\n" + Usage(specs)};
     }
     if (arg.rfind("--", 0) != 0) throw ConfigError("unexpected argument '" + arg + "'");

@@ -105,10 +105,6 @@ int RunComponent(int argc, char** argv, const std::string& name,
   }
   try {
     const config::CommandLine cli(argc, argv, 1, specs);
-    if (cli.Has("help")) {
-      std::cout << "usage: " << argv[0] << " [options]\n" << config::CommandLine::Usage(specs);
-      return 0;
-    }
     if (listing && cli.Has("print-params")) {
       listing(std::cout);
       return 0;
@@ -129,6 +125,9 @@ int RunComponent(int argc, char** argv, const std::string& name,
     while (!component->Done() && !shutdown.WaitFor(component->Period())) component->Step();
     component->Stop();
     std::cout << name << ": stopped cleanly" << std::endl;
+    return 0;
+  } catch (const config::HelpRequested& help) {
+    std::cout << help.usage;
     return 0;
   } catch (const config::ConfigError& e) {
     std::cerr << name << ": configuration error: " << e.what() << std::endl;

@@ -385,7 +385,8 @@ TEST(BadInputConfig, L4_MissingExecutablesDurationsAndFoldersGetClearMessages) {
 }
 
 TEST(BadInputConfig, L5_SubcommandHelpPrintsUsageOnceAndExitsZero) {
-  for (const char* subcommand : {"replay", "simulate", "calibrate", "render", "demo"}) {
+  for (const char* subcommand :
+       {"replay", "simulate", "calibrate", "render", "demo", "watch", "record", "slam"}) {
     const auto help = testing::RunCli({subcommand, "--help"});
     EXPECT_EQ(help.exit_code, 0) << subcommand << ": " << help.output;
     EXPECT_EQ(Count(help.output, "options:"), 1u) << subcommand << ": " << help.output;

@@ -69,11 +69,6 @@ int Run(int argc, char** argv) {
       {"check", false, "exit 1 when a bar is missed"},
       {"help", false, "print the options and exit"}};
   const config::CommandLine cli(argc, argv, 1, specs);
-  if (cli.Has("help")) {
-    std::printf("usage: structloc_soak_benchmark [options]\n%s",
-                config::CommandLine::Usage(specs).c_str());
-    return 0;
-  }
   const double seconds = cli.NumberIn("seconds", 1800, 60, 86400);
   const double warm_up_s = std::clamp(0.25 * seconds, 30.0, 300.0);
   const std::string source = STRUCTLOC_SOURCE_DIR;
@@ -230,6 +225,9 @@ int Run(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return structloc::Run(argc, argv);
+  } catch (const structloc::config::HelpRequested& help) {
+    std::printf("%s", help.usage.c_str());
+    return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "structloc_soak_benchmark: %s\n", e.what());
     return 2;

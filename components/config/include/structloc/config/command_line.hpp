@@ -19,8 +19,9 @@ struct OptionSpec {
   std::string help;
 };
 
-// Thrown by CommandLine for "--help" when the program does not declare a
-// "help" option itself; the program's entry point prints `usage` and exits 0.
+// Thrown by CommandLine for "--help" (a program may list "help" among its
+// options so that its usage shows it); the program's entry point prints
+// `usage` and exits 0.
 // Not a std::exception, so that no "catch (const std::exception&)" on the way
 // mistakes it for an error.
 struct HelpRequested {
@@ -30,7 +31,7 @@ struct HelpRequested {
 class CommandLine {
  public:
   // Throws ConfigError on an unknown option or a missing value, and
-  // HelpRequested for "--help" unless `specs` declares its own "help".
+  // HelpRequested for "--help".
   CommandLine(int argc, const char* const* argv, int first, const std::vector<OptionSpec>& specs);
 
   bool Has(const std::string& name) const { return values_.count(name) != 0; }
