@@ -10,9 +10,9 @@
 
 #include "office_scene.hpp"
 #include "structloc/localisation_core/expectation/scan_visibility.hpp"
-#include "structloc/localisation_core/features/corners/corner_extraction.hpp"
-#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
-#include "structloc/localisation_core/features/walls/kohonen_clustering.hpp"
+#include "structloc/localisation_core/features/corners/corner_extractor.hpp"
+#include "structloc/localisation_core/features/cylinders/cylinder_extractor.hpp"
+#include "structloc/localisation_core/features/walls/wall_extractor.hpp"
 
 namespace structloc {
 namespace {
@@ -31,7 +31,8 @@ struct Prepared {
   localisation_core::ScanPoints points;
   std::vector<unsigned char> keep;
   std::vector<localisation_core::WindowLine> windows;
-  localisation_core::ExpectedFeatures expected;
+  localisation_core::ExpectedWalls expected;
+  std::vector<localisation_core::ExpectedPoint> corners, cylinders;
   geometry::Pose2D sensor_prior;
   std::vector<int> assignment;
   localisation_core::WallClusterWork wall_work;
@@ -56,11 +57,23 @@ struct Prepared {
     const auto vo = localisation_core::ScanVisibility(office.options, scan.View());
     world_model::Visibility visibility;
     ComputeVisibility(office.world, office.scene, sensor_prior, vo, visibility);
-    ComputeExpectedFeatures(office.world, lines, line_of, visibility, sensor_prior, expected);
+    ComputeExpectedWalls(office.world, lines, line_of, visibility, sensor_prior, expected);
+    const localisation_core::MapErrorMemory no_memory;  // every map error counted per scan
+    for (int i : visibility.corners) {
+      const auto& c = office.world.Corners()[static_cast<size_t>(i)];
+      corners.push_back(ExpectPoint(i, c.id, c.position, 0.0, 0, sensor_prior, no_memory));
+    }
+    for (int i : visibility.cylinders) {
+      const auto& c = office.world.Cylinders()[static_cast<size_t>(i)];
+      cylinders.push_back(ExpectPoint(i, c.id, c.centre, c.radius, 0, sensor_prior, no_memory));
+    }
     AssignWindowsByExpectation(windows, expected, sensor_prior, Eigen::Matrix3d::Identity(),
-                               office.options.walls, assignment);
+                               WallOptions().clusters, assignment);
     BuildWallClusters(windows, assignment, points, office.options.line_fit.window_points, expected,
-                      office.options.walls, wall_work, walls);
+                      WallOptions().clusters, wall_work, walls);
+  }
+  const localisation_core::WallKindOptions& WallOptions() const {
+    return office.options.kinds.Get<localisation_core::WallKindOptions>();
   }
 };
 
@@ -91,9 +104,9 @@ void BM_WallClustering(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, Eigen::Matrix3d::Identity(),
-                               p.office.options.walls, p.assignment);
+                               p.WallOptions().clusters, p.assignment);
     BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
-                      p.expected, p.office.options.walls, p.wall_work, p.walls);
+                      p.expected, p.WallOptions().clusters, p.wall_work, p.walls);
     benchmark::DoNotOptimize(p.walls.data());
   }
 }
@@ -103,10 +116,10 @@ void BM_WallClusteringKohonen(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   std::mt19937 rng(1);
   for (auto _ : state) {
-    AssignWindowsByKohonen(p.windows, p.expected, p.office.options.walls, p.office.options.kohonen,
+    AssignWindowsByKohonen(p.windows, p.expected, p.WallOptions().clusters, p.WallOptions().kohonen,
                            rng, p.assignment);
     BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
-                      p.expected, p.office.options.walls, p.wall_work, p.walls);
+                      p.expected, p.WallOptions().clusters, p.wall_work, p.walls);
     benchmark::DoNotOptimize(p.walls.data());
   }
 }
@@ -118,7 +131,8 @@ void BM_Corners(benchmark::State& state) {
   work.reserve(64);
   out.reserve(64);
   for (auto _ : state) {
-    ExtractCorners(p.windows, p.points.wraps, p.expected, p.office.options.corners,
+    ExtractCorners(p.windows, p.points.wraps, p.corners,
+                   p.office.options.kinds.Get<localisation_core::CornerKindOptions>().extraction,
                    p.office.options.line_fit.window_points, work, out);
     benchmark::DoNotOptimize(out.data());
   }
@@ -131,8 +145,10 @@ void BM_Cylinders(benchmark::State& state) {
   std::vector<localisation_core::PointCluster> out;
   out.reserve(64);
   for (auto _ : state) {
-    ExtractCylinders(p.windows, p.points, p.expected, p.office.options.cylinders,
-                     p.office.options.line_fit.window_points, work, out);
+    ExtractCylinders(
+        p.windows, p.points, p.cylinders,
+        p.office.options.kinds.Get<localisation_core::CylinderKindOptions>().extraction,
+        p.office.options.line_fit.window_points, work, out);
     benchmark::DoNotOptimize(out.data());
   }
 }

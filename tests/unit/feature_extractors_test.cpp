@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "office_scene.hpp"
+#include "structloc/localisation_core/features/corners/corner_extractor.hpp"
+#include "structloc/localisation_core/features/cylinders/cylinder_extractor.hpp"
 #include "structloc/localisation_core/features/feature_kinds.hpp"
+#include "structloc/localisation_core/features/walls/wall_extractor.hpp"
 #include "structloc/localisation_core/localiser/localiser.hpp"
 
 namespace structloc::localisation_core {
@@ -21,33 +25,61 @@ std::vector<std::string> Kinds(const std::vector<std::unique_ptr<FeatureExtracto
 }
 
 TEST(FeatureKinds, TheParameterFileDecidesWhichExtractorsRunAndInWhichOrder) {
+  const testing::OfficeScene office(2 * geometry::kPi);
   LocaliserOptions o;
-  const ExtractorCapacity capacity{300, 4, 4, 2};
-  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, capacity)),
+  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, office.world, 300)),
             (std::vector<std::string>{"walls", "corners", "cylinders"}));
-  o.use_corners = false;
-  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, capacity)),
+  o.kinds.Get<CornerKindOptions>().enabled = false;
+  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, office.world, 300)),
             (std::vector<std::string>{"walls", "cylinders"}));
-  o.use_cylinders = false;
-  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, capacity)), (std::vector<std::string>{"walls"}));
+  o.kinds.Get<CylinderKindOptions>().enabled = false;
+  EXPECT_EQ(Kinds(MakeFeatureExtractors(o, office.world, 300)),
+            (std::vector<std::string>{"walls"}));
 }
 
 TEST(FeatureKinds, EveryKindIsNamedLikeItsBlockInTheParameterFile) {
+  const testing::OfficeScene office(2 * geometry::kPi);
   const auto file = LocaliserOptionFile();
   const auto kinds = FeatureKinds();
-  const auto extractors = MakeFeatureExtractors(LocaliserOptions{}, {300, 4, 4, 2});
+  const auto extractors = MakeFeatureExtractors(LocaliserOptions{}, office.world, 300);
   ASSERT_EQ(kinds.size(), extractors.size());
   for (size_t i = 0; i < kinds.size(); ++i) EXPECT_STREQ(kinds[i].name, extractors[i]->Kind());
-  for (const auto& e : MakeFeatureExtractors(LocaliserOptions{}, {300, 4, 4, 2})) {
+  for (const auto& e : extractors) {
     bool found = false;
     for (const auto& section : file.Sections()) found = found || section.Section() == e->Kind();
     EXPECT_TRUE(found) << e->Kind() << " has no <" << e->Kind() << "> block";
   }
 }
 
+TEST(FeatureKinds, EachKindsOptionsAreItsOwnTypeAndItsBlockReadsThem) {
+  LocaliserOptions o;
+  EXPECT_DOUBLE_EQ(o.kinds.Get<CornerKindOptions>().extraction.gate_m, CornerOptions{}.gate_m);
+  o.kinds.Get<CornerKindOptions>().extraction.gate_m = 0.35;
+  o.kinds.Get<WallKindOptions>().clusters.gate_r_m = 0.15;
+  const LocaliserOptions copy = o;
+  EXPECT_DOUBLE_EQ(copy.kinds.Get<CornerKindOptions>().extraction.gate_m, 0.35);
+  EXPECT_DOUBLE_EQ(copy.kinds.Get<WallKindOptions>().clusters.gate_r_m, 0.15);
+  EXPECT_TRUE(copy.kinds.Get<CylinderKindOptions>().enabled) << "defaults for a kind never set";
+  // The <corners> block shows and checks the corner kind's own options.
+  const auto file = LocaliserOptionFile();
+  int corner_blocks = 0;
+  for (const auto& section : file.Sections()) {
+    if (section.Section() != "corners") continue;
+    ++corner_blocks;
+    bool shown = false;
+    for (const auto& [key, value] : section.Values(copy)) {
+      shown = shown || (key == "gate_m" && value == "0.35");
+    }
+    EXPECT_TRUE(shown);
+    o.kinds.Get<CornerKindOptions>().extraction.gate_m = -1.0;
+    EXPECT_THROW(section.Validate(o), std::invalid_argument);
+  }
+  EXPECT_EQ(corner_blocks, 1);
+}
+
 TEST(FeatureKinds, ResultsListEachEnabledKindWithItsCountsMatchesAndTime) {
   testing::OfficeScene office(2 * geometry::kPi);
-  office.options.use_corners = false;
+  office.options.kinds.Get<CornerKindOptions>().enabled = false;
   Localiser localiser(office.world, office.options);
   std::mt19937 rng(5);
   const auto scan = office.Scan(300, rng);
@@ -72,24 +104,36 @@ TEST(FeatureKinds, ResultsListEachEnabledKindWithItsCountsMatchesAndTime) {
 }
 
 // A feature kind written for this test only, to show what a new kind provides:
-// it "finds" every expected corner exactly where the true pose puts it.
+// it places the map's visible corners itself and "finds" each exactly where the
+// true pose puts it.
 class OracleCorners : public FeatureExtractor {
  public:
   explicit OracleCorners(const geometry::Pose2D& true_sensor) : true_sensor_(true_sensor) {}
   const char* Kind() const override { return "oracle_corners"; }
   FeatureShape Shape() const override { return FeatureShape::kPoint; }
-  int Expected(const ExpectedFeatures& expected) const override {
-    return static_cast<int>(expected.corners.size());
+  int TakeSlots(const world_model::WorldModel& map, int first_slot) override {
+    first_slot_ = first_slot;
+    return static_cast<int>(map.Corners().size());
   }
-  void Extract(const ExtractionInput& in, Measurements& all,
+  void Expect(const ExpectationInput& in) override {
+    expected_.clear();
+    for (int i : in.visibility->corners) {
+      const auto& c = in.map->Corners()[static_cast<size_t>(i)];
+      expected_.push_back(
+          ExpectPoint(i, c.id, c.position, 0.0, first_slot_ + i, in.sensor_prior, *in.map_errors));
+    }
+  }
+  int Expected() const override { return static_cast<int>(expected_.size()); }
+  void Extract(const ExtractionInput&, Measurements& all,
                std::vector<FeatureMatch>& matches) override {
-    for (const auto& e : in.expected->corners) {
+    for (const auto& e : expected_) {
       PointMeasurement m;
       m.sensor = true_sensor_.ApplyInverse(e.world);
       m.covariance = 1e-6 * Eigen::Matrix2d::Identity();
       m.world = e.world;
       FeatureMatch match;
       match.model_id = e.model_id;
+      match.slot = e.slot;
       match.members = 1;
       match.x_m = m.sensor.x();
       match.y_m = m.sensor.y();
@@ -101,6 +145,8 @@ class OracleCorners : public FeatureExtractor {
 
  private:
   geometry::Pose2D true_sensor_;
+  int first_slot_ = 0;
+  std::vector<ExpectedPoint> expected_;
 };
 
 TEST(FeatureKinds, ANewKindPlugsInWithoutChangingTheLocaliser) {
@@ -117,6 +163,7 @@ TEST(FeatureKinds, ANewKindPlugsInWithoutChangingTheLocaliser) {
   const auto* oracle = r.Kind("oracle_corners");
   ASSERT_NE(oracle, nullptr);
   EXPECT_GE(oracle->Matched(), 2);
+  EXPECT_EQ(oracle->expected, oracle->Matched());
   for (const auto& m : oracle->matches) EXPECT_TRUE(m.used);
   EXPECT_NEAR(r.pose.x, office.truth.x, 1e-3);
   EXPECT_NEAR(r.pose.y, office.truth.y, 1e-3);

@@ -7,6 +7,9 @@
 
 #include <cstdio>
 
+#include "structloc/localisation_core/features/corners/corner_extractor.hpp"
+#include "structloc/localisation_core/features/cylinders/cylinder_extractor.hpp"
+#include "structloc/localisation_core/features/walls/wall_extractor.hpp"
 #include "structloc/localisation_core/localiser/localiser.hpp"
 #include "synthetic_scans.hpp"
 
@@ -22,9 +25,9 @@ TEST(CovarianceHonesty, ErrorsLieWithinThreeSigmaOfTheReportedCovariance) {
   options.prefilter.max_range_m = 15.0;
   options.prefilter.min_range_m = 0.2;
   options.prefilter.min_neighbour_distance_m = 0.03;
-  options.walls.min_cluster_size = 3;
-  options.corners.min_cluster_size = 3;
-  options.cylinders.min_cluster_size = 2;
+  options.kinds.Get<WallKindOptions>().clusters.min_cluster_size = 3;
+  options.kinds.Get<CornerKindOptions>().extraction.min_cluster_size = 3;
+  options.kinds.Get<CylinderKindOptions>().extraction.min_cluster_size = 2;
   const double prior_sigma_xy = 0.05, prior_sigma_theta = 0.03;
   std::normal_distribution<double> n01(0.0, 1.0);
   const int cases = 200;

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "structloc/localisation_core/features/corners/corner_extractor.hpp"
+#include "structloc/localisation_core/features/walls/wall_extractor.hpp"
 #include "structloc/localisation_core/localiser/localiser.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "synthetic_scans.hpp"
@@ -40,9 +42,10 @@ TEST(LocaliserOptions, DefaultsAreTheThesisTable6Values) {
   EXPECT_DOUBLE_EQ(o.prefilter.min_range_m, 0.5);
   EXPECT_DOUBLE_EQ(o.prefilter.max_neighbour_distance_m, 0.3);
   EXPECT_DOUBLE_EQ(o.prefilter.min_neighbour_distance_m, 0.06);
-  EXPECT_EQ(o.walls.min_cluster_size, 1);
-  EXPECT_DOUBLE_EQ(o.walls.gate_alpha_rad, 0.2);
-  EXPECT_DOUBLE_EQ(o.walls.gate_r_m, 0.2);
+  const auto& walls = o.kinds.Get<WallKindOptions>().clusters;
+  EXPECT_EQ(walls.min_cluster_size, 1);
+  EXPECT_DOUBLE_EQ(walls.gate_alpha_rad, 0.2);
+  EXPECT_DOUBLE_EQ(walls.gate_r_m, 0.2);
   EXPECT_NO_THROW(o.Validate());
 }
 
@@ -62,16 +65,18 @@ TEST(LocaliserOptions, ListingCoversEveryKeyOfTheShippedFilesWithItsDefault) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   }
   const LocaliserOptions defaults;
-  EXPECT_DOUBLE_EQ(defaults.corners.redundant_wall_distance_m, 0.05);
-  EXPECT_DOUBLE_EQ(defaults.corners.redundant_min_sin, 0.5);
+  const auto& corners = defaults.kinds.Get<CornerKindOptions>().extraction;
+  EXPECT_DOUBLE_EQ(corners.redundant_wall_distance_m, 0.05);
+  EXPECT_DOUBLE_EQ(corners.redundant_min_sin, 0.5);
   EXPECT_DOUBLE_EQ(defaults.solver.quality_chi2_per_dof, 2.0);
   const auto thesis = LoadLocaliserOptions(testing::SourcePath("maps/params/thesis_table6.xml"));
-  EXPECT_DOUBLE_EQ(thesis.corners.redundant_min_sin, defaults.corners.redundant_min_sin);
+  EXPECT_DOUBLE_EQ(thesis.kinds.Get<CornerKindOptions>().extraction.redundant_min_sin,
+                   corners.redundant_min_sin);
 }
 
 TEST(LocaliserOptions, ValidateNamesSectionAndKeyOfAnOptionSetInCode) {
   LocaliserOptions o;
-  o.corners.redundant_min_sin = 1.5;
+  o.kinds.Get<CornerKindOptions>().extraction.redundant_min_sin = 1.5;
   try {
     o.Validate();
     ADD_FAILURE() << "accepted redundant_min_sin = 1.5";
@@ -227,7 +232,7 @@ TEST_F(LocaliserFixture, DeskewingRemovesTheSkewOfAScanTakenWhileMoving) {
 
 TEST_F(LocaliserFixture, KohonenStrategyMatchesTheSameWallsDeterministically) {
   LocaliserOptions o;
-  o.wall_strategy = WallStrategy::kKohonen;
+  o.kinds.Get<WallKindOptions>().strategy = WallStrategy::kKohonen;
   std::mt19937 rng(11);
   auto scan = testing::CastScan(scene_, truth_, {300, 2 * kPi, 30.0, 0.005}, rng);
   UpdateInput in;

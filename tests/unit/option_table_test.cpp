@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "structloc/config/option_table.hpp"
 #include "temp_dir.hpp"
@@ -243,6 +245,53 @@ TEST(Range, DescribesAndChecksItsEnds) {
   EXPECT_TRUE(Range::Magnitude(0.1, 1).Contains(-1.0));
   EXPECT_FALSE(Range::Magnitude(0.1, 1).Contains(0.0));
   EXPECT_FALSE(Range::Magnitude(0.1, 1).Contains(-1.5));
+}
+
+// A part declared on its own type (as a feature kind declares its options)
+// and found inside the whole by a function: loads, checks and lists like a
+// table of the whole, with the part's keys, ranges and defaults.
+struct Whole {
+  int count = 3;
+  std::vector<Inner> parts{Inner{}};  // reached only through a function
+};
+
+TEST(OptionTable, APartDeclaredOnItsOwnTypeLoadsChecksAndListsInsideTheWhole) {
+  OptionTable<Inner> part("gates", "a part's own section");
+  part.Number("gate_m", &Inner::gate_m, Range::Positive(), "m", "a gate");
+  const auto in_whole = [](auto& w) -> auto& {
+    return w.parts.front();
+  };
+  OptionTable<Whole> counts("counts", "the whole's own section");
+  counts.Number("count", &Whole::count, Range::Closed(1, 10), "", "how many");
+  const OptionFile<Whole> file("whole", {counts, OptionTable<Whole>::Of(part, in_whole)});
+  const testing::TempDir dir;
+  const auto loaded = file.Load(XmlFile::Load(dir.Write(
+      "whole.xml", "<whole>\n<counts count=\"4\"/>\n<gates gate_m=\"0.7\"/>\n</whole>\n")));
+  EXPECT_EQ(loaded.count, 4);
+  EXPECT_DOUBLE_EQ(loaded.parts.front().gate_m, 0.7);
+
+  Whole broken;
+  broken.parts.front().gate_m = -1.0;
+  try {
+    file.Validate(broken);
+    ADD_FAILURE() << "a negative gate in the part was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "gates: gate_m must be > 0, not -1");
+  }
+  const std::string path =
+      dir.Write("bad.xml", "<whole>\n<counts count=\"4\"/>\n<gates gate_m=\"-2\"/>\n</whole>\n");
+  try {
+    file.Load(XmlFile::Load(path));
+    ADD_FAILURE() << "a negative gate in the part's section was loaded";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":3: <gates>: gates: gate_m must be > 0, not -2"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ostringstream listing;
+  file.Print(listing, Whole{});
+  EXPECT_NE(listing.str().find("gate_m"), std::string::npos) << listing.str();
+  EXPECT_NE(listing.str().find("0.2"), std::string::npos) << listing.str();
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace {
 
 // The wall line y = y0 seen from the origin (heading 0), made of map walls
 // over x in each of `spans`.
-void AddLine(ExpectedFeatures& f, double y0, const std::vector<std::pair<double, double>>& spans) {
+void AddLine(ExpectedWalls& f, double y0, const std::vector<std::pair<double, double>>& spans) {
   ExpectedWall e;
   e.line_index = static_cast<int>(f.walls.size());
   e.model_id = e.line_index + 1;
@@ -54,7 +54,7 @@ WallClusterOptions RealMapOptions() {
 const Eigen::Matrix3d kPrior = Eigen::Vector3d(4e-4, 4e-4, 1e-4).asDiagonal();
 
 TEST(PairingGates, AWindowInADoorwayPairsWithNoWall) {
-  ExpectedFeatures f;
+  ExpectedWalls f;
   AddLine(f, 2.0, {{-3.0, -0.5}, {0.5, 3.0}});  // a 1 m doorway around x = 0
   const std::vector<WindowLine> windows = {Window(1.5, 2.0), Window(0.0, 2.0), Window(-2.0, 2.0)};
   std::vector<int> assignment;
@@ -63,7 +63,7 @@ TEST(PairingGates, AWindowInADoorwayPairsWithNoWall) {
 }
 
 TEST(PairingGates, AWindowFarFromItsWallUnderATightPriorPairsWithNothing) {
-  ExpectedFeatures f;
+  ExpectedWalls f;
   AddLine(f, 2.0, {{-3.0, 3.0}});
   const std::vector<WindowLine> windows = {Window(1.0, 2.15)};  // 15 cm off; prior sigma 2 cm
   std::vector<int> assignment;
@@ -86,7 +86,7 @@ WallCluster ClusterAt(int expected, double y) {
 }
 
 TEST(PairingGates, AClusterBetweenTwoParallelWallsIsAmbiguousAndDropped) {
-  ExpectedFeatures f;
+  ExpectedWalls f;
   AddLine(f, 2.0, {{-3.0, 3.0}});
   AddLine(f, 2.04, {{-3.0, 3.0}});  // a second wall 4 cm behind, both within the gates
   std::vector<WallCluster> clusters = {ClusterAt(0, 2.02)};
@@ -95,7 +95,7 @@ TEST(PairingGates, AClusterBetweenTwoParallelWallsIsAmbiguousAndDropped) {
 }
 
 TEST(PairingGates, AClusterGainsTheMapsErrorWhenItPasses) {
-  ExpectedFeatures f;
+  ExpectedWalls f;
   AddLine(f, 2.0, {{-3.0, 3.0}});
   std::vector<WallCluster> clusters = {ClusterAt(0, 2.01)};
   GateWallClusters(f, {}, kPrior, RealMapOptions(), clusters);

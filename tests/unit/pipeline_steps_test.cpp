@@ -128,8 +128,7 @@ TEST(Corners, TwoKnownLinesIntersectWhereExpected) {
   LineFitOptions tight;
   tight.max_rms_m = 1e-6;
   FitWindowLines(pts, tight, lines);
-  ExpectedFeatures expected;
-  expected.corners.push_back({0, 7, {0, 0}, {2.0, 0.0}, 0.0});
+  const std::vector<ExpectedPoint> expected{{0, 7, {0, 0}, {2.0, 0.0}, 0.0}};
   std::vector<PointSums> work;
   std::vector<PointCluster> out;
   ExtractCorners(lines, false, expected, CornerOptions{}, 7, work, out);
@@ -230,7 +229,7 @@ struct Scene {
     PointMeasurement pillar = corner;
     pillar.world = {-1.0, 1.0};
     pillar.sensor = truth.ApplyInverse(pillar.world);
-    pillar.cylinder = true;
+    pillar.bisection = BisectionTerm::kDistance;
     points.push_back(pillar);
   }
 };

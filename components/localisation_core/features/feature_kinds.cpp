@@ -13,10 +13,10 @@ std::vector<FeatureKind> FeatureKinds() {
 }
 
 std::vector<std::unique_ptr<FeatureExtractor>> MakeFeatureExtractors(
-    const LocaliserOptions& options, const ExtractorCapacity& capacity) {
+    const LocaliserOptions& options, const world_model::WorldModel& map, size_t max_beams) {
   std::vector<std::unique_ptr<FeatureExtractor>> extractors;
   for (const auto& kind : FeatureKinds()) {
-    if (kind.enabled(options)) extractors.push_back(kind.make(options, capacity));
+    if (kind.enabled(options)) extractors.push_back(kind.make(options, map, max_beams));
   }
   return extractors;
 }

@@ -92,10 +92,7 @@ constexpr size_t kVisibilityPlaces = 64;
 std::vector<std::unique_ptr<FeatureExtractor>> ValidatedExtractors(
     const world_model::WorldModel& world, const LocaliserOptions& options) {
   options.Validate();  // before any buffer is sized by the options
-  // Walls bound the collinear wall lines from above.
-  return MakeFeatureExtractors(options,
-                               {static_cast<size_t>(options.max_beams), world.Walls().size(),
-                                world.Corners().size(), world.Cylinders().size()});
+  return MakeFeatureExtractors(options, world, static_cast<size_t>(options.max_beams));
 }
 
 }  // namespace
@@ -118,22 +115,28 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
     for (int w : lines_[l].walls) wall_line_of_[static_cast<size_t>(w)] = static_cast<int>(l);
   }
   const size_t beams = static_cast<size_t>(options_.max_beams);
-  const size_t nc = world.Corners().size(), ny = world.Cylinders().size();
   directions_.Reserve(beams);
   points_.Reserve(beams);
   keep_.reserve(beams);
   windows_.reserve(beams);
-  expected_.Reserve(lines_.size(), world.Walls().size(), nc, ny);
-  map_errors_.Reset(MapFeatureSlots(world, lines_), options_.map_error_travel_m);
-  measurements_.lines.reserve(lines_.size());
-  measurements_.points.reserve(nc + ny);
-  solve_.Reserve(lines_.size(), nc + ny);
+  expected_.Reserve(lines_.size(), world.Walls().size());
+  // The wall lines take the first slots of the map-error memory, each other
+  // kind's features theirs after them.
+  size_t slots = lines_.size();
   for (const auto& e : extractors_) {
     if (e == nullptr) throw std::invalid_argument("Localiser: a feature extractor is missing");
+    slots += static_cast<size_t>(e->TakeSlots(world, static_cast<int>(slots)));
+  }
+  const size_t points = slots - lines_.size();  // features measured as points at most
+  map_errors_.Reset(slots, options_.map_error_travel_m);
+  measurements_.lines.reserve(lines_.size());
+  measurements_.points.reserve(points);
+  solve_.Reserve(lines_.size(), points);
+  for (const auto& e : extractors_) {
     FeatureKindResult k;
     k.kind = e->Kind();
     k.shape = e->Shape();
-    k.matches.reserve(std::max(lines_.size(), nc + ny));
+    k.matches.reserve(std::max(lines_.size(), points));
     result_.features.push_back(std::move(k));
   }
 }
@@ -175,8 +178,6 @@ void Localiser::ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose) {
     map_errors_.Travel((sensor_pose.Translation() - map_errors_pose_->Translation()).norm());
   map_errors_pose_ = sensor_pose;
   for (auto& w : expected_.walls) w.map_error_scale = map_errors_.MapErrorScale(w.slot);
-  for (auto& c : expected_.corners) c.map_error_scale = map_errors_.MapErrorScale(c.slot);
-  for (auto& c : expected_.cylinders) c.map_error_scale = map_errors_.MapErrorScale(c.slot);
 }
 
 void Localiser::RememberFused() {
@@ -241,9 +242,11 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   const Eigen::Matrix3d sensor_prior_cov = jm * input.odometry_covariance * jm.transpose();
 
   RefreshVisibility(sensor_prior, scan);
-  ComputeExpectedFeatures(world_, lines_, wall_line_of_, visibility_cache_.At(visibility_entry_),
-                          sensor_prior, expected_);
+  const auto& visibility = visibility_cache_.At(visibility_entry_);
+  ComputeExpectedWalls(world_, lines_, wall_line_of_, visibility, sensor_prior, expected_);
   ApplyMapErrorMemory(sensor_prior);
+  const ExpectationInput expectation{&world_, &visibility, &expected_, sensor_prior, &map_errors_};
+  for (auto& e : extractors_) e->Expect(expectation);
   const auto t_expected = Clock::now();
 
   // 1. Prefilter (+ de-skew before the neighbourhood tests).
@@ -292,7 +295,7 @@ void Localiser::ExtractFeatures(const geometry::Pose2D& sensor_prior,
     const auto start = Clock::now();
     auto& kind = result_.features[i];
     kind.matches.clear();
-    kind.expected = extractors_[i]->Expected(expected_);
+    kind.expected = extractors_[i]->Expected();
     extractors_[i]->Extract(in, measurements_, kind.matches);
     kind.extract_us = Us(start, Clock::now());
   }

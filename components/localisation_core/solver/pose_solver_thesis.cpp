@@ -129,7 +129,8 @@ void SolveBisection(const SolveInput& in, const SolverOptions& o, SolveOutput& o
       g += 2.0 * e * Eigen::Vector2d(c, s);
     }
     for (const auto& p : *in.points) {
-      if (p.cylinder) {  // EQ 43: distance to the circle of radius |centre_R| around the centre
+      // EQ 43: to the circle of radius |centre_R| around the centre; EQ 41: to a point.
+      if (p.bisection == BisectionTerm::kDistance) {
         const Eigen::Vector2d d = Eigen::Vector2d(x, y) - p.world;
         const double dist = std::max(d.norm(), 1e-12);
         g += 2.0 * (dist - p.sensor.norm()) * d / dist;

@@ -28,10 +28,11 @@ Eigen::Matrix2d PointSums::Scatter() const {
 }
 
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
-                    const ExpectedFeatures& expected, const CornerOptions& o, int window_points,
-                    std::vector<PointSums>& work, std::vector<PointCluster>& out) {
+                    const std::vector<ExpectedPoint>& expected, const CornerOptions& o,
+                    int window_points, std::vector<PointSums>& work,
+                    std::vector<PointCluster>& out) {
   out.clear();
-  const size_t ne = expected.corners.size();
+  const size_t ne = expected.size();
   if (ne == 0) return;
   work.assign(ne, PointSums{});
   const double min_sin = std::cos(o.angle_tolerance_rad);  // |sin(angle)| near 1
@@ -55,7 +56,7 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
       // EQ 31 by Cramer's rule.
       const double x = (p.r * q.line.sin_alpha - q.line.r * p.sin_alpha) / det;
       const double y = (p.cos_alpha * q.line.r - q.line.cos_alpha * p.r) / det;
-      const int e = NearestWithin(expected.corners, x, y, gate2);
+      const int e = NearestWithin(expected, x, y, gate2);
       if (e >= 0) work[static_cast<size_t>(e)].Add(x, y);
     }
   }

@@ -10,47 +10,65 @@ namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
-using O = LocaliserOptions;
 
 std::vector<LocaliserOptionTable> CornerSections() {
-  LocaliserOptionTable t("corners",
-                         "feature kind corners, thesis 3.5.4 EQ 31: window-line crossings");
-  t.Flag("enabled", &O::use_corners, "extract and use corners");
-  t.Number("next_windows", &O::corners, &CornerOptions::next_windows, Range::AtLeast(1), "",
+  using K = CornerKindOptions;
+  using C = CornerOptions;
+  config::OptionTable<K> t("corners",
+                           "feature kind corners, thesis 3.5.4 EQ 31: window-line crossings");
+  t.Flag("enabled", &K::enabled, "extract and use corners");
+  t.Number("next_windows", &K::extraction, &C::next_windows, Range::AtLeast(1), "",
            "k: windows after window i intersected with it");
-  t.Number("angle_tolerance_rad", &O::corners, &CornerOptions::angle_tolerance_rad,
+  t.Number("angle_tolerance_rad", &K::extraction, &C::angle_tolerance_rad,
            Range::Open(0, geometry::kHalfPi), "rad", "lines must meet at pi/2 within this");
-  t.Number("gate_m", &O::corners, &CornerOptions::gate_m, Range::Positive(), "m",
+  t.Number("gate_m", &K::extraction, &C::gate_m, Range::Positive(), "m",
            "distance gate around an expected corner");
-  t.Number("min_cluster_size", &O::corners, &CornerOptions::min_cluster_size, Range::AtLeast(1), "",
+  t.Number("min_cluster_size", &K::extraction, &C::min_cluster_size, Range::AtLeast(1), "",
            "minimum number of crossings in a cluster");
-  t.Number("min_point_sigma_m", &O::corners, &CornerOptions::min_point_sigma_m, Range::Positive(),
-           "m", "floor of a corner's standard deviation");
-  t.Number("redundant_wall_distance_m", &O::corners, &CornerOptions::redundant_wall_distance_m,
+  t.Number("min_point_sigma_m", &K::extraction, &C::min_point_sigma_m, Range::Positive(), "m",
+           "floor of a corner's standard deviation");
+  t.Number("redundant_wall_distance_m", &K::extraction, &C::redundant_wall_distance_m,
            Range::Positive(), "m", "a matched wall passes through a corner within this");
-  t.Number("redundant_min_sin", &O::corners, &CornerOptions::redundant_min_sin, Range::Closed(0, 1),
-           "", "two such walls at an angle with a larger sine make the corner redundant");
-  t.Number("map_sigma_m", &O::corners, &CornerOptions::map_sigma_m, Range::NonNegative(), "m",
+  t.Number("redundant_min_sin", &K::extraction, &C::redundant_min_sin, Range::Closed(0, 1), "",
+           "two such walls at an angle with a larger sine make the corner redundant");
+  t.Number("map_sigma_m", &K::extraction, &C::map_sigma_m, Range::NonNegative(), "m",
            "the map's error of a corner, 1 sigma (0: exact map)");
-  t.Number("gate_chi2", &O::corners, &CornerOptions::gate_chi2, Range::NonNegative(), "",
+  t.Number("gate_chi2", &K::extraction, &C::gate_chi2, Range::NonNegative(), "",
            "Mahalanobis gate (2 dof) under the prior's, the fit's and the map's covariance (0: "
            "fixed gate only)");
-  return {t};
+  return {LocaliserOptionTable::Of(
+      t, [](auto& o) -> auto& { return o.kinds.template Get<K>(); })};
 }
 
 }  // namespace
 
 FeatureKind CornerKind() {
-  return {"corners", CornerSections, [](const LocaliserOptions& o) { return o.use_corners; },
-          [](const LocaliserOptions& o, const ExtractorCapacity& c) {
-            return std::unique_ptr<FeatureExtractor>(
-                std::make_unique<CornerExtractor>(o.corners, c.corners));
+  return {"corners", CornerSections,
+          [](const LocaliserOptions& o) { return o.kinds.Get<CornerKindOptions>().enabled; },
+          [](const LocaliserOptions& o, const world_model::WorldModel& map, size_t) {
+            return std::unique_ptr<FeatureExtractor>(std::make_unique<CornerExtractor>(
+                o.kinds.Get<CornerKindOptions>().extraction, map.Corners().size()));
           }};
 }
 
 CornerExtractor::CornerExtractor(const CornerOptions& options, size_t corners) : options_(options) {
+  expected_.reserve(corners);
   work_.reserve(corners);
   clusters_.reserve(corners);
+}
+
+int CornerExtractor::TakeSlots(const world_model::WorldModel& map, int first_slot) {
+  first_slot_ = first_slot;
+  return static_cast<int>(map.Corners().size());
+}
+
+void CornerExtractor::Expect(const ExpectationInput& in) {
+  expected_.clear();
+  for (int i : in.visibility->corners) {
+    const auto& c = in.map->Corners()[static_cast<size_t>(i)];
+    expected_.push_back(
+        ExpectPoint(i, c.id, c.position, 0.0, first_slot_ + i, in.sensor_prior, *in.map_errors));
+  }
 }
 
 bool CornerExtractor::RedundantWithWalls(const Eigen::Vector2d& corner,
@@ -72,11 +90,10 @@ bool CornerExtractor::RedundantWithWalls(const Eigen::Vector2d& corner,
 
 void CornerExtractor::Extract(const ExtractionInput& in, Measurements& all,
                               std::vector<FeatureMatch>& matches) {
-  const auto& expected = *in.expected;
-  ExtractCorners(*in.windows, in.points->wraps, expected, options_, in.window_points, work_,
+  ExtractCorners(*in.windows, in.points->wraps, expected_, options_, in.window_points, work_,
                  clusters_);
   for (const auto& c : clusters_) {
-    const auto& e = expected.corners[static_cast<size_t>(c.expected_index)];
+    const auto& e = expected_[static_cast<size_t>(c.expected_index)];
     PointMeasurement m;
     m.sensor = in.thesis_values ? c.mean : c.refined;
     m.covariance = c.covariance;

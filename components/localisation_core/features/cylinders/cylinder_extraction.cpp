@@ -46,10 +46,10 @@ bool RefineCentre(const ScanPoints& points, const std::vector<int>& members, dou
 }  // namespace
 
 void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& points,
-                      const ExpectedFeatures& expected, const CylinderOptions& o, int window_points,
-                      CylinderWork& work, std::vector<PointCluster>& out) {
+                      const std::vector<ExpectedPoint>& expected, const CylinderOptions& o,
+                      int window_points, CylinderWork& work, std::vector<PointCluster>& out) {
   out.clear();
-  const size_t ne = expected.cylinders.size();
+  const size_t ne = expected.size();
   if (ne == 0) return;
   work.sums.assign(ne, PointSums{});
   work.point_label.assign(points.Size(), -1);
@@ -60,7 +60,7 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     // (compared squared: no square root in this loop).
     int near = -1;
     for (size_t e = 0; e < ne; ++e) {
-      const auto& c = expected.cylinders[e];
+      const auto& c = expected[e];
       const double dx = w.line.xm - c.sensor.x(), dy = w.line.ym - c.sensor.y();
       const double d2 = dx * dx + dy * dy;
       const double lo = std::max(0.0, c.radius - o.candidate_gate_m);
@@ -71,10 +71,9 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     const CircleFit fit =
         FitCircle(points, static_cast<size_t>(w.first), static_cast<size_t>(window_points));
     if (!fit.ok || fit.quality < o.min_quality) continue;
-    const int e = NearestWithin(expected.cylinders, fit.xc, fit.yc, gate2);
+    const int e = NearestWithin(expected, fit.xc, fit.yc, gate2);
     if (e < 0) continue;
-    if (std::abs(fit.radius - expected.cylinders[static_cast<size_t>(e)].radius) >
-        o.radius_tolerance_m) {
+    if (std::abs(fit.radius - expected[static_cast<size_t>(e)].radius) > o.radius_tolerance_m) {
       continue;
     }
     work.sums[static_cast<size_t>(e)].Add(fit.xc, fit.yc);
@@ -96,7 +95,7 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     for (size_t k = 0; k < np; ++k) {
       if (work.point_label[k] == static_cast<int>(e)) work.members.push_back(static_cast<int>(k));
     }
-    if (RefineCentre(points, work.members, expected.cylinders[e].radius, floor2, refined, cov) &&
+    if (RefineCentre(points, work.members, expected[e].radius, floor2, refined, cov) &&
         (refined - c.mean).norm() < o.gate_m) {
       c.refined = refined;
       c.covariance = cov;

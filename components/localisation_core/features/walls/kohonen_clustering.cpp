@@ -22,10 +22,9 @@ void Oriented(const LineEstimate& l, const Neuron& n, double* r, double* alpha) 
 }
 }  // namespace
 
-void AssignWindowsByKohonen(const std::vector<WindowLine>& windows,
-                            const ExpectedFeatures& expected, const WallClusterOptions& gates,
-                            const KohonenOptions& o, std::mt19937& rng,
-                            std::vector<int>& assignment) {
+void AssignWindowsByKohonen(const std::vector<WindowLine>& windows, const ExpectedWalls& expected,
+                            const WallClusterOptions& gates, const KohonenOptions& o,
+                            std::mt19937& rng, std::vector<int>& assignment) {
   assignment.assign(windows.size(), -1);
   const size_t ne = expected.walls.size();
   if (ne == 0) return;

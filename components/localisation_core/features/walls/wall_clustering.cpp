@@ -34,7 +34,7 @@ double AlongLine(const ExpectedWall& x, const geometry::Pose2D& pose, double px,
 }  // namespace
 
 void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
-                                const ExpectedFeatures& expected, const geometry::Pose2D& pose,
+                                const ExpectedWalls& expected, const geometry::Pose2D& pose,
                                 const Eigen::Matrix3d& cov, const WallClusterOptions& o,
                                 std::vector<int>& assignment) {
   assignment.assign(windows.size(), -1);
@@ -91,7 +91,7 @@ namespace {
 
 // Squared Mahalanobis distance of a cluster from expected wall `e`, with the
 // map's error at the cluster's place; `map_cov` receives that error.
-double ClusterDistance(const WallCluster& c, const ExpectedFeatures& expected, int e,
+double ClusterDistance(const WallCluster& c, const ExpectedWalls& expected, int e,
                        const geometry::Pose2D& pose, const Eigen::Matrix3d& cov,
                        const WallClusterOptions& o, Eigen::Matrix2d* map_cov) {
   const auto& x = expected.walls[static_cast<size_t>(e)];
@@ -121,7 +121,7 @@ double ClusterDistance(const WallCluster& c, const ExpectedFeatures& expected, i
 
 }  // namespace
 
-void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& pose,
+void GateWallClusters(const ExpectedWalls& expected, const geometry::Pose2D& pose,
                       const Eigen::Matrix3d& cov, const WallClusterOptions& o,
                       std::vector<WallCluster>& clusters) {
   const double min_dot = std::cos(o.gate_alpha_rad);
@@ -164,9 +164,9 @@ void WallClusterWork::Reserve(size_t points, size_t expected) {
 }
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
-                       const ScanPoints& points, int window_points,
-                       const ExpectedFeatures& expected, const WallClusterOptions& o,
-                       WallClusterWork& work, std::vector<WallCluster>& out) {
+                       const ScanPoints& points, int window_points, const ExpectedWalls& expected,
+                       const WallClusterOptions& o, WallClusterWork& work,
+                       std::vector<WallCluster>& out) {
   out.clear();
   const size_t ne = expected.walls.size();
   const size_t np = points.Size();

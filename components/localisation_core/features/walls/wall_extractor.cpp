@@ -5,56 +5,61 @@ namespace structloc::localisation_core {
 namespace {
 
 using config::Range;
-using O = LocaliserOptions;
 
 std::vector<LocaliserOptionTable> WallSections() {
-  LocaliserOptionTable t("walls",
-                         "feature kind walls, thesis 3.5.3: window lines clustered per wall");
-  t.Choice("strategy", &O::wall_strategy,
+  using W = WallKindOptions;
+  using C = WallClusterOptions;
+  config::OptionTable<W> t("walls",
+                           "feature kind walls, thesis 3.5.3: window lines clustered per wall");
+  t.Choice("strategy", &W::strategy,
            {{"expectation", WallStrategy::kExpectation}, {"kohonen", WallStrategy::kKohonen}},
            "nearest expected wall within the gates, or the thesis' Kohonen map (see <kohonen>)");
-  t.Number("gate_r_m", &O::walls, &WallClusterOptions::gate_r_m, Range::Positive(), "m",
+  t.Number("gate_r_m", &W::clusters, &C::gate_r_m, Range::Positive(), "m",
            "Table 6: size of cluster (r)");
-  t.Number("gate_alpha_rad", &O::walls, &WallClusterOptions::gate_alpha_rad,
-           Range::Open(0, geometry::kHalfPi), "rad", "Table 6: size of cluster (alpha)");
-  t.Number("min_cluster_size", &O::walls, &WallClusterOptions::min_cluster_size, Range::AtLeast(1),
-           "", "Table 6: minimum number of window lines in a cluster");
-  t.Number("extent_margin_m", &O::walls, &WallClusterOptions::extent_margin_m, Range::Any(), "m",
+  t.Number("gate_alpha_rad", &W::clusters, &C::gate_alpha_rad, Range::Open(0, geometry::kHalfPi),
+           "rad", "Table 6: size of cluster (alpha)");
+  t.Number("min_cluster_size", &W::clusters, &C::min_cluster_size, Range::AtLeast(1), "",
+           "Table 6: minimum number of window lines in a cluster");
+  t.Number("extent_margin_m", &W::clusters, &C::extent_margin_m, Range::Any(), "m",
            "a window must lie within the visible part of one map wall plus this (<= 0 disables "
            "the check)");
-  t.Number("min_point_sigma_m", &O::walls, &WallClusterOptions::min_point_sigma_m,
-           Range::Positive(), "m", "floor of the per-point noise used for covariances");
-  t.Number("map_sigma_r_m", &O::walls, &WallClusterOptions::map_sigma_r_m, Range::NonNegative(),
-           "m", "the map's error: a wall's offset at its centre, 1 sigma (0: exact map)");
-  t.Number("map_sigma_alpha_rad", &O::walls, &WallClusterOptions::map_sigma_alpha_rad,
-           Range::NonNegative(), "rad", "the map's error: a wall's angle, 1 sigma (0: exact map)");
-  t.Number("gate_chi2", &O::walls, &WallClusterOptions::gate_chi2, Range::NonNegative(), "",
+  t.Number("min_point_sigma_m", &W::clusters, &C::min_point_sigma_m, Range::Positive(), "m",
+           "floor of the per-point noise used for covariances");
+  t.Number("map_sigma_r_m", &W::clusters, &C::map_sigma_r_m, Range::NonNegative(), "m",
+           "the map's error: a wall's offset at its centre, 1 sigma (0: exact map)");
+  t.Number("map_sigma_alpha_rad", &W::clusters, &C::map_sigma_alpha_rad, Range::NonNegative(),
+           "rad", "the map's error: a wall's angle, 1 sigma (0: exact map)");
+  t.Number("gate_chi2", &W::clusters, &C::gate_chi2, Range::NonNegative(), "",
            "Mahalanobis gate (2 dof) of a pairing under the prior's, the fit's and the map's "
            "covariance; pairings inside two walls' gates are dropped (0: fixed gates only)");
-  LocaliserOptionTable k("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
-  k.Number("iterations", &O::kohonen, &KohonenOptions::iterations,
-           Range::Closed(1, LocaliserLimits::kMaxKohonenIterations), "", "training steps per scan");
-  k.Number("initial_learning_rate", &O::kohonen, &KohonenOptions::initial_learning_rate,
+  config::OptionTable<W> k("kohonen", "walls strategy kohonen, thesis 3.5.3 EQ 21-22");
+  k.Number("iterations", &W::kohonen, &KohonenOptions::iterations,
+           Range::Closed(1, W::kMaxKohonenIterations), "", "training steps per scan");
+  k.Number("initial_learning_rate", &W::kohonen, &KohonenOptions::initial_learning_rate,
            Range::LeftOpen(0, 1), "", "eta(0), decreasing linearly to 0");
-  k.Number("initial_neighbourhood", &O::kohonen, &KohonenOptions::initial_neighbourhood,
+  k.Number("initial_neighbourhood", &W::kohonen, &KohonenOptions::initial_neighbourhood,
            Range::NonNegative(), "", "sigma(0) in neuron-index units, shrinking to 0");
-  k.Number("seed", &O::kohonen_seed, Range::Any(), "", "seeds the Kohonen strategy's generator");
-  return {t, k};
+  k.Number("seed", &W::kohonen_seed, Range::Any(), "", "seeds the Kohonen strategy's generator");
+  const auto part = [](auto& o) -> auto& {
+    return o.kinds.template Get<W>();
+  };
+  return {LocaliserOptionTable::Of(t, part), LocaliserOptionTable::Of(k, part)};
 }
 
 }  // namespace
 
 FeatureKind WallKind() {
   return {"walls", WallSections, [](const LocaliserOptions&) { return true; },
-          [](const LocaliserOptions& o, const ExtractorCapacity& c) {
-            return std::unique_ptr<FeatureExtractor>(
-                std::make_unique<WallExtractor>(o, c.beams, c.wall_lines));
+          [](const LocaliserOptions& o, const world_model::WorldModel& map, size_t max_beams) {
+            // The walls bound the groups of collinear walls from above.
+            return std::unique_ptr<FeatureExtractor>(std::make_unique<WallExtractor>(
+                o.kinds.Get<WallKindOptions>(), max_beams, map.Walls().size()));
           }};
 }
 
-WallExtractor::WallExtractor(const LocaliserOptions& options, size_t max_beams, size_t wall_lines)
-    : strategy_(options.wall_strategy),
-      options_(options.walls),
+WallExtractor::WallExtractor(const WallKindOptions& options, size_t max_beams, size_t wall_lines)
+    : strategy_(options.strategy),
+      options_(options.clusters),
       kohonen_(options.kohonen),
       rng_(options.kohonen_seed) {
   assignment_.reserve(max_beams);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -129,6 +130,29 @@ class OptionTable {
     e.show = [member](const S& s) { return s.*member; };
     entries_.push_back(std::move(e));
     return *this;
+  }
+
+  // The table `part_table`, declared on a part P of S, as a table of S:
+  // `part(s)` finds the part in an S, const or not (e.g. a feature kind's own
+  // options inside the localiser's). Keys, ranges, wording and defaults are
+  // those of `part_table`.
+  template <class P, class Part>
+  static OptionTable Of(const OptionTable<P>& part_table, Part part) {
+    OptionTable out(part_table.section_, part_table.description_);
+    const auto inner = std::make_shared<const OptionTable<P>>(part_table);
+    for (size_t i = 0; i < inner->entries_.size(); ++i) {
+      const auto& e = inner->entries_[i];
+      Entry x{e.key, e.unit, e.valid, e.description, {}, {}, {}, e.optional};
+      x.load = [inner, i, part](const OptionTable&, AttributeReader& reader, S& s) {
+        inner->entries_[i].load(*inner, reader, part(s));
+      };
+      x.check = [inner, i, part](const OptionTable&, const S& s) {
+        return inner->entries_[i].check(*inner, part(s));
+      };
+      x.show = [inner, i, part](const S& s) { return inner->entries_[i].show(part(s)); };
+      out.entries_.push_back(std::move(x));
+    }
+    return out;
   }
 
   // Makes the key declared last optional: when a file leaves it out, the
@@ -309,6 +333,9 @@ class OptionTable {
     entries_.push_back(std::move(e));
     return *this;
   }
+
+  template <class>
+  friend class OptionTable;  // Of() reads a part's table
 
   std::string section_, description_;
   std::vector<Entry> entries_;

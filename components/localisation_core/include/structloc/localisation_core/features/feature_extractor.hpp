@@ -1,19 +1,22 @@
 // The seam for feature kinds (thesis 3.5.3-3.5.6): every kind of landmark the
 // localiser matches (walls, corners, cylinders, ...) is one FeatureExtractor.
-// It sees the expected features and the sliding line fits of one scan and hands
-// back solver measurements with their covariance and one typed match per
-// feature found. The localiser runs the enabled extractors in the fixed order
-// of FeatureKinds() (walls first), solves once over all measurements and reports per kind, so that
-// results, messages and timings need no change for a new kind.
+// It places the map's features of its kind that the scan should see, then sees
+// the sliding line fits of the scan and hands back solver measurements with
+// their covariance and one typed match per feature found. The localiser runs the enabled extractors
+// in the fixed order of FeatureKinds() (walls first), solves once over all measurements and reports
+// per kind, so that results, messages and timings need no change for a new kind.
 #pragma once
 
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/association/map_error_memory.hpp"
+#include "structloc/localisation_core/expectation/expected_walls.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 #include "structloc/localisation_core/scan/scan_points.hpp"
 #include "structloc/localisation_core/solver/pose_solver.hpp"
+#include "structloc/world_model/visibility.hpp"
+#include "structloc/world_model/world_model.hpp"
 
 namespace structloc::localisation_core {
 
@@ -46,9 +49,18 @@ struct Measurements {
   }
 };
 
+// What an extractor sees of the map for one scan.
+struct ExpectationInput {
+  const world_model::WorldModel* map = nullptr;
+  const world_model::Visibility* visibility = nullptr;  // from the odometric sensor pose
+  const ExpectedWalls* walls = nullptr;                 // the expected walls, sensor frame
+  geometry::Pose2D sensor_prior;                        // odometric sensor pose
+  const MapErrorMemory* map_errors = nullptr;           // each slot's map-error scale
+};
+
 // What an extractor sees of one scan.
 struct ExtractionInput {
-  const ExpectedFeatures* expected = nullptr;        // the model's features, sensor frame
+  const ExpectedWalls* expected = nullptr;           // the expected walls, sensor frame
   const std::vector<WindowLine>* windows = nullptr;  // sliding line fits (step 2)
   const ScanPoints* points = nullptr;                // prefiltered points, sensor frame
   geometry::Pose2D sensor_prior;                     // odometric sensor pose
@@ -64,8 +76,16 @@ class FeatureExtractor {
   // results, messages and timings.
   virtual const char* Kind() const = 0;
   virtual FeatureShape Shape() const = 0;
+  // Called once, when the localiser is built: this kind's features of `map`
+  // take the slots first_slot, first_slot + 1, ... of the MapErrorMemory
+  // (their map error counted once over nearby scans); returns how many. The
+  // walls' slots are their wall lines, which the localiser numbers first.
+  virtual int TakeSlots(const world_model::WorldModel& map, int first_slot) = 0;
+  // Places this kind's features that the map lets this scan see, before
+  // Extract. Must not allocate once the buffers sized at construction suffice.
+  virtual void Expect(const ExpectationInput& in) = 0;
   // How many features of this kind the model expects in this scan.
-  virtual int Expected(const ExpectedFeatures& expected) const = 0;
+  virtual int Expected() const = 0;
   // Finds this kind's features in the scan, appends one measurement with its
   // covariance per feature found to `all` and one match to `matches`. The
   // measurements of the extractors that ran before are in `all` already (the

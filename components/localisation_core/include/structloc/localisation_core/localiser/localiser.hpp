@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "structloc/localisation_core/association/map_error_memory.hpp"
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/expectation/expected_walls.hpp"
 #include "structloc/localisation_core/expectation/visibility_cache.hpp"
 #include "structloc/localisation_core/features/feature_extractor.hpp"
 #include "structloc/localisation_core/localiser/localiser_options.hpp"
@@ -146,7 +146,7 @@ class Localiser {
   ScanPoints points_;
   std::vector<unsigned char> keep_;
   std::vector<WindowLine> windows_;
-  ExpectedFeatures expected_;
+  ExpectedWalls expected_;
   MapErrorMemory map_errors_;
   std::optional<geometry::Pose2D> map_errors_pose_;            // sensor pose of the last scan
   std::vector<std::unique_ptr<FeatureExtractor>> extractors_;  // from the parameter file

@@ -6,22 +6,17 @@
 // derive from that declaration.
 #pragma once
 
-#include <cstdint>
 #include <ostream>
 #include <string>
 
 #include "structloc/config/option_table.hpp"
-#include "structloc/localisation_core/features/corners/corner_extraction.hpp"
-#include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
-#include "structloc/localisation_core/features/walls/kohonen_clustering.hpp"
-#include "structloc/localisation_core/features/walls/wall_clustering.hpp"
+#include "structloc/geometry/pose2d.hpp"
+#include "structloc/localisation_core/features/feature_kind_options.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 #include "structloc/localisation_core/scan/prefilter.hpp"
 #include "structloc/localisation_core/solver/pose_solver.hpp"
 
 namespace structloc::localisation_core {
-
-enum class WallStrategy { kExpectation, kKohonen };
 
 // Which model features are expected in a scan. The scan's own angular range
 // (ScanView) and the prefilter's range limits decide the rest
@@ -39,22 +34,16 @@ struct LocaliserLimits {
   // Each bisection step halves the search interval: 60 steps take 0.2 m below
   // double resolution.
   static constexpr int kMaxBisectionIterations = 60;
-  static constexpr int kMaxSolverIterations = 1000;     // Gauss-Newton steps per scan
-  static constexpr int kMaxKohonenIterations = 100000;  // 50 x the thesis' 2000
-  static constexpr int kMaxBeams = 1000000;             // buffers are sized for max_beams
+  static constexpr int kMaxSolverIterations = 1000;  // Gauss-Newton steps per scan
+  static constexpr int kMaxBeams = 1000000;          // buffers are sized for max_beams
 };
 
 struct LocaliserOptions {
   PrefilterOptions prefilter;
   LineFitOptions line_fit;
-  WallStrategy wall_strategy = WallStrategy::kExpectation;
-  WallClusterOptions walls;
-  KohonenOptions kohonen;
-  uint32_t kohonen_seed = 1;  // seeds the Kohonen strategy's generator
-  bool use_corners = true;
-  CornerOptions corners;
-  bool use_cylinders = true;
-  CylinderOptions cylinders;
+  // Each feature kind's options (walls, corners, cylinders, ...), of the
+  // types its own folder declares: kinds.Get<CornerKindOptions>().
+  FeatureKindOptions kinds;
   SolverOptions solver;
   VisibilitySettings visibility;
   geometry::Pose2D sensor_mount;  // laser pose on the robot (base_link -> laser)

@@ -40,12 +40,18 @@ struct WallMeasurement {
   double world_r = 0, world_alpha = 0;
 };
 
-// A matched corner or cylinder centre in the sensor frame.
+// How the thesis' bisection solver pulls the position towards a matched point:
+// to where the point's position puts the sensor (EQ 41, a corner), or only to
+// its measured distance from the point (EQ 43, a pillar's centre: the circle
+// of that radius around it).
+enum class BisectionTerm { kPosition, kDistance };
+
+// A matched point feature (a corner, a pillar's centre, ...) in the sensor frame.
 struct PointMeasurement {
   Eigen::Vector2d sensor{0, 0};
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
   Eigen::Vector2d world{0, 0};
-  bool cylinder = false;
+  BisectionTerm bisection = BisectionTerm::kPosition;
   bool use_in_weighted = true;  // false when redundant with two matched walls
 };
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/expectation/expected_points.hpp"
 #include "structloc/localisation_core/features/point_cluster.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 
@@ -28,7 +28,7 @@ struct CornerOptions {
 };
 
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
-                    const ExpectedFeatures& expected, const CornerOptions& options,
+                    const std::vector<ExpectedPoint>& expected, const CornerOptions& options,
                     int window_points, std::vector<PointSums>& work,
                     std::vector<PointCluster>& out);
 

@@ -9,15 +9,21 @@
 
 namespace structloc::localisation_core {
 
+// The kind's options: its block <corners> of the parameter file.
+struct CornerKindOptions {
+  bool enabled = true;  // extract and use corners
+  CornerOptions extraction;
+};
+
 class CornerExtractor : public FeatureExtractor {
  public:
   // Buffers for `corners` expected corners.
   CornerExtractor(const CornerOptions& options, size_t corners);
   const char* Kind() const override { return "corners"; }
   FeatureShape Shape() const override { return FeatureShape::kPoint; }
-  int Expected(const ExpectedFeatures& expected) const override {
-    return static_cast<int>(expected.corners.size());
-  }
+  int TakeSlots(const world_model::WorldModel& map, int first_slot) override;
+  void Expect(const ExpectationInput& in) override;
+  int Expected() const override { return static_cast<int>(expected_.size()); }
   void Extract(const ExtractionInput& in, Measurements& all,
                std::vector<FeatureMatch>& matches) override;
 
@@ -28,6 +34,8 @@ class CornerExtractor : public FeatureExtractor {
                           const std::vector<WallMeasurement>& walls) const;
 
   CornerOptions options_;
+  int first_slot_ = 0;
+  std::vector<ExpectedPoint> expected_;
   std::vector<PointSums> work_;
   std::vector<PointCluster> clusters_;
 };

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "structloc/fitting/circle_fit.hpp"
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/expectation/expected_points.hpp"
 #include "structloc/localisation_core/features/point_cluster.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 
@@ -42,7 +42,7 @@ struct CylinderWork {
 };
 
 void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& points,
-                      const ExpectedFeatures& expected, const CylinderOptions& options,
+                      const std::vector<ExpectedPoint>& expected, const CylinderOptions& options,
                       int window_points, CylinderWork& work, std::vector<PointCluster>& out);
 
 }  // namespace structloc::localisation_core

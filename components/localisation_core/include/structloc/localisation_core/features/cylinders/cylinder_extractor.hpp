@@ -9,20 +9,28 @@
 
 namespace structloc::localisation_core {
 
+// The kind's options: its block <cylinders> of the parameter file.
+struct CylinderKindOptions {
+  bool enabled = true;  // extract and use cylinders
+  CylinderOptions extraction;
+};
+
 class CylinderExtractor : public FeatureExtractor {
  public:
   // Buffers for `max_beams` beams and `cylinders` expected pillars.
   CylinderExtractor(const CylinderOptions& options, size_t max_beams, size_t cylinders);
   const char* Kind() const override { return "cylinders"; }
   FeatureShape Shape() const override { return FeatureShape::kPoint; }
-  int Expected(const ExpectedFeatures& expected) const override {
-    return static_cast<int>(expected.cylinders.size());
-  }
+  int TakeSlots(const world_model::WorldModel& map, int first_slot) override;
+  void Expect(const ExpectationInput& in) override;
+  int Expected() const override { return static_cast<int>(expected_.size()); }
   void Extract(const ExtractionInput& in, Measurements& all,
                std::vector<FeatureMatch>& matches) override;
 
  private:
   CylinderOptions options_;
+  int first_slot_ = 0;
+  std::vector<ExpectedPoint> expected_;
   CylinderWork work_;
   std::vector<PointCluster> clusters_;
 };

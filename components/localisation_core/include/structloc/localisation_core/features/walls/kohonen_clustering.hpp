@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/expectation/expected_walls.hpp"
 #include "structloc/localisation_core/features/walls/wall_clustering.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 
@@ -25,8 +25,7 @@ struct KohonenOptions {
 
 // Window i -> expected wall index, or -1: nearest trained neuron within the
 // gates of `cluster_options`. Neurons keep the expected walls' order.
-void AssignWindowsByKohonen(const std::vector<WindowLine>& windows,
-                            const ExpectedFeatures& expected,
+void AssignWindowsByKohonen(const std::vector<WindowLine>& windows, const ExpectedWalls& expected,
                             const WallClusterOptions& cluster_options,
                             const KohonenOptions& options, std::mt19937& rng,
                             std::vector<int>& assignment);

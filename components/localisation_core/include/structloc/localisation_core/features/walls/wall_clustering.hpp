@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+#include "structloc/localisation_core/expectation/expected_walls.hpp"
 #include "structloc/localisation_core/scan/line_fit.hpp"
 
 namespace structloc::localisation_core {
@@ -50,8 +50,7 @@ struct WallCluster {
 // With options.gate_chi2 > 0 a window's centroid must also lie within that
 // Mahalanobis gate of the expected line under `sensor_covariance` (the prior's).
 void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
-                                const ExpectedFeatures& expected,
-                                const geometry::Pose2D& sensor_pose,
+                                const ExpectedWalls& expected, const geometry::Pose2D& sensor_pose,
                                 const Eigen::Matrix3d& sensor_covariance,
                                 const WallClusterOptions& options, std::vector<int>& assignment);
 
@@ -66,14 +65,14 @@ struct WallClusterWork {
 };
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
-                       const ScanPoints& points, int window_points,
-                       const ExpectedFeatures& expected, const WallClusterOptions& options,
-                       WallClusterWork& work, std::vector<WallCluster>& out);
+                       const ScanPoints& points, int window_points, const ExpectedWalls& expected,
+                       const WallClusterOptions& options, WallClusterWork& work,
+                       std::vector<WallCluster>& out);
 
 // Adds the map's error to each cluster's covariance and, with options.gate_chi2
 // > 0, drops clusters outside the Mahalanobis gate of their expected wall or
 // inside the gate of another (ambiguous), under the prior's covariance.
-void GateWallClusters(const ExpectedFeatures& expected, const geometry::Pose2D& sensor_pose,
+void GateWallClusters(const ExpectedWalls& expected, const geometry::Pose2D& sensor_pose,
                       const Eigen::Matrix3d& sensor_covariance, const WallClusterOptions& options,
                       std::vector<WallCluster>& clusters);
 

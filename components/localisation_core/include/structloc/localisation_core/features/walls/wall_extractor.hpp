@@ -3,6 +3,7 @@
 // matched wall.
 #pragma once
 
+#include <cstdint>
 #include <random>
 
 #include "structloc/localisation_core/features/feature_extractor.hpp"
@@ -13,19 +14,34 @@
 
 namespace structloc::localisation_core {
 
+enum class WallStrategy { kExpectation, kKohonen };
+
+// The kind's options: its blocks <walls> and <kohonen> of the parameter file.
+struct WallKindOptions {
+  // Bounds a typo's cost: 50 x the thesis' 2000 training steps.
+  static constexpr int kMaxKohonenIterations = 100000;
+  WallStrategy strategy = WallStrategy::kExpectation;
+  WallClusterOptions clusters;
+  KohonenOptions kohonen;
+  uint32_t kohonen_seed = 1;  // seeds the Kohonen strategy's generator
+};
+
 class WallExtractor : public FeatureExtractor {
  public:
   // Buffers for `max_beams` beams and `wall_lines` expected walls.
-  WallExtractor(const LocaliserOptions& options, size_t max_beams, size_t wall_lines);
+  WallExtractor(const WallKindOptions& options, size_t max_beams, size_t wall_lines);
   const char* Kind() const override { return "walls"; }
   FeatureShape Shape() const override { return FeatureShape::kLine; }
-  int Expected(const ExpectedFeatures& expected) const override {
-    return static_cast<int>(expected.walls.size());
+  int TakeSlots(const world_model::WorldModel&, int) override { return 0; }
+  void Expect(const ExpectationInput& in) override {
+    expected_ = static_cast<int>(in.walls->walls.size());
   }
+  int Expected() const override { return expected_; }
   void Extract(const ExtractionInput& in, Measurements& all,
                std::vector<FeatureMatch>& matches) override;
 
  private:
+  int expected_ = 0;
   WallStrategy strategy_;
   WallClusterOptions options_;
   KohonenOptions kohonen_;

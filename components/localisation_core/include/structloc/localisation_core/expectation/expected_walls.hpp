@@ -1,10 +1,10 @@
-// Where the world model and the odometric sensor pose say features should
-// appear in the scan (thesis 3.5.3 EQ 23-24, 3.5.4, 3.5.6), computed once per
-// update for the visible features only, so the clustering hot loops compare
-// against precomputed numbers.
+// Where the world model and the odometric sensor pose say walls should appear
+// in the scan (thesis 3.5.3 EQ 23-24), computed once per update for the
+// visible walls only, so the clustering hot loops compare against precomputed
+// numbers. Every feature kind may read them (the corners' redundancy rule
+// does); each point kind places its own points (expected_points.hpp).
 #pragma once
 
-#include <Eigen/Core>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -43,44 +43,28 @@ struct ExpectedWall {
 // line direction (-sin, cos): a scan segment pairs with a line only where it
 // overlaps one of these, not across a doorway between two of them.
 struct ExpectedExtent {
-  int expected_index = 0;  // into ExpectedFeatures::walls
+  int expected_index = 0;  // into ExpectedWalls::walls
   double lo = 0.0, hi = 0.0;
   double wall_centre = 0.0;  // centre of the whole map wall (its errors pivot there)
   double wall_half_length = 0.0;
 };
 
-// An expected corner or cylinder centre.
-struct ExpectedPoint {
-  int model_index = 0;
-  int model_id = 0;
-  Eigen::Vector2d world{0, 0};
-  Eigen::Vector2d sensor{0, 0};  // in the sensor frame at the odometric pose
-  double radius = 0.0;           // cylinders only
-  int slot = 0;                  // the point's slot in the MapErrorMemory
-  double map_error_scale = 1.0;  // factor on the map's share of a pairing's covariance
-};
-
-struct ExpectedFeatures {
+struct ExpectedWalls {
   std::vector<ExpectedWall> walls;
   std::vector<ExpectedExtent> extents;  // one per visible map wall
-  std::vector<ExpectedPoint> corners;
-  std::vector<ExpectedPoint> cylinders;
-  void Reserve(size_t lines, size_t walls, size_t corners, size_t cylinders);
+  void Reserve(size_t lines, size_t walls);
   // The extent of expected wall `e` nearest to `t` (along its world line):
   // the distance outside it (0 inside) and, through `wall`, that extent.
   double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const;
 };
 
-// `wall_line_of` maps a wall index to its WallLineModel index. Slots: the
-// wall lines first, then the corners, then the cylinders (MapFeatureSlots()).
-void ComputeExpectedFeatures(const world_model::WorldModel& world,
-                             const std::vector<WallLineModel>& lines,
-                             const std::vector<int>& wall_line_of,
-                             const world_model::Visibility& visibility,
-                             const geometry::Pose2D& sensor_pose, ExpectedFeatures& out);
-
-// How many slots the features of `world` grouped into `lines` take.
-size_t MapFeatureSlots(const world_model::WorldModel& world,
-                       const std::vector<WallLineModel>& lines);
+// `wall_line_of` maps a wall index to its WallLineModel index. An expected
+// wall's slot in the MapErrorMemory is its line's index: the wall lines take
+// the first slots, the point kinds theirs after them.
+void ComputeExpectedWalls(const world_model::WorldModel& world,
+                          const std::vector<WallLineModel>& lines,
+                          const std::vector<int>& wall_line_of,
+                          const world_model::Visibility& visibility,
+                          const geometry::Pose2D& sensor_pose, ExpectedWalls& out);
 
 }  // namespace structloc::localisation_core

@@ -1,5 +1,5 @@
-// Expected features (see header).
-#include "structloc/localisation_core/expectation/expected_features.hpp"
+// Expected walls (see header).
+#include "structloc/localisation_core/expectation/expected_walls.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,22 +29,18 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
   return lines;
 }
 
-void ExpectedFeatures::Reserve(size_t l, size_t w, size_t c, size_t y) {
+void ExpectedWalls::Reserve(size_t l, size_t w) {
   walls.reserve(l);
   extents.reserve(w);
-  corners.reserve(c);
-  cylinders.reserve(y);
 }
 
-void ComputeExpectedFeatures(const world_model::WorldModel& world,
-                             const std::vector<WallLineModel>& lines,
-                             const std::vector<int>& wall_line_of,
-                             const world_model::Visibility& visibility,
-                             const geometry::Pose2D& pose, ExpectedFeatures& out) {
+void ComputeExpectedWalls(const world_model::WorldModel& world,
+                          const std::vector<WallLineModel>& lines,
+                          const std::vector<int>& wall_line_of,
+                          const world_model::Visibility& visibility, const geometry::Pose2D& pose,
+                          ExpectedWalls& out) {
   out.walls.clear();
   out.extents.clear();
-  out.corners.clear();
-  out.cylinders.clear();
   for (const auto& vw : visibility.walls) {
     const int line_index = wall_line_of[static_cast<size_t>(vw.index)];
     const auto& model = lines[static_cast<size_t>(line_index)];
@@ -74,26 +70,9 @@ void ComputeExpectedFeatures(const world_model::WorldModel& world,
     e.s = std::sin(a);
     out.walls.push_back(e);
   }
-  const int corner_slots = static_cast<int>(lines.size());
-  for (int i : visibility.corners) {
-    const auto& c = world.Corners()[static_cast<size_t>(i)];
-    out.corners.push_back(
-        {i, c.id, c.position, pose.ApplyInverse(c.position), 0.0, corner_slots + i, 1.0});
-  }
-  const int cylinder_slots = corner_slots + static_cast<int>(world.Corners().size());
-  for (int i : visibility.cylinders) {
-    const auto& c = world.Cylinders()[static_cast<size_t>(i)];
-    out.cylinders.push_back(
-        {i, c.id, c.centre, pose.ApplyInverse(c.centre), c.radius, cylinder_slots + i, 1.0});
-  }
 }
 
-size_t MapFeatureSlots(const world_model::WorldModel& world,
-                       const std::vector<WallLineModel>& lines) {
-  return lines.size() + world.Corners().size() + world.Cylinders().size();
-}
-
-double ExpectedFeatures::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
+double ExpectedWalls::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
   double best = 1e300;
   for (const auto& x : extents) {
     if (x.expected_index != e) continue;
