@@ -77,13 +77,7 @@ LocalisationComponent::LocalisationComponent(
   initial_pose_subscription_ =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
           dds_common::topics::kInitialPose,
-          [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
-            localisation_core::InitialPoseInput in;
-            const auto p = FromPoseWithCovariance(m, &in.covariance);
-            in.stamp = p.stamp;
-            in.pose = p.pose;
-            inbox_.OfferInitialPose(in);
-          });
+          [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) { OfferInitialPose(m); });
   relocalise_subscription_ = node.Subscribe<std_msgs::msg::EmptyPubSubType>(
       dds_common::topics::kReinitializeGlobalLocalization,
       [this](const std_msgs::msg::Empty&) { relocalise_requested_ = true; });
@@ -93,6 +87,15 @@ LocalisationComponent::LocalisationComponent(
 
 LocalisationComponent::~LocalisationComponent() {
   Stop();
+}
+
+void LocalisationComponent::OfferInitialPose(
+    const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+  localisation_core::InitialPoseInput in;
+  const auto p = FromPoseWithCovariance(m, &in.covariance);
+  in.stamp = p.stamp;
+  in.pose = p.pose;
+  inbox_.OfferInitialPose(in);
 }
 
 void LocalisationComponent::Log(const std::string& sentence) {

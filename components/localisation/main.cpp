@@ -81,13 +81,20 @@ int main(int argc, char** argv) {
         // checked before this wait, so a bad one fails at once).
         std::string params_path = given_params;
         std::optional<structloc::geometry::Pose2D> mount;
+        std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> pose_while_waiting;
         if (!cli.Has("params")) {
           const auto chosen = loc::WaitForFirstScan(node, stop);
           if (!chosen) return nullptr;
           params_path = chosen->file;
           mount = chosen->mount;
+          pose_while_waiting = chosen->initial_pose;
           std::cout << "localisation: parameters: " << chosen->choice
                     << "\nlocalisation: " << chosen->mount_source << std::endl;
+          if (pose_while_waiting) {
+            std::cout << "localisation: a pose came on "
+                      << structloc::dds_common::topics::kInitialPose.name
+                      << " while waiting for the first scan; it is kept" << std::endl;
+          }
         }
         auto params = params_path.empty()
                           ? structloc::localisation_core::LocaliserOptions{}
@@ -96,8 +103,10 @@ int main(int argc, char** argv) {
                                  ? structloc::localisation_core::SessionOptions{}
                                  : structloc::localisation_core::LoadSessionOptions(params_path);
         if (mount) params.sensor_mount = *mount;
-        return std::make_unique<loc::LocalisationComponent>(node, std::move(world), params, session,
-                                                            options);
+        auto component = std::make_unique<loc::LocalisationComponent>(node, std::move(world),
+                                                                      params, session, options);
+        if (pose_while_waiting) component->OfferInitialPose(*pose_while_waiting);
+        return component;
       },
       [](std::ostream& out) {
         structloc::localisation_core::PrintLocaliserOptions(out);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/config/install_layout.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
@@ -26,7 +27,8 @@ struct Heard {
   std::mutex mutex;
   std::optional<localisation_core::ScanShape> shape;
   std::string laser_frame;
-  std::map<std::string, geometry_msgs::msg::TransformStamped> by_child;  // rt/tf_static
+  std::map<std::string, geometry_msgs::msg::TransformStamped> by_child;       // rt/tf_static
+  std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> initial_pose;  // the newest
   bool refused_scan = false;
 };
 
@@ -99,6 +101,14 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
           std::lock_guard<std::mutex> lock(heard->mutex);
           for (const auto& t : m.transforms()) heard->by_child[t.child_frame_id()] = t;
         });
+    // An operator may give the pose before the laser runs; the component
+    // subscribes only once it is made, so the probe keeps the newest.
+    const auto poses = node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+        dds_common::topics::kInitialPose,
+        [heard](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+          std::lock_guard<std::mutex> lock(heard->mutex);
+          heard->initial_pose = m;
+        });
     node.ReleaseCallbacks();
     std::cout << "localisation: no --params: waiting for the first scan on "
               << dds_common::topics::kScan.name << " to choose the laser's preset from"
@@ -127,7 +137,10 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
   // factory found them.
   node.HoldCallbacks();
   if (!choosable) return std::nullopt;
-  return Choose(*choosable);
+  auto chosen = Choose(*choosable);
+  std::lock_guard<std::mutex> lock(heard->mutex);  // the listeners are gone; for the reads' order
+  chosen.initial_pose = heard->initial_pose;
+  return chosen;
 }
 
 }  // namespace structloc::localisation

@@ -11,7 +11,11 @@
 
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
+#include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "structloc/dds_common/component_runtime.hpp"
+#include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
+#include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
 #include "wait_until.hpp"
@@ -109,6 +113,47 @@ TEST(Components, WithoutParamsItWaitsForTheFirstScanAndStopsCleanly) {
   EXPECT_NE(localisation.CapturedOutput().find("stopped cleanly before it started"),
             std::string::npos)
       << localisation.CapturedOutput();
+}
+
+// A pose an operator sends while it waits for the first scan (the laser not
+// yet running) is not lost: the component, made once the scan came, holds it
+// for the first odometry like one sent later.
+TEST(Components, WithoutParamsAPoseSentWhileItWaitsForTheFirstScanIsKept) {
+  dds_common::Node observer(testing::TestNodeOptions("waiting_pose_observer", kDomain));
+  auto operator_pose =
+      observer.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+          dds_common::topics::kInitialPose);
+  ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return localisation.CapturedOutput().find("waiting for the first scan") != std::string::npos;
+  })) << localisation.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil([&] { return operator_pose.MatchedReaders() > 0; }));
+  const auto scenario = simulation_core::LoadScenario(
+      testing::SourcePath("maps/scenarios/office_people.xml"));  // the simulator's default
+  geometry_msgs::msg::PoseWithCovarianceStamped given;
+  given.header().stamp(dds_common::ToRosTime(dds_common::WallClockSeconds()));
+  given.header().frame_id("map");
+  given.pose().pose().position().x(scenario.initial_pose.x);
+  given.pose().pose().position().y(scenario.initial_pose.y);
+  given.pose().pose().orientation(dds_common::ToQuaternion(scenario.initial_pose.theta));
+  given.pose().covariance()[0] = given.pose().covariance()[7] = 0.01;
+  given.pose().covariance()[35] = 0.01;
+  ASSERT_TRUE(operator_pose.Write(given));
+  ChildProcess simulator(BinPath("structloc_simulator"), Args(kDomain));
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return localisation.CapturedOutput().find("from rt/initialpose") != std::string::npos;
+  })) << localisation.CapturedOutput();
+  const auto report = localisation.CapturedOutput();
+  EXPECT_NE(report.find("a pose came on rt/initialpose while waiting for the first scan"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("initial pose held for the first odometry from rt/initialpose"),
+            std::string::npos)
+      << report;
+  simulator.Signal(SIGINT);
+  localisation.Signal(SIGTERM);
+  EXPECT_EQ(simulator.WaitExit(testing::kGenerousTimeout), 0) << simulator.CapturedOutput();
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << report;
 }
 
 // How fast it fails is printed, not asserted (a loaded machine is slower).

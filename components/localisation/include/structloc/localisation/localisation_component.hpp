@@ -51,6 +51,9 @@ class LocalisationComponent : public dds_common::Component {
   ~LocalisationComponent() override;
   void Step() override;
   void Stop() override;
+  // A pose on rt/initialpose: this component's subscription hands it here, and
+  // so does the start-up for one that came while it waited for the first scan.
+  void OfferInitialPose(const geometry_msgs::msg::PoseWithCovarianceStamped& m);
 
  private:
   void Worker();

@@ -3,13 +3,15 @@
 // names (localisation_core::ChooseLaserPreset), with the laser's mounting on
 // the robot from rt/tf_static (the transform to the scan's frame), as a ROS 2
 // robot's static transform broadcaster publishes it; without one, the
-// preset's mounting. One default for replay and the component.
+// preset's mounting. One default for replay and the component. A pose an
+// operator sends on rt/initialpose during the wait is kept for the component.
 #pragma once
 
 #include <chrono>
 #include <optional>
 #include <string>
 
+#include "geometry_msgs/msg/PoseWithCovarianceStamped.h"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/geometry/pose2d.hpp"
 
@@ -20,6 +22,8 @@ struct ParametersFromFirstScan {
   std::string choice;                     // one line: what was chosen and why
   std::optional<geometry::Pose2D> mount;  // from rt/tf_static, when one was heard
   std::string mount_source;               // one line: where the mounting comes from
+  // The newest pose sent on rt/initialpose while the component waited.
+  std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> initial_pose;
 };
 
 // Waits for the first usable scan on rt/scan (at least two beams, a finite
