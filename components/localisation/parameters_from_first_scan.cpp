@@ -8,9 +8,11 @@
 #include <memory>
 #include <mutex>
 
+#include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
 #include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/config/install_layout.hpp"
+#include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/geometry/pose2d.hpp"
@@ -31,6 +33,22 @@ struct Heard {
   std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> initial_pose;  // the newest
   bool refused_scan = false;
 };
+
+// While it waits, the component is not made yet; the wait itself is what
+// rt/diagnostics says, at the component's rhythm (every 0.5 s), a warning
+// that becomes an error after 5 s (the <tracking> block's defaults of
+// scan_timeout_s and silent_error_after_s: no parameter file is read yet).
+dds_common::HealthReport WaitingReport(double waited_s, bool refused_scan) {
+  dds_common::HealthReport report;
+  report.level = waited_s > 5.0 ? dds_common::HealthLevel::kError : dds_common::HealthLevel::kWarn;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.1f", waited_s);
+  report.message = std::string(refused_scan ? "no scan that names a laser" : "no scans") + " on " +
+                   dds_common::topics::kScan.name + " yet for " + seconds +
+                   " s: waiting for the first to choose the laser's preset (no --params)";
+  report.values.emplace_back("start_up", "waiting for the first scan");
+  return report;
+}
 
 bool Usable(const sensor_msgs::msg::LaserScan& m) {
   return m.ranges().size() >= 2 && std::isfinite(m.angle_increment()) && m.angle_increment() != 0;
@@ -109,14 +127,24 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
           std::lock_guard<std::mutex> lock(heard->mutex);
           heard->initial_pose = m;
         });
+    auto diagnostics = node.CreateWriter<diagnostic_msgs::msg::DiagnosticArrayPubSubType>(
+        dds_common::topics::kDiagnostics);
     node.ReleaseCallbacks();
     std::cout << "localisation: no --params: waiting for the first scan on "
               << dds_common::topics::kScan.name << " to choose the laser's preset from"
               << std::endl;
     bool said_refused = false;
     std::optional<std::chrono::steady_clock::time_point> scan_heard;
+    const double started_s = dds_common::WallClockSeconds();
+    double reported_s = 0.0;
     while (!choosable && !stop(50ms)) {
       std::lock_guard<std::mutex> lock(heard->mutex);
+      const double now = dds_common::WallClockSeconds();
+      if (!heard->shape && now - reported_s >= 0.5) {
+        reported_s = now;
+        diagnostics.Write(dds_common::ToDiagnosticArray(
+            "localisation", WaitingReport(now - started_s, heard->refused_scan), now));
+      }
       if (heard->refused_scan && !said_refused) {
         said_refused = true;
         std::cout << "localisation: a scan with fewer than two beams or no finite angle increment "

@@ -44,21 +44,32 @@ class DiagnosticsListener {
         dds_common::topics::kDiagnostics, [this](const diagnostic_msgs::msg::DiagnosticArray& a) {
           std::lock_guard<std::mutex> lock(mutex_);
           for (const auto& s : a.status()) {
+            headlines_[s.name()] = s.message();
             for (const auto& kv : s.values()) latest_[s.name()][kv.key()] = kv.value();
           }
         });
   }
   long Value(const std::string& component, const std::string& key) {
+    const std::string text = Text(component, key);
+    return text.empty() ? -1 : std::stol(text);
+  }
+  std::string Text(const std::string& component, const std::string& key) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto c = latest_.find(component);
-    if (c == latest_.end()) return -1;
+    if (c == latest_.end()) return "";
     auto k = c->second.find(key);
-    return k == c->second.end() ? -1 : std::stol(k->second);
+    return k == c->second.end() ? "" : k->second;
+  }
+  std::string Headline(const std::string& component) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto h = headlines_.find(component);
+    return h == headlines_.end() ? "" : h->second;
   }
 
  private:
   std::mutex mutex_;
   std::map<std::string, std::map<std::string, std::string>> latest_;
+  std::map<std::string, std::string> headlines_;
   dds_common::Subscription subscription_;  // last: destroyed first
 };
 
@@ -101,13 +112,21 @@ TEST(Components, ExchangeSamplesAndStopCleanly) {
       << report;
 }
 
-// Without --params and with no scan yet it waits for one, and a stop signal
-// ends the wait cleanly.
+// Without --params and with no scan yet it waits for one, says so on
+// rt/diagnostics, and a stop signal ends the wait cleanly.
 TEST(Components, WithoutParamsItWaitsForTheFirstScanAndStopsCleanly) {
+  dds_common::Node observer(testing::TestNodeOptions("waiting_observer", kDomain));
+  DiagnosticsListener diagnostics(observer);
   ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
   ASSERT_TRUE(testing::WaitUntil([&] {
     return localisation.CapturedOutput().find("waiting for the first scan") != std::string::npos;
   })) << localisation.CapturedOutput();
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    return diagnostics.Text("structloc/localisation", "start_up") == "waiting for the first scan";
+  })) << localisation.CapturedOutput();
+  EXPECT_NE(diagnostics.Headline("structloc/localisation").find("no scans on rt/scan yet for "),
+            std::string::npos)
+      << diagnostics.Headline("structloc/localisation");
   localisation.Signal(SIGTERM);
   EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << localisation.CapturedOutput();
   EXPECT_NE(localisation.CapturedOutput().find("stopped cleanly before it started"),
