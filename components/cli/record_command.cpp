@@ -22,6 +22,7 @@
 #include "structloc/config/strict_number.hpp"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/dds_common/static_transforms.hpp"
 #include "structloc/log_formats/carmen_recording.hpp"
 #include "structloc/process/shutdown_signal.hpp"
 #include "structloc_msgs/msg/WheelEncodersPubSubTypes.h"
@@ -62,6 +63,7 @@ struct Recorder {
   bool time_increment_written = false;
   size_t encoder_samples = 0, truth_poses = 0;
   std::optional<Clock::time_point> last_scan;
+  dds_common::StaticTransforms statics;  // rt/tf_static, until the mounting is known
 };
 
 void OnScan(Recorder& r, const sensor_msgs::msg::LaserScan& m) {
@@ -113,18 +115,17 @@ void OnTruth(Recorder& r, const nav_msgs::msg::Odometry& m) {
 }
 
 void OnTfStatic(Recorder& r, const tf2_msgs::msg::TFMessage& m, const dds_common::FrameIds& f) {
-  for (const auto& t : m.transforms()) {
-    if (t.header().frame_id() != f.base_link || t.child_frame_id() != f.laser) continue;
-    const auto& tr = t.transform();
-    std::lock_guard<std::mutex> lock(r.mutex);
-    if (r.recording->HasMount()) return;
-    r.recording->SetMount(
-        {tr.translation().x(), tr.translation().y(), dds_common::YawFromQuaternion(tr.rotation())});
-    std::printf("  the laser's mounting from %s: (%.3f, %.3f, %.3f)\n",
-                dds_common::topics::kTfStatic.name.c_str(), tr.translation().x(),
-                tr.translation().y(), dds_common::YawFromQuaternion(tr.rotation()));
-    std::fflush(stdout);
-  }
+  std::lock_guard<std::mutex> lock(r.mutex);
+  if (r.recording->HasMount()) return;
+  r.statics.Add(m);
+  std::string path;
+  const auto mount = r.statics.Chain(f.base_link, f.laser, path);
+  if (!mount) return;
+  r.recording->SetMount(*mount);
+  std::printf("  the laser's mounting from %s (%s): (%.3f, %.3f, %.3f)\n",
+              dds_common::topics::kTfStatic.name.c_str(), path.c_str(), mount->x, mount->y,
+              mount->theta);
+  std::fflush(stdout);
 }
 
 }  // namespace
@@ -216,7 +217,8 @@ int RecordCommand(const Invocation& inv) {
     if (s.rejected > 0) std::printf("  %zu samples with non-finite values left out\n", s.rejected);
     if (!mounted)
       std::printf(
-          "  WARNING: no laser mounting was heard (nothing on %s from %s to %s): the scans are "
+          "  WARNING: no laser mounting was heard (no transforms on %s from %s to %s): the scans "
+          "are "
           "written with the laser at the robot's origin; give --sensor-mount\n",
           t::kTfStatic.name.c_str(), frames.base_link.c_str(), frames.laser.c_str());
     r.log->Close();

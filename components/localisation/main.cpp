@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
         std::optional<structloc::geometry::Pose2D> mount;
         std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> pose_while_waiting;
         if (!cli.Has("params")) {
-          const auto chosen = loc::WaitForFirstScan(node, stop);
+          const auto chosen = loc::WaitForFirstScan(node, stop, options.frames.base_link);
           if (!chosen) return nullptr;
           params_path = chosen->file;
           mount = chosen->mount;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <mutex>
 
@@ -14,6 +13,7 @@
 #include "structloc/config/install_layout.hpp"
 #include "structloc/dds_common/diagnostics.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
+#include "structloc/dds_common/static_transforms.hpp"
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/geometry/pose2d.hpp"
 #include "structloc/localisation_core/scan/laser_preset.hpp"
@@ -29,7 +29,7 @@ struct Heard {
   std::mutex mutex;
   std::optional<localisation_core::ScanShape> shape;
   std::string laser_frame;
-  std::map<std::string, geometry_msgs::msg::TransformStamped> by_child;       // rt/tf_static
+  dds_common::StaticTransforms statics;                                       // rt/tf_static
   std::optional<geometry_msgs::msg::PoseWithCovarianceStamped> initial_pose;  // the newest
   bool refused_scan = false;
 };
@@ -54,22 +54,14 @@ bool Usable(const sensor_msgs::msg::LaserScan& m) {
   return m.ranges().size() >= 2 && std::isfinite(m.angle_increment()) && m.angle_increment() != 0;
 }
 
-// The mounting a transform to the laser's frame gives, when it is a planar
-// one with finite values.
-std::optional<geometry::Pose2D> MountFrom(const geometry_msgs::msg::TransformStamped& t) {
-  const geometry::Pose2D mount{t.transform().translation().x(), t.transform().translation().y(),
-                               dds_common::YawFromQuaternion(t.transform().rotation())};
-  if (!std::isfinite(mount.x) || !std::isfinite(mount.y) || !std::isfinite(mount.theta))
-    return std::nullopt;
-  return mount;
-}
-
 // What the probe has heard, once it may choose: the first usable scan's shape
-// and frame, and the transform to that frame if one came.
+// and frame, and the mounting if its chain of transforms came.
 struct Choosable {
   localisation_core::ScanShape shape;
   std::string laser_frame;
-  std::optional<geometry_msgs::msg::TransformStamped> mounting;
+  std::string base_frame;
+  std::optional<geometry::Pose2D> mount;
+  std::string mount_path;  // "base_link -> ... -> laser"
 };
 
 ParametersFromFirstScan Choose(const Choosable& heard) {
@@ -77,19 +69,18 @@ ParametersFromFirstScan Choose(const Choosable& heard) {
   ParametersFromFirstScan out;
   out.file = preset.file.empty() ? "" : config::SharePath(preset.file);
   out.choice = localisation_core::DescribeChoice(preset);
-  if (heard.mounting) out.mount = MountFrom(*heard.mounting);
+  out.mount = heard.mount;
   if (!out.mount) {
-    out.mount_source = "laser mounting from the preset: no usable transform to the scan's frame '" +
-                       heard.laser_frame + "' on " + dds_common::topics::kTfStatic.name +
-                       " (publish one, or give --params)";
+    out.mount_source = "laser mounting from the preset: no usable transforms from '" +
+                       heard.base_frame + "' to the scan's frame '" + heard.laser_frame + "' on " +
+                       dds_common::topics::kTfStatic.name + " (publish them, or give --params)";
     return out;
   }
   char values[96];
   std::snprintf(values, sizeof values, "x %.3f m, y %.3f m, yaw %.2f deg", out.mount->x,
                 out.mount->y, out.mount->theta * 180.0 / geometry::kPi);
   out.mount_source = "laser mounting " + std::string(values) + " from " +
-                     dds_common::topics::kTfStatic.name + " (" +
-                     heard.mounting->header().frame_id() + " -> " + heard.laser_frame + ")";
+                     dds_common::topics::kTfStatic.name + " (" + heard.mount_path + ")";
   return out;
 }
 
@@ -97,6 +88,7 @@ ParametersFromFirstScan Choose(const Choosable& heard) {
 
 std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
                                                         const dds_common::StopWait& stop,
+                                                        const std::string& base_frame,
                                                         std::chrono::milliseconds tf_wait) {
   auto heard = std::make_shared<Heard>();
   std::optional<Choosable> choosable;
@@ -117,7 +109,7 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
     const auto statics = node.Subscribe<tf2_msgs::msg::TFMessagePubSubType>(
         dds_common::topics::kTfStatic, [heard](const tf2_msgs::msg::TFMessage& m) {
           std::lock_guard<std::mutex> lock(heard->mutex);
-          for (const auto& t : m.transforms()) heard->by_child[t.child_frame_id()] = t;
+          heard->statics.Add(m);
         });
     // An operator may give the pose before the laser runs; the component
     // subscribes only once it is made, so the probe keeps the newest.
@@ -153,11 +145,10 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
       }
       if (!heard->shape) continue;
       if (!scan_heard) scan_heard = std::chrono::steady_clock::now();
-      const auto mounting = heard->by_child.find(heard->laser_frame);
-      const bool has_mounting = mounting != heard->by_child.end();
-      if (has_mounting || std::chrono::steady_clock::now() - *scan_heard >= tf_wait) {
-        choosable = Choosable{*heard->shape, heard->laser_frame, std::nullopt};
-        if (has_mounting) choosable->mounting = mounting->second;
+      std::string path;
+      const auto mount = heard->statics.Chain(base_frame, heard->laser_frame, path);
+      if (mount || std::chrono::steady_clock::now() - *scan_heard >= tf_wait) {
+        choosable = Choosable{*heard->shape, heard->laser_frame, base_frame, mount, path};
       }
     }
   }

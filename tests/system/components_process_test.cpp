@@ -12,12 +12,14 @@
 #include "dds_test_support.hpp"
 #include "diagnostic_msgs/msg/DiagnosticArrayPubSubTypes.h"
 #include "geometry_msgs/msg/PoseWithCovarianceStampedPubSubTypes.h"
+#include "sensor_msgs/msg/LaserScanPubSubTypes.h"
 #include "structloc/dds_common/component_runtime.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/simulation_core/scenario.hpp"
 #include "temp_dir.hpp"
 #include "test_domains.hpp"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 #include "wait_until.hpp"
 
 namespace structloc {
@@ -172,6 +174,50 @@ TEST(Components, WithoutParamsAPoseSentWhileItWaitsForTheFirstScanIsKept) {
   simulator.Signal(SIGINT);
   localisation.Signal(SIGTERM);
   EXPECT_EQ(simulator.WaitExit(testing::kGenerousTimeout), 0) << simulator.CapturedOutput();
+  EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << report;
+}
+
+// A robot whose description places the laser through a frame between (as
+// URDFs do: base_link -> laser_mount -> laser) publishes both transforms on
+// rt/tf_static; the mounting is their composition, not the last one alone.
+TEST(Components, WithoutParamsTheMountingComposesTheTransformsDownToTheLaser) {
+  dds_common::Node robot(testing::TestNodeOptions("mounted_robot", kDomain));
+  auto statics =
+      robot.CreateWriter<tf2_msgs::msg::TFMessagePubSubType>(dds_common::topics::kTfStatic);
+  auto scans = robot.CreateWriter<sensor_msgs::msg::LaserScanPubSubType>(dds_common::topics::kScan);
+  ChildProcess localisation(BinPath("structloc_localisation"), Args(kDomain));
+  auto transform = [](const std::string& parent, const std::string& child, double x, double yaw) {
+    geometry_msgs::msg::TransformStamped t;
+    t.header().frame_id(parent);
+    t.child_frame_id(child);
+    t.transform().translation().x(x);
+    t.transform().rotation(dds_common::ToQuaternion(yaw));
+    return t;
+  };
+  tf2_msgs::msg::TFMessage mounting;
+  mounting.transforms().push_back(transform("base_link", "laser_mount", 0.1, geometry::kHalfPi));
+  mounting.transforms().push_back(transform("laser_mount", "laser", 0.2, 0.0));
+  ASSERT_TRUE(testing::WaitUntil([&] { return statics.MatchedReaders() > 0; }))
+      << localisation.CapturedOutput();
+  ASSERT_TRUE(statics.Write(mounting));
+  sensor_msgs::msg::LaserScan scan;  // a Hokuyo UTM-30LX's geometry
+  scan.header().frame_id("laser");
+  scan.angle_min(-2.356194f);
+  scan.angle_increment(0.004363323f);
+  scan.angle_max(2.356194f);
+  scan.range_min(0.1f);
+  scan.range_max(30.0f);
+  scan.ranges().assign(1081, 3.0f);
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    scans.Write(scan);
+    return localisation.CapturedOutput().find("laser mounting") != std::string::npos;
+  })) << localisation.CapturedOutput();
+  const auto report = localisation.CapturedOutput();
+  EXPECT_NE(report.find("laser mounting x 0.100 m, y 0.200 m, yaw 90.00 deg from rt/tf_static "
+                        "(base_link -> laser_mount -> laser)"),
+            std::string::npos)
+      << report;
+  localisation.Signal(SIGTERM);
   EXPECT_EQ(localisation.WaitExit(testing::kGenerousTimeout), 0) << report;
 }
 

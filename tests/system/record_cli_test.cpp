@@ -104,8 +104,10 @@ TEST(RecordCli, ARecordedTourReplaysAndMapsItself) {
   ASSERT_EQ(simulator.WaitExit(180s), 0) << simulator.CapturedOutput();
   ASSERT_EQ(record.WaitExit(testing::kGenerousTimeout), 0) << record.CapturedOutput();
   const std::string said = record.CapturedOutput();
-  EXPECT_NE(said.find("the laser's mounting from rt/tf_static: (0.200, 0.000, 0.000)"),
-            std::string::npos)
+  EXPECT_NE(
+      said.find(
+          "the laser's mounting from rt/tf_static (base_link -> laser): (0.200, 0.000, 0.000)"),
+      std::string::npos)
       << said;
 
   // Every laser line of the tour (the simulator publishes one a scan period,
