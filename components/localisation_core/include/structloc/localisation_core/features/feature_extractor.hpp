@@ -2,9 +2,10 @@
 // localiser matches (walls, corners, cylinders, ...) is one FeatureExtractor.
 // It places the map's features of its kind that the scan should see, then sees
 // the sliding line fits of the scan and hands back solver measurements with
-// their covariance and one typed match per feature found. The localiser runs the enabled extractors
-// in the fixed order of FeatureKinds() (walls first), solves once over all measurements and reports
-// per kind, so that results, messages and timings need no change for a new kind.
+// their covariance and one typed match per feature found. The localiser runs
+// the enabled extractors in the fixed order of FeatureKinds() (walls first),
+// solves once over all measurements and reports per kind, so that results,
+// messages and timings need no change for a new kind.
 #pragma once
 
 #include <vector>
