@@ -215,6 +215,10 @@ int RecordCommand(const Invocation& inv) {
                   s.scans_nearest_odometry);
     if (s.scans_late > 0) std::printf("  %zu scans came out of order\n", s.scans_late);
     if (s.rejected > 0) std::printf("  %zu samples with non-finite values left out\n", s.rejected);
+    if (r.statics.Dropped() > 0)
+      std::printf("  WARNING: %zu transforms on %s to frames beyond the first %zu were ignored\n",
+                  r.statics.Dropped(), t::kTfStatic.name.c_str(),
+                  dds_common::StaticTransforms::kMaxFrames);
     if (!mounted)
       std::printf(
           "  WARNING: no laser mounting was heard (no transforms on %s from %s to %s): the scans "

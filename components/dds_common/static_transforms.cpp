@@ -19,7 +19,16 @@ std::optional<geometry::Pose2D> Planar(const geometry_msgs::msg::TransformStampe
 }  // namespace
 
 void StaticTransforms::Add(const tf2_msgs::msg::TFMessage& m) {
-  for (const auto& t : m.transforms()) by_child_[t.child_frame_id()] = t;
+  for (const auto& t : m.transforms()) {
+    const auto known = by_child_.find(t.child_frame_id());
+    if (known != by_child_.end()) {
+      known->second = t;
+    } else if (by_child_.size() < kMaxFrames) {
+      by_child_.emplace(t.child_frame_id(), t);
+    } else {
+      ++dropped_;
+    }
+  }
 }
 
 std::optional<geometry::Pose2D> StaticTransforms::Chain(const std::string& base_frame,

@@ -159,6 +159,11 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
   auto chosen = Choose(*choosable);
   std::lock_guard<std::mutex> lock(heard->mutex);  // the listeners are gone; for the reads' order
   chosen.initial_pose = heard->initial_pose;
+  if (const size_t dropped = heard->statics.Dropped()) {
+    std::cout << "localisation: WARNING: " << dropped << " transforms on "
+              << dds_common::topics::kTfStatic.name << " to frames beyond the first "
+              << dds_common::StaticTransforms::kMaxFrames << " were ignored" << std::endl;
+  }
   return chosen;
 }
 

@@ -67,6 +67,28 @@ TEST(StaticTransforms, NoMountingFromALoopANonFiniteValueOrAnotherBase) {
   EXPECT_FALSE(elsewhere.Chain("laser", "laser", path).has_value()) << "no transform at all";
 }
 
+// A peer flooding rt/tf_static with ever new frames fills a bounded table;
+// the frames known before keep their transforms and the chain still holds.
+TEST(StaticTransforms, EverNewFramesAreBoundedAndTheKnownChainKept) {
+  StaticTransforms statics;
+  statics.Add(One("base_link", "laser", 0.2, 0, 0));
+  tf2_msgs::msg::TFMessage flood;
+  for (size_t i = 0; i < StaticTransforms::kMaxFrames + 100; ++i) {
+    geometry_msgs::msg::TransformStamped t;
+    t.header().frame_id("base_link");
+    t.child_frame_id("junk_" + std::to_string(i));
+    flood.transforms().push_back(t);
+  }
+  statics.Add(flood);
+  EXPECT_EQ(statics.Frames(), StaticTransforms::kMaxFrames);
+  EXPECT_EQ(statics.Dropped(), 101u);                 // the laser's frame took one place
+  statics.Add(One("base_link", "laser", 0.3, 0, 0));  // a known frame still updates
+  std::string path;
+  const auto mount = statics.Chain("base_link", "laser", path);
+  ASSERT_TRUE(mount.has_value());
+  EXPECT_NEAR(mount->x, 0.3, 1e-12);
+}
+
 TEST(StaticTransforms, TheNewestTransformOfAFrameWins) {
   StaticTransforms statics;
   statics.Add(One("base_link", "laser", 0.2, 0, 0));

@@ -6,6 +6,7 @@
 // mounting this one way.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -18,8 +19,15 @@ namespace structloc::dds_common {
 
 class StaticTransforms {
  public:
-  // Keeps every transform of `m`, the newest per child frame.
+  // A robot description has tens of frames, a large one hundreds; a peer
+  // sending ever new frames must not grow this without bound.
+  static constexpr size_t kMaxFrames = 4096;
+
+  // Keeps every transform of `m`, the newest per child frame; transforms to
+  // frames beyond the first kMaxFrames are dropped (and counted).
   void Add(const tf2_msgs::msg::TFMessage& m);
+  size_t Frames() const { return by_child_.size(); }
+  size_t Dropped() const { return dropped_; }
   // The pose of `child_frame` in `base_frame` (x, y, yaw), composed from the
   // transforms heard; `path` receives "base_link -> laser_mount -> laser".
   // nullopt while the chain is incomplete, loops or holds a non-finite
@@ -29,6 +37,7 @@ class StaticTransforms {
 
  private:
   std::map<std::string, geometry_msgs::msg::TransformStamped> by_child_;
+  size_t dropped_ = 0;
 };
 
 }  // namespace structloc::dds_common
