@@ -2,7 +2,8 @@
 // any client hears them, written to a CARMEN log that replay, map building
 // and calibration read (log_formats::CarmenRecording puts the lines in time
 // order with each scan's odometric pose), with the laser's mounting from
-// --sensor-mount or the base_link -> laser transform on rt/tf_static; the
+// --sensor-mount or the transforms from base_link down to the laser's frame on
+// rt/tf_static (dds_common::StaticTransforms); the
 // wheel encoders to an encoders.csv and the simulator's ground truth to a TUM
 // file when asked. It stops on Ctrl-C (or SIGTERM), after --duration-s, or
 // once the scans have been silent --quiet-s after the first, and writes
@@ -41,7 +42,7 @@ std::vector<config::OptionSpec> RecordOptions() {
   specs.push_back({"out", true, "the CARMEN log to write (required; .log or .clf)"});
   specs.push_back({"sensor-mount", true,
                    "\"X Y THETA\": the laser on the robot, metres and radians (default: the "
-                   "base frame -> laser frame transform on rt/tf_static)"});
+                   "transforms from the base frame down to the laser frame on rt/tf_static)"});
   specs.push_back({"encoders-out", true, "also write the wheel encoders to this encoders.csv"});
   specs.push_back({"truth-out", true, "also write the simulator's ground truth to this TUM file"});
   specs.push_back({"duration-s", true, "stop after this long, 0.1..1e6 s (default: Ctrl-C)"});

@@ -34,11 +34,11 @@ void StaticTransforms::Add(const tf2_msgs::msg::TFMessage& m) {
 std::optional<geometry::Pose2D> StaticTransforms::Chain(const std::string& base_frame,
                                                         const std::string& child_frame,
                                                         std::string& path) const {
-  constexpr int kMaxFrames = 16;  // a longer chain is a loop
+  constexpr int kMaxChainDepth = 16;  // a longer chain is a loop
   geometry::Pose2D pose{0.0, 0.0, 0.0};
   std::string frame = child_frame;
   path = child_frame;
-  for (int depth = 0; depth < kMaxFrames && frame != base_frame; ++depth) {
+  for (int depth = 0; depth < kMaxChainDepth && frame != base_frame; ++depth) {
     const auto t = by_child_.find(frame);
     if (t == by_child_.end()) return std::nullopt;
     const auto step = Planar(t->second);

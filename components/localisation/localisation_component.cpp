@@ -34,6 +34,12 @@ LocalisationComponent::LocalisationComponent(
           dds_common::topics::kDiagnostics)),
       node_(node),
       started_s_(dds_common::WallClockSeconds()),
+      initial_pose_subscription_(
+          node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
+              dds_common::topics::kInitialPose,
+              [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) {
+                OfferInitialPose(m);
+              })),
       session_(world_.get(), localiser_options, session_options,
                localisation_core::Scheduling::kNewestWins),
       start_up_(world_.get(), localiser_options.sensor_mount, session_options, {}) {
@@ -74,10 +80,6 @@ LocalisationComponent::LocalisationComponent(
         const auto odom = FromOdometry(m);
         inbox_.OfferOdometry(odom.stamp, odom.pose, dds_common::WallClockSeconds());
       });
-  initial_pose_subscription_ =
-      node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
-          dds_common::topics::kInitialPose,
-          [this](const geometry_msgs::msg::PoseWithCovarianceStamped& m) { OfferInitialPose(m); });
   relocalise_subscription_ = node.Subscribe<std_msgs::msg::EmptyPubSubType>(
       dds_common::topics::kReinitializeGlobalLocalization,
       [this](const std_msgs::msg::Empty&) { relocalise_requested_ = true; });

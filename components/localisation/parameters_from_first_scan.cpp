@@ -17,6 +17,7 @@
 #include "structloc/dds_common/topics.hpp"
 #include "structloc/geometry/pose2d.hpp"
 #include "structloc/localisation_core/scan/laser_preset.hpp"
+#include "structloc/localisation_core/tracking/tracking_session_options.hpp"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 namespace structloc::localisation {
@@ -36,11 +37,13 @@ struct Heard {
 
 // While it waits, the component is not made yet; the wait itself is what
 // rt/diagnostics says, at the component's rhythm (every 0.5 s), a warning
-// that becomes an error after 5 s (the <tracking> block's defaults of
-// scan_timeout_s and silent_error_after_s: no parameter file is read yet).
+// that becomes an error as the component's would (the <tracking> block's
+// default silent_error_after_s: no parameter file is read yet).
 dds_common::HealthReport WaitingReport(double waited_s, bool refused_scan) {
   dds_common::HealthReport report;
-  report.level = waited_s > 5.0 ? dds_common::HealthLevel::kError : dds_common::HealthLevel::kWarn;
+  report.level = waited_s > localisation_core::SessionOptions{}.silent_error_after_s
+                     ? dds_common::HealthLevel::kError
+                     : dds_common::HealthLevel::kWarn;
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.1f", waited_s);
   report.message = std::string(refused_scan ? "no scan that names a laser" : "no scans") + " on " +
@@ -126,16 +129,23 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
               << dds_common::topics::kScan.name << " to choose the laser's preset from"
               << std::endl;
     bool said_refused = false;
-    std::optional<std::chrono::steady_clock::time_point> scan_heard;
-    const double started_s = dds_common::WallClockSeconds();
-    double reported_s = 0.0;
+    using Clock = std::chrono::steady_clock;
+    std::optional<Clock::time_point> scan_heard, reported;
+    const auto started = Clock::now();
     while (!choosable && !stop(50ms)) {
-      std::lock_guard<std::mutex> lock(heard->mutex);
-      const double now = dds_common::WallClockSeconds();
-      if (!heard->shape && now - reported_s >= 0.5) {
-        reported_s = now;
-        diagnostics.Write(dds_common::ToDiagnosticArray(
-            "localisation", WaitingReport(now - started_s, heard->refused_scan), now));
+      const auto now = Clock::now();
+      std::optional<dds_common::HealthReport> report;  // written outside the listeners' lock
+      std::unique_lock<std::mutex> lock(heard->mutex);
+      if (!heard->shape && (!reported || now - *reported >= 500ms)) {
+        reported = now;
+        report = WaitingReport(std::chrono::duration<double>(now - started).count(),
+                               heard->refused_scan);
+      }
+      if (report) {
+        lock.unlock();
+        diagnostics.Write(
+            dds_common::ToDiagnosticArray("localisation", *report, dds_common::WallClockSeconds()));
+        lock.lock();
       }
       if (heard->refused_scan && !said_refused) {
         said_refused = true;
@@ -144,10 +154,10 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
                   << std::endl;
       }
       if (!heard->shape) continue;
-      if (!scan_heard) scan_heard = std::chrono::steady_clock::now();
+      if (!scan_heard) scan_heard = Clock::now();
       std::string path;
       const auto mount = heard->statics.Chain(base_frame, heard->laser_frame, path);
-      if (mount || std::chrono::steady_clock::now() - *scan_heard >= tf_wait) {
+      if (mount || Clock::now() - *scan_heard >= tf_wait) {
         choosable = Choosable{*heard->shape, heard->laser_frame, base_frame, mount, path};
       }
     }

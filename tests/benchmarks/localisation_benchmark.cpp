@@ -61,11 +61,11 @@ struct Prepared {
     const localisation_core::MapErrorMemory no_memory;  // every map error counted per scan
     for (int i : visibility.corners) {
       const auto& c = office.world.Corners()[static_cast<size_t>(i)];
-      corners.push_back(ExpectPoint(i, c.id, c.position, 0.0, 0, sensor_prior, no_memory));
+      corners.push_back(ExpectPoint(i, c.id, c.position, 0.0, -1, sensor_prior, no_memory));
     }
     for (int i : visibility.cylinders) {
       const auto& c = office.world.Cylinders()[static_cast<size_t>(i)];
-      cylinders.push_back(ExpectPoint(i, c.id, c.centre, c.radius, 0, sensor_prior, no_memory));
+      cylinders.push_back(ExpectPoint(i, c.id, c.centre, c.radius, -1, sensor_prior, no_memory));
     }
     AssignWindowsByExpectation(windows, expected, sensor_prior, Eigen::Matrix3d::Identity(),
                                WallOptions().clusters, assignment);

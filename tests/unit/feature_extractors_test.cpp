@@ -120,7 +120,7 @@ class OracleCorners : public FeatureExtractor {
     for (int i : in.visibility->corners) {
       const auto& c = in.map->Corners()[static_cast<size_t>(i)];
       expected_.push_back(
-          ExpectPoint(i, c.id, c.position, 0.0, first_slot_ + i, in.sensor_prior, *in.map_errors));
+          ExpectPoint(i, c.id, c.position, 0.0, first_slot_, in.sensor_prior, *in.map_errors));
     }
   }
   int Expected() const override { return static_cast<int>(expected_.size()); }

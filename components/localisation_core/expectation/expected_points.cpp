@@ -4,8 +4,9 @@
 namespace structloc::localisation_core {
 
 ExpectedPoint ExpectPoint(int model_index, int model_id, const Eigen::Vector2d& world,
-                          double radius, int slot, const geometry::Pose2D& sensor_pose,
+                          double radius, int first_slot, const geometry::Pose2D& sensor_pose,
                           const MapErrorMemory& map_errors) {
+  const int slot = first_slot < 0 ? -1 : first_slot + model_index;
   return {model_index,
           model_id,
           world,

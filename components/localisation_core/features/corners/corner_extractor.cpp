@@ -67,7 +67,7 @@ void CornerExtractor::Expect(const ExpectationInput& in) {
   for (int i : in.visibility->corners) {
     const auto& c = in.map->Corners()[static_cast<size_t>(i)];
     expected_.push_back(
-        ExpectPoint(i, c.id, c.position, 0.0, first_slot_ + i, in.sensor_prior, *in.map_errors));
+        ExpectPoint(i, c.id, c.position, 0.0, first_slot_, in.sensor_prior, *in.map_errors));
   }
 }
 

@@ -64,7 +64,7 @@ void CylinderExtractor::Expect(const ExpectationInput& in) {
   for (int i : in.visibility->cylinders) {
     const auto& c = in.map->Cylinders()[static_cast<size_t>(i)];
     expected_.push_back(
-        ExpectPoint(i, c.id, c.centre, c.radius, first_slot_ + i, in.sensor_prior, *in.map_errors));
+        ExpectPoint(i, c.id, c.centre, c.radius, first_slot_, in.sensor_prior, *in.map_errors));
   }
 }
 

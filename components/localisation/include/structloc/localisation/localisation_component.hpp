@@ -78,6 +78,10 @@ class LocalisationComponent : public dds_common::Component {
   const double started_s_;
 
   localisation_core::SessionInbox inbox_;  // listeners -> worker; its own lock
+  // Made before the session and the start-up policy, which build the map's
+  // search fields (seconds for a large building), so that an operator's pose
+  // sent meanwhile is not lost; its listener touches the inbox only.
+  dds_common::Subscription initial_pose_subscription_;
   std::mutex session_mutex_;  // the worker (updates) and the main thread (diagnostics, saving)
   localisation_core::TrackingSession session_;
   // How the robot gets a pose and gets it back: the global search, pose
@@ -101,7 +105,6 @@ class LocalisationComponent : public dds_common::Component {
   // Last: destroyed first, so no sample reaches the members above then.
   dds_common::Subscription scan_subscription_;
   dds_common::Subscription odometry_subscription_;
-  dds_common::Subscription initial_pose_subscription_;
   dds_common::Subscription relocalise_subscription_;
 };
 

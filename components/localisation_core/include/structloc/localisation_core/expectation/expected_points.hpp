@@ -21,10 +21,12 @@ struct ExpectedPoint {
   double map_error_scale = 1.0;  // factor on the map's share of a pairing's covariance
 };
 
-// Map point `model_index` (id `model_id`, at `world`, of `radius`) as seen from
-// `sensor_pose`, with the map-error scale of its `slot`.
+// Map point `model_index` of its kind (id `model_id`, at `world`, of
+// `radius`) as seen from `sensor_pose`; its slot is first_slot + model_index
+// (-1, no memory, while the kind has no slots: first_slot < 0), with that
+// slot's map-error scale.
 ExpectedPoint ExpectPoint(int model_index, int model_id, const Eigen::Vector2d& world,
-                          double radius, int slot, const geometry::Pose2D& sensor_pose,
+                          double radius, int first_slot, const geometry::Pose2D& sensor_pose,
                           const MapErrorMemory& map_errors);
 
 }  // namespace structloc::localisation_core

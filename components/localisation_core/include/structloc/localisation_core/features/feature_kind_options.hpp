@@ -12,7 +12,9 @@ namespace structloc::localisation_core {
 
 class FeatureKindOptions {
  public:
-  // The options of type P; their defaults when none were set.
+  // The options of type P; their defaults when none were set (a reference to
+  // those defaults then, which a later non-const Get does not change: take
+  // the reference after the last change).
   template <class P>
   const P& Get() const {
     for (const auto& value : values_) {

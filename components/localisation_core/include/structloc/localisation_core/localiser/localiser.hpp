@@ -118,7 +118,7 @@ class Localiser {
   // there, else the newest one computed.
   void RefreshVisibility(const geometry::Pose2D& sensor_pose, const ScanView& scan);
   // Fades the map-error memory by the travel since the last scan and gives
-  // the expected features their factors.
+  // the expected walls their factors (each point kind reads its own in Expect).
   void ApplyMapErrorMemory(const geometry::Pose2D& sensor_pose);
   void Reject(const UpdateInput& input, const char* why);
   // Steps of the pose update after the line fits, in order.

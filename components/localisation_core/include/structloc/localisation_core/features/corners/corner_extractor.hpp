@@ -34,7 +34,7 @@ class CornerExtractor : public FeatureExtractor {
                           const std::vector<WallMeasurement>& walls) const;
 
   CornerOptions options_;
-  int first_slot_ = 0;
+  int first_slot_ = -1;  // none until TakeSlots: no map-error memory
   std::vector<ExpectedPoint> expected_;
   std::vector<PointSums> work_;
   std::vector<PointCluster> clusters_;

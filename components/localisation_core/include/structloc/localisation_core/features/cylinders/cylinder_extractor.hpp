@@ -29,7 +29,7 @@ class CylinderExtractor : public FeatureExtractor {
 
  private:
   CylinderOptions options_;
-  int first_slot_ = 0;
+  int first_slot_ = -1;  // none until TakeSlots: no map-error memory
   std::vector<ExpectedPoint> expected_;
   CylinderWork work_;
   std::vector<PointCluster> clusters_;
