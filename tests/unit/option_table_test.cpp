@@ -294,5 +294,36 @@ TEST(OptionTable, APartDeclaredOnItsOwnTypeLoadsChecksAndListsInsideTheWhole) {
   EXPECT_NE(listing.str().find("0.2"), std::string::npos) << listing.str();
 }
 
+// A part's own wording and optional keys come along with it.
+TEST(OptionTable, APartKeepsItsOwnWordingAndOptionalKeys) {
+  struct Holder {
+    Tagged tagged;
+  };
+  const auto in_holder = [](auto& h) -> auto& {
+    return h.tagged;
+  };
+  const auto table = OptionTable<Holder>::Of(TaggedTable(), in_holder);
+  Holder h;
+  h.tagged.scale = 5.0;
+  try {
+    table.Validate(h);
+    ADD_FAILURE() << "scale 5 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "tagged: scale = 5 is implausible; it must be magnitude in [0.1, 1] m");
+  }
+  EXPECT_TRUE(table.HasOptionalKeys());
+  const testing::TempDir dir;
+  const std::string path =
+      dir.Write("tagged.xml", "<tagged name=\"a\" scale=\"-0.5\" bits=\"9\"/>\n");
+  const auto file = XmlFile::Load(path);
+  Holder loaded;
+  table.Load(file, file.Root(), loaded);
+  EXPECT_EQ(loaded.tagged.name, "a");
+  EXPECT_DOUBLE_EQ(loaded.tagged.scale, -0.5);
+  EXPECT_DOUBLE_EQ(loaded.tagged.offset_m, 0.0) << "the optional key keeps its default";
+  EXPECT_EQ(loaded.tagged.bits, 9);
+}
+
 }  // namespace
 }  // namespace structloc::config
