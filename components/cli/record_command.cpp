@@ -223,8 +223,7 @@ int RecordCommand(const Invocation& inv) {
     if (!mounted)
       std::printf(
           "  WARNING: no laser mounting was heard (no transforms on %s from %s to %s): the scans "
-          "are "
-          "written with the laser at the robot's origin; give --sensor-mount\n",
+          "are written with the laser at the robot's origin; give --sensor-mount\n",
           t::kTfStatic.name.c_str(), frames.base_link.c_str(), frames.laser.c_str());
     r.log->Close();
     if (r.truth) {

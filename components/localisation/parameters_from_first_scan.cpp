@@ -134,17 +134,14 @@ std::optional<ParametersFromFirstScan> WaitForFirstScan(dds_common::Node& node,
     const auto started = Clock::now();
     while (!choosable && !stop(50ms)) {
       const auto now = Clock::now();
-      std::optional<dds_common::HealthReport> report;  // written outside the listeners' lock
       std::unique_lock<std::mutex> lock(heard->mutex);
       if (!heard->shape && (!reported || now - *reported >= 500ms)) {
         reported = now;
-        report = WaitingReport(std::chrono::duration<double>(now - started).count(),
-                               heard->refused_scan);
-      }
-      if (report) {
-        lock.unlock();
+        const auto report = WaitingReport(std::chrono::duration<double>(now - started).count(),
+                                          heard->refused_scan);
+        lock.unlock();  // the write never holds up the listeners
         diagnostics.Write(
-            dds_common::ToDiagnosticArray("localisation", *report, dds_common::WallClockSeconds()));
+            dds_common::ToDiagnosticArray("localisation", report, dds_common::WallClockSeconds()));
         lock.lock();
       }
       if (heard->refused_scan && !said_refused) {
