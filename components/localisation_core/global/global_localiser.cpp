@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <stdexcept>
@@ -68,6 +69,49 @@ void Check(const GlobalLocaliserOptions& o) {
     throw std::invalid_argument(
         "global localiser options max_points, coarse_points, rank_points and min_points must be "
         "at least 3, coarse_keep at least 1 and ranked at least 2");
+}
+
+// Exact distances from the cell centres (x0 + (c + 0.5) res, y0 + (r + 0.5)
+// res) to the nearest wall or pillar outline, where that is within `band`
+// (elsewhere: infinity). The distance transform measures from the centres of
+// the cells a surface was drawn into, up to half a cell (2.5 cm) off the
+// surface, and in a direction that depends on where the surface falls in its
+// cell: a hall's east and west walls were then biased differently, so that a
+// pose and its twin (the hall turned by 180 deg) did not fit alike.
+std::vector<float> NearSurfaceDistances(const world_model::WorldModel& world, double x0, double y0,
+                                        int width, int height, double res, double band) {
+  std::vector<float> near(static_cast<size_t>(width) * height,
+                          std::numeric_limits<float>::infinity());
+  // Over the cells within `band` of the box [lo, hi], the distance by `distance`.
+  auto sweep = [&](const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, auto&& distance) {
+    const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - band - x0) / res - 0.5)));
+    const int r0 = std::max(0, static_cast<int>(std::floor((lo.y() - band - y0) / res - 0.5)));
+    const int c1 = std::min(width - 1, static_cast<int>(std::ceil((hi.x() + band - x0) / res)));
+    const int r1 = std::min(height - 1, static_cast<int>(std::ceil((hi.y() + band - y0) / res)));
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) {
+        const Eigen::Vector2d centre(x0 + (c + 0.5) * res, y0 + (r + 0.5) * res);
+        const double d = distance(centre);
+        float& cell = near[static_cast<size_t>(r) * width + c];
+        if (d <= band && d < cell) cell = static_cast<float>(d);
+      }
+    }
+  };
+  for (const auto& wall : world.Walls()) {
+    const Eigen::Vector2d ab = wall.b - wall.a;
+    const double length2 = ab.squaredNorm();
+    sweep(wall.a.cwiseMin(wall.b), wall.a.cwiseMax(wall.b), [&](const Eigen::Vector2d& p) {
+      const double u = length2 > 0.0 ? std::clamp((p - wall.a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+      return (wall.a + u * ab - p).norm();
+    });
+  }
+  for (const auto& pillar : world.Cylinders()) {
+    const Eigen::Vector2d reach(pillar.radius, pillar.radius);
+    sweep(pillar.centre - reach, pillar.centre + reach, [&](const Eigen::Vector2d& p) {
+      return std::abs((p - pillar.centre).norm() - pillar.radius);
+    });
+  }
+  return near;
 }
 
 }  // namespace
@@ -146,6 +190,13 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   }
   cv::Mat distance;
   cv::distanceTransform(image, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // The gains depend on distances up to the coarse field's blur plus the
+  // truncation only: there (and a cell beyond, where the transform may
+  // measure short) they are measured exactly.
+  const double band =
+      options.coarse_blur_m + std::max(options.truncation_m, options.rank_truncation_m) + res;
+  const auto near =
+      NearSurfaceDistances(world, cells_.x0, cells_.y0, cells_.width, cells_.height, res, band);
 
   const size_t count = static_cast<size_t>(cells_.width) * static_cast<size_t>(cells_.height);
   fine_gain_.resize(count);
@@ -156,7 +207,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   for (int r = 0; r < cells_.height; ++r) {
     for (int c = 0; c < cells_.width; ++c) {
       const size_t i = static_cast<size_t>(r) * cells_.width + c;
-      const double d = distance.at<float>(r, c) * res;
+      const double d = std::isfinite(near[i]) ? near[i] : distance.at<float>(r, c) * res;
       const double fine = std::min(d, t),
                    coarse = std::min(std::max(0.0, d - options.coarse_blur_m), t);
       fine_gain_[i] = static_cast<float>(1.0 - fine * fine / (t * t));
