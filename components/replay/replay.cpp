@@ -328,7 +328,7 @@ class Replayer {
     auto search = start_up_->Watch(*session_, report, sentences);
     if (!search) return;
     start_up_->Run(*search);
-    report_.kidnap_searches += search->global->searched ? 1 : 0;
+    report_.kidnap_searches += search->global && search->global->searched ? 1 : 0;
     const auto outcome = start_up_->Apply(*session_, *search, report.stamp);
     if (outcome.kidnapping) report_.kidnappings.push_back(*outcome.kidnapping);
   }

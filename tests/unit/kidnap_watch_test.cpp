@@ -79,6 +79,45 @@ TEST(KidnapWatch, AfterACalmSpellTheFirstSearchComesAtOnce) {
   EXPECT_GE(searched.size(), 2u);  // the budget had saved up two searches
 }
 
+TEST(KidnapWatch, ToldToDoubtItSearchesUntilASearchFindsTheRobot) {
+  const testing::OfficeScene office(geometry::kPi);
+  const GlobalLocaliser localiser(office.world, GlobalLocaliserOptions{});
+  KidnapWatch watch(localiser, office.options.sensor_mount, KidnapOptions{});
+  std::mt19937 rng(7);
+  const auto scan = office.Scan(361, rng);
+  const auto points = ScanPointsInLaserFrame(scan.ranges, scan.angle_min, scan.angle_increment, 0.0,
+                                             scan.max_range_m - 1e-3);
+  // The scans fit where the robot is tracked: no doubt ...
+  for (int i = 0; i < 20; ++i) EXPECT_FALSE(watch.Observe(points, 0.1 * i, office.truth, false));
+  EXPECT_FALSE(watch.InDoubt());
+  // ... until a search made for another reason found a place that fits
+  // clearly better: a search is due at once, and the doubt stays although
+  // the share does not fall.
+  watch.Doubt(2.0);
+  EXPECT_TRUE(watch.Observe(points, 2.0, office.truth, false));
+  watch.Searched(2.0);
+  for (int i = 1; i < 50; ++i) watch.Observe(points, 2.0 + 0.1 * i, office.truth, false);
+  EXPECT_TRUE(watch.InDoubt());
+  // A search that finds the robot where it is tracked ends it.
+  EXPECT_FALSE(watch.Jumped(7.0, points, office.truth, office.truth));
+  EXPECT_FALSE(watch.Observe(points, 7.1, office.truth, false));
+  EXPECT_FALSE(watch.InDoubt());
+}
+
+TEST(KidnapWatch, ClearlyBetterMeansMinShareGainMoreOfTheScan) {
+  const testing::OfficeScene office(geometry::kPi);
+  const GlobalLocaliser localiser(office.world, GlobalLocaliserOptions{});
+  const KidnapWatch watch(localiser, office.options.sensor_mount, KidnapOptions{});
+  std::mt19937 rng(7);
+  const auto scan = office.Scan(361, rng);
+  const auto points = ScanPointsInLaserFrame(scan.ranges, scan.angle_min, scan.angle_increment, 0.0,
+                                             scan.max_range_m - 1e-3);
+  const geometry::Pose2D elsewhere{office.truth.x - 3.0, office.truth.y + 1.0, 1.0};
+  EXPECT_TRUE(watch.ClearlyBetter(points, office.truth, elsewhere));
+  EXPECT_FALSE(watch.ClearlyBetter(points, elsewhere, office.truth));
+  EXPECT_FALSE(watch.ClearlyBetter(points, office.truth, office.truth));
+}
+
 TEST(KidnapWatch, RefusesABudgetThatCannotHoldAScansShare) {
   KidnapOptions o;
   o.search_work_banked = o.search_work_per_scan / 2;

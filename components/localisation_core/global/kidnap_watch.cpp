@@ -49,6 +49,13 @@ void KidnapWatch::Clear() {
   last_share_.reset();
   doubt_s_ = 0.0;
   search_period_s_ = options_.search_period_s;
+  told_to_doubt_ = false;
+}
+
+void KidnapWatch::Doubt(double stamp) {
+  told_to_doubt_ = true;
+  if (!doubt_since_) doubt_since_ = stamp - options_.after_s;
+  doubt_s_ = std::max(doubt_s_, options_.after_s);
 }
 
 bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, double stamp,
@@ -62,7 +69,7 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   }
   const double floor = std::max(options_.unexplained_share,
                                 normal_share_ ? *normal_share_ - options_.max_share_drop : 0.0);
-  const bool unexplained = lost || (last_share_ && *last_share_ < floor);
+  const bool unexplained = lost || told_to_doubt_ || (last_share_ && *last_share_ < floor);
   if (!unexplained && checked) {
     normal_share_ = normal_share_ ? 0.9 * *normal_share_ + 0.1 * *last_share_ : *last_share_;
   }
@@ -75,8 +82,20 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   }
   if (!doubt_since_) doubt_since_ = stamp;
   doubt_s_ = stamp - *doubt_since_;
-  if (doubt_s_ < options_.after_s || budget_ < last_work_) return false;
+  if (doubt_s_ < options_.after_s || !CanAfford()) return false;
   return !last_search_s_ || stamp - *last_search_s_ >= search_period_s_;
+}
+
+bool KidnapWatch::ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
+                                const geometry::Pose2D& found,
+                                const geometry::Pose2D& tracked) const {
+  const auto points = localiser_.FitPoints(laser_points, options_.fit_points);
+  auto share = [&](const geometry::Pose2D& robot) {
+    return localiser_.FitAt(points, geometry::Compose(robot, mount_), 0.1).share;
+  };
+  const double at_found = share(found);
+  if (at_found < share(tracked) + options_.min_share_gain) return false;
+  return !normal_share_ || at_found >= *normal_share_ - options_.max_share_below_normal;
 }
 
 void KidnapWatch::Searched(double stamp) {
@@ -99,15 +118,11 @@ std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,
   const bool far =
       std::hypot(found.x - tracked.x, found.y - tracked.y) > options_.min_jump_m ||
       std::abs(geometry::WrapAngle(found.theta - tracked.theta)) > options_.min_jump_rad;
-  if (!far) return std::nullopt;
-  const auto points = localiser_.FitPoints(laser_points, options_.fit_points);
-  auto share = [&](const geometry::Pose2D& robot) {
-    return localiser_.FitAt(points, geometry::Compose(robot, mount_), 0.1).share;
-  };
-  const double at_found = share(found);
-  if (at_found < share(tracked) + options_.min_share_gain) return std::nullopt;
-  if (normal_share_ && at_found < *normal_share_ - options_.max_share_below_normal)
+  if (!far) {
+    told_to_doubt_ = false;  // found where it is tracked
     return std::nullopt;
+  }
+  if (!ClearlyBetter(laser_points, found, tracked)) return std::nullopt;
   const Kidnapping kidnapping{stamp, tracked, found, doubt_s_};
   Clear();
   return kidnapping;

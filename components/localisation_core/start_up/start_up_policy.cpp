@@ -62,9 +62,12 @@ std::optional<geometry::Pose2D> OdometryAt(const TrackingSession& session,
 StartUpPolicy::StartUpPolicy(const world_model::WorldModel* world,
                              const geometry::Pose2D& sensor_mount, const SessionOptions& session,
                              const StartUpOptions& options)
-    : options_(options) {
+    : options_(options),
+      mount_(sensor_mount),
+      initial_covariance_(session.tracker.InitialCovariance()) {
   CheckHypothesisOptions(options.hypotheses);
   CheckKidnapOptions(options.kidnap);
+  CheckMapTwinOptions(options.twins);
   options_.hint.radius_m = std::max(options_.hint.radius_m, session.tracker.reacquire_max_radius_m);
   options_.hint.max_radius_m = std::max(options_.hint.max_radius_m, options_.hint.radius_m);
   if (world == nullptr) return;
@@ -77,6 +80,10 @@ StartUpPolicy::StartUpPolicy(const world_model::WorldModel* world,
     return;
   }
   watch_ = std::make_unique<KidnapWatch>(global_->Localiser(), sensor_mount, options.kidnap);
+  auto twins = FindMapTwins(*world, global_->Localiser(), options.twins);
+  if (!twins.empty())
+    twins_ = std::make_unique<TwinWatch>(global_->Localiser(), sensor_mount, std::move(twins),
+                                         options.hypotheses);
 }
 
 std::string StartUpPolicy::GivenAtStart(TrackingSession& session, const geometry::Pose2D& pose,
@@ -187,12 +194,24 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
   if (!watch_ || hint_ || report.kind != ScanReport::Kind::kTracked) return std::nullopt;
   // The points only when the watch uses them (the share, or a search's answer).
   std::vector<Eigen::Vector2d> points;
-  if (watch_->CheckDue(report.stamp, report.lost)) points = LaserPoints(report.scan);
+  const bool twin_due = twins_ && !doubt_ && !report.lost && twins_->Due(report.pose.pose);
+  if (twin_due || watch_->CheckDue(report.stamp, report.lost)) points = LaserPoints(report.scan);
   const bool due = watch_->Observe(points, report.stamp, report.pose.pose, report.lost);
   if (!watch_->InDoubt()) {
     if (doubt_) ForgetRecentScans();
     doubt_ = false;
-    return std::nullopt;
+    if (!twin_due || search_out_ || !watch_->CanAfford()) return std::nullopt;
+    // The twin must explain the scan as well as the tracked pose did while
+    // all was well, as a kidnapping's new pose must (KidnapWatch::Jumped).
+    const auto normal = watch_->NormalShare();
+    const double min_share = normal ? *normal - options_.kidnap.max_share_below_normal : 0.0;
+    auto twin = twins_->Observe(points, report.stamp, report.pose.pose, min_share);
+    if (!twin) return std::nullopt;
+    auto search = Hand(StartUpSearch::Kind::kTwin, report.scan);
+    search.tracked = report.pose.pose;
+    search.twin = twin;
+    search.points = std::move(points);
+    return search;
   }
   if (!doubt_) {
     auto s = Sentence();
@@ -224,6 +243,14 @@ void StartUpPolicy::Run(StartUpSearch& search) {
       search.global =
           search.odometry ? global_->Try(search.scan, *search.odometry) : global_->Try(search.scan);
       break;
+    case StartUpSearch::Kind::kTwin: {
+      const auto& localiser = global_->Localiser();
+      const auto points = localiser.FitPoints(search.points, options_.global.rank_points);
+      const auto laser = localiser.Polish(points, geometry::Compose(search.twin->twin, mount_));
+      search.twin->twin = geometry::Compose(laser, geometry::Inverse(mount_));
+      search.twin_check = localiser.Locate(search.points);
+      break;
+    }
   }
   search.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -233,9 +260,12 @@ StartUpOutcome StartUpPolicy::Apply(TrackingSession& session, const StartUpSearc
   search_out_ = false;
   if (forget_when_back_) ForgetRecentScans();
   StartUpOutcome out;
-  // The kidnap watch's searches come out of its budget, even one outdated.
+  // The kidnap and twin watches' searches come out of the kidnap watch's
+  // budget, even one outdated.
   if (search.kind == StartUpSearch::Kind::kKidnap && search.global)
     watch_->Spent(search.global->result.work);
+  if (search.kind == StartUpSearch::Kind::kTwin && search.twin_check)
+    watch_->Spent(search.twin_check->work);
   if (search.generation != generation_) {
     out.outdated = true;
     return out;
@@ -253,7 +283,11 @@ StartUpOutcome StartUpPolicy::Apply(TrackingSession& session, const StartUpSearc
     case StartUpSearch::Kind::kKidnap:
       if (search.global) ApplyKidnap(session, search, now, out);
       break;
+    case StartUpSearch::Kind::kTwin:
+      if (search.twin && search.twin_check) ApplyTwin(session, search, now, out);
+      break;
   }
+  if (out.pose_set && twins_) twins_->Clear();  // its evidence was of the pose before
   return out;
 }
 
@@ -325,25 +359,69 @@ void StartUpPolicy::ApplyKidnap(TrackingSession& session, const StartUpSearch& s
   const auto kidnapping =
       watch_->Jumped(search.Stamp(), search.points, attempt.found->pose, search.tracked);
   if (!kidnapping) return;
+  auto s = Sentence();
+  s << "after " << kidnapping->doubt_s << " s of scans the tracked pose did not explain";
+  Jump(session, *kidnapping, *attempt.found, s.str(), now, out);
+}
+
+void StartUpPolicy::ApplyTwin(TrackingSession& session, const StartUpSearch& search, double now,
+                              StartUpOutcome& out) {
+  if (doubt_ || session.WaitingForInitialPose()) return;
+  twins_->Clear();  // whatever the search says, the evidence starts again
+  const auto& twin = *search.twin;
+  const auto& check = *search.twin_check;
+  if (!check.best) return;
+  // The twin is where the robot is only if no place explains the scan
+  // clearly better (the search ranks the twin and the tracked pose alike,
+  // as the scan tells them apart by a detail only).
+  const auto& global = options_.global;
+  const geometry::Pose2D twin_laser = geometry::Compose(twin.twin, mount_);
+  const bool twin_ranked =
+      std::any_of(check.candidates.begin(), check.candidates.end(), [&](const auto& c) {
+        return !Distinct(c.pose, twin_laser, global) &&
+               c.score >= check.best->score - global.ambiguity_margin;
+      });
+  auto s = Sentence();
+  if (twin_ranked) {
+    const Kidnapping kidnapping{twin.stamp, twin.tracked, twin.twin, twin.stamp - twin.since};
+    watch_->Clear();
+    s << "the scans since t=" << twin.since
+      << " fit the twin of the tracked place (the map is the same there but for a detail) "
+         "better";
+    Jump(session, kidnapping, {twin.stamp, twin.twin, initial_covariance_}, s.str(), now, out);
+    return;
+  }
+  // Neither: if the search found a place that explains the scan clearly
+  // better, the robot may have been carried elsewhere (to a place like the
+  // one it was in, so that the share sank too slowly to raise a doubt): the
+  // kidnap watch's searches (with hypotheses, for a place that has a twin
+  // too) take over.
+  const geometry::Pose2D found = geometry::Compose(check.best->pose, geometry::Inverse(mount_));
+  if (watch_->ClearlyBetter(search.points, found, twin.tracked)) watch_->Doubt(twin.stamp);
+}
+
+void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
+                         const InitialPoseInput& found, const std::string& how, double now,
+                         StartUpOutcome& out) {
   ++kidnappings_;
   out.kidnapping = kidnapping;
   // The scans taken while the search ran were tracked from where the robot
   // was lifted: the poses up to the latest of them are of the old track.
   const auto latest = session.Latest();
-  const double old_track_until = latest ? std::max(latest->stamp, search.Stamp()) : search.Stamp();
-  out.pose_set = session.SetInitialPose(*attempt.found, "the search for a kidnapped robot", now) !=
+  const double old_track_until =
+      latest ? std::max(latest->stamp, kidnapping.stamp) : kidnapping.stamp;
+  out.pose_set = session.SetInitialPose(found, "the search for a kidnapped robot", now) !=
                  TrackingSession::InitialPoseOutcome::kRejected;
   auto s = Sentence();
-  s << "kidnapped: at t=" << search.Stamp() << ", after " << kidnapping->doubt_s
-    << " s of scans the tracked pose did not explain, the robot was found at ";
-  Write(s, kidnapping->to);
+  s << "kidnapped: at t=" << kidnapping.stamp << ", " << how << ", the robot was found at ";
+  Write(s, kidnapping.to);
   s << ", not at ";
-  Write(s, kidnapping->from);
+  Write(s, kidnapping.from);
   s << "; tracking goes on from there after the old track's last pose at t=" << old_track_until;
   out.log.push_back(s.str());
   session.NoteProblem("kidnapped: the robot was found " +
-                          std::to_string(std::hypot(kidnapping->to.x - kidnapping->from.x,
-                                                    kidnapping->to.y - kidnapping->from.y)) +
+                          std::to_string(std::hypot(kidnapping.to.x - kidnapping.from.x,
+                                                    kidnapping.to.y - kidnapping.from.y)) +
                           " m from where it was tracked",
                       now);
 }
@@ -360,6 +438,7 @@ void StartUpPolicy::ForgetRecentScans() {
 
 void StartUpPolicy::EndDoubt() {
   if (watch_) watch_->Clear();
+  if (twins_) twins_->Clear();
   doubt_ = false;
 }
 

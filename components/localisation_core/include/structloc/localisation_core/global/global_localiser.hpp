@@ -189,6 +189,12 @@ class GlobalLocaliser {
   Fit FitAt(const std::vector<Eigen::Vector2d>& fit_points, const geometry::Pose2D& laser_pose,
             double unexplained_likelihood) const;
 
+  // How near a map point (map frame) lies to a wall or pillar outline: the
+  // ranking field's gain, 1 on it, 0 at rank_truncation_m or more.
+  double SurfaceGain(const Eigen::Vector2d& map_point) const {
+    return Gain(rank_gain_, map_point.x(), map_point.y());
+  }
+
   size_t CandidatePositions() const { return positions_.size(); }
   const GlobalLocaliserOptions& Options() const { return options_; }
 

@@ -90,6 +90,8 @@ class KidnapWatch {
   // A search (due or not: the hypotheses' own) took `work` units.
   void Spent(uint64_t work);
   double Budget() const { return budget_; }
+  // Whether the budget holds a search like the last one.
+  bool CanAfford() const { return budget_ >= last_work_; }
   // Whether Observe at `stamp` computes the share (and so needs the scan's
   // points; otherwise it may be given none).
   bool CheckDue(double stamp, bool lost) const {
@@ -104,6 +106,17 @@ class KidnapWatch {
   // elsewhere that fits a little better would then pass for the robot's.
   std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
                                    const geometry::Pose2D& found, const geometry::Pose2D& tracked);
+  // Whether `found` (a robot pose) explains the scan (laser-frame points)
+  // clearly better than `tracked`, as Jumped requires.
+  bool ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
+                     const geometry::Pose2D& found, const geometry::Pose2D& tracked) const;
+  // A search made for another reason (TwinWatch's) found a place that
+  // explains the scan at `stamp` clearly better: the watch is in doubt at
+  // once, and stays in doubt, whatever the share, until a search finds the
+  // robot (far away: Jumped; or where it is tracked) or Clear. A share that
+  // sank slowly (a robot carried to a place like the one it was in) may
+  // have pulled the running mean down with it.
+  void Doubt(double stamp);
   bool InDoubt() const { return doubt_since_.has_value() && doubt_s_ >= options_.after_s; }
   std::optional<double> LastShare() const { return last_share_; }
   std::optional<double> NormalShare() const { return normal_share_; }
@@ -117,9 +130,10 @@ class KidnapWatch {
   std::optional<double> last_check_s_, last_search_s_, doubt_since_, last_share_;
   std::optional<double> normal_share_;  // running mean of the share outside doubt
   double doubt_s_ = 0.0;
-  double search_period_s_;  // the wait before the next search in doubt
-  double budget_;           // work units the searches may still spend
-  double last_work_ = 0.0;  // of the last search
+  double search_period_s_;      // the wait before the next search in doubt
+  double budget_;               // work units the searches may still spend
+  double last_work_ = 0.0;      // of the last search
+  bool told_to_doubt_ = false;  // by Doubt
 };
 
 }  // namespace structloc::localisation_core

@@ -15,7 +15,11 @@
 // them (PoseHintCheck) before the tracking trusts them. A log's initial pose
 // is that of its first laser line, a fact: replay takes it as it is.
 // Once tracking, the kidnap watch (KidnapWatch) looks for a robot carried
-// elsewhere, and its searches move the tracking when they find one.
+// elsewhere, and its searches move the tracking when they find one; on a map
+// with twins (FindMapTwins) the twin watch (TwinWatch) looks for a robot
+// tracked at the twin of where it is, which the share of a scan the tracked
+// pose explains cannot tell, and a search of the whole map confirms the twin
+// (or finds the robot elsewhere) before the tracking moves.
 //
 // The policy never runs a search itself where the caller cannot afford it:
 // SearchAt and Watch hand out a search to run (Run: on a thread of its own in
@@ -32,7 +36,9 @@
 
 #include "structloc/localisation_core/global/global_start.hpp"
 #include "structloc/localisation_core/global/kidnap_watch.hpp"
+#include "structloc/localisation_core/global/map_twins.hpp"
 #include "structloc/localisation_core/global/pose_hint_check.hpp"
+#include "structloc/localisation_core/global/twin_watch.hpp"
 #include "structloc/localisation_core/tracking/tracking_session.hpp"
 
 namespace structloc::localisation_core {
@@ -42,6 +48,7 @@ struct StartUpOptions {
   RecentScansOptions recent;      // the scans of the last metres searched with each
   HypothesisOptions hypotheses;   // an ambiguous answer's hypotheses
   KidnapOptions kidnap;           // a tracked robot carried elsewhere
+  MapTwinOptions twins;           // the map's twins, that a tracked robot may be at
   // Confirming a hint; its radius_m is raised to the tracker's
   // reacquire_max_radius_m (a hint is searched at least as wide as a lost
   // tracker searches).
@@ -57,6 +64,7 @@ struct StartUpSearch {
     kGlobal,  // a robot without a pose, against the whole map (or the hypotheses weighed)
     kHint,    // a hint confirmed by a local search around it
     kKidnap,  // the kidnap watch's search for a tracked robot
+    kTwin,    // the twin watch's decision, checked by a whole-map search
   };
   Kind kind = Kind::kGlobal;
   uint64_t generation = 0;  // the policy's when it was asked for
@@ -64,7 +72,9 @@ struct StartUpSearch {
   std::optional<geometry::Pose2D> odometry;  // the robot's odometric pose at the scan
   std::optional<PoseHintCheck> hint_check;   // kHint: a copy, counting its attempts
   geometry::Pose2D tracked;                  // kKidnap: the robot pose tracked at the scan
-  std::vector<Eigen::Vector2d> points;       // kKidnap: the scan's laser-frame points
+  std::vector<Eigen::Vector2d> points;       // kKidnap, kTwin: the scan's laser-frame points
+  std::optional<TwinDecision> twin;          // kTwin: the decision (Run refines its twin)
+  std::optional<GlobalResult> twin_check;    // kTwin: the search of the whole map for the scan
   // The answer (laser poses in the results, robot poses in what was found).
   std::optional<GlobalStart::Attempt> global;  // kGlobal, kKidnap
   std::optional<PoseHintCheck::Outcome> hint;  // kHint
@@ -140,6 +150,11 @@ class StartUpPolicy {
                  StartUpOutcome& out);
   void ApplyKidnap(TrackingSession& session, const StartUpSearch& search, double now,
                    StartUpOutcome& out);
+  void ApplyTwin(TrackingSession& session, const StartUpSearch& search, double now,
+                 StartUpOutcome& out);
+  // A kidnapping found (by a search or the twin watch) moves the tracking.
+  void Jump(TrackingSession& session, const Kidnapping& kidnapping, const InitialPoseInput& found,
+            const std::string& how, double now, StartUpOutcome& out);
   // The scans searched before, and the hypotheses held, are of another
   // time: forgotten now, or when the search under way comes back.
   void ForgetRecentScans();
@@ -149,6 +164,9 @@ class StartUpPolicy {
   StartUpOptions options_;
   std::unique_ptr<GlobalStart> global_;
   std::unique_ptr<KidnapWatch> watch_;
+  std::unique_ptr<TwinWatch> twins_;  // null: the map has no twins
+  geometry::Pose2D mount_;
+  Eigen::Matrix3d initial_covariance_;  // of a pose found (the tracker's initial covariance)
   std::string no_search_reason_;
   // A hint until it is confirmed or given up on.
   std::optional<PoseHintCheck> hint_;
