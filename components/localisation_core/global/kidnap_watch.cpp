@@ -86,16 +86,19 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   return !last_search_s_ || stamp - *last_search_s_ >= search_period_s_;
 }
 
-bool KidnapWatch::ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
-                                const geometry::Pose2D& found,
-                                const geometry::Pose2D& tracked) const {
+KidnapWatch::Comparison KidnapWatch::Compare(const std::vector<Eigen::Vector2d>& laser_points,
+                                             const geometry::Pose2D& found,
+                                             const geometry::Pose2D& tracked) const {
   const auto points = localiser_.FitPoints(laser_points, options_.fit_points);
   auto share = [&](const geometry::Pose2D& robot) {
     return localiser_.FitAt(points, geometry::Compose(robot, mount_), 0.1).share;
   };
   const double at_found = share(found);
-  if (at_found < share(tracked) + options_.min_share_gain) return false;
-  return !normal_share_ || at_found >= *normal_share_ - options_.max_share_below_normal;
+  Comparison c;
+  c.better = at_found >= share(tracked) + options_.min_share_gain;
+  c.as_well_as_normal =
+      !normal_share_ || at_found >= *normal_share_ - options_.max_share_below_normal;
+  return c;
 }
 
 void KidnapWatch::Searched(double stamp) {

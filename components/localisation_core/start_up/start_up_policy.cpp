@@ -200,6 +200,7 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
   if (!watch_->InDoubt()) {
     if (doubt_) ForgetRecentScans();
     doubt_ = false;
+    refused_.reset();
     if (!twin_due || search_out_ || !watch_->CanAfford()) return std::nullopt;
     // The twin must explain the scan as well as the tracked pose did while
     // all was well, as a kidnapping's new pose must (KidnapWatch::Jumped).
@@ -221,8 +222,19 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
     ForgetRecentScans();  // what the start-up searched and held is of another time
     doubt_ = true;
   }
-  if (search_out_ || (!due && !global_->HoldingHypotheses())) return std::nullopt;
+  if (search_out_) return std::nullopt;
   const auto odometry = OdometryAt(session, report.odometry, report.stamp);
+  if (refused_ && (!odometry || report.stamp > refused_->until)) refused_.reset();
+  if (refused_ && odometry && !points.empty()) {
+    auto search = Hand(StartUpSearch::Kind::kRecheck, report.scan);
+    const geometry::Pose2D moved = geometry::Between(refused_->odometry, *odometry);
+    search.recheck = InitialPoseInput{report.stamp, geometry::Compose(refused_->found.pose, moved),
+                                      refused_->found.covariance};
+    search.tracked = report.pose.pose;
+    search.points = std::move(points);
+    return search;
+  }
+  if (!due && !global_->HoldingHypotheses()) return std::nullopt;
   if (!odometry) return std::nullopt;
   if (due) watch_->Searched(report.stamp);
   auto search = Hand(StartUpSearch::Kind::kKidnap, report.scan);
@@ -249,6 +261,13 @@ void StartUpPolicy::Run(StartUpSearch& search) {
       const auto laser = localiser.Polish(points, geometry::Compose(search.twin->twin, mount_));
       search.twin->twin = geometry::Compose(laser, geometry::Inverse(mount_));
       search.twin_check = localiser.Locate(search.points);
+      break;
+    }
+    case StartUpSearch::Kind::kRecheck: {
+      const auto& localiser = global_->Localiser();
+      const auto points = localiser.FitPoints(search.points, options_.global.rank_points);
+      const auto laser = localiser.Polish(points, geometry::Compose(search.recheck->pose, mount_));
+      search.recheck->pose = geometry::Compose(laser, geometry::Inverse(mount_));
       break;
     }
   }
@@ -286,8 +305,14 @@ StartUpOutcome StartUpPolicy::Apply(TrackingSession& session, const StartUpSearc
     case StartUpSearch::Kind::kTwin:
       if (search.twin && search.twin_check) ApplyTwin(session, search, now, out);
       break;
+    case StartUpSearch::Kind::kRecheck:
+      if (search.recheck) ApplyRecheck(session, search, now, out);
+      break;
   }
-  if (out.pose_set && twins_) twins_->Clear();  // its evidence was of the pose before
+  if (out.pose_set) {  // what was weighed was of the pose before
+    if (twins_) twins_->Clear();
+    refused_.reset();
+  }
   return out;
 }
 
@@ -358,7 +383,13 @@ void StartUpPolicy::ApplyKidnap(TrackingSession& session, const StartUpSearch& s
   ForgetRecentScans();
   const auto kidnapping =
       watch_->Jumped(search.Stamp(), search.points, attempt.found->pose, search.tracked);
-  if (!kidnapping) return;
+  if (!kidnapping) {
+    const auto c = watch_->Compare(search.points, attempt.found->pose, search.tracked);
+    if (c.better && !c.as_well_as_normal && search.odometry)
+      refused_ =
+          Refused{*attempt.found, *search.odometry, search.Stamp() + options_.kidnap.after_s};
+    return;
+  }
   auto s = Sentence();
   s << "after " << kidnapping->doubt_s << " s of scans the tracked pose did not explain";
   Jump(session, *kidnapping, *attempt.found, s.str(), now, out);
@@ -372,17 +403,14 @@ void StartUpPolicy::ApplyTwin(TrackingSession& session, const StartUpSearch& sea
   const auto& check = *search.twin_check;
   if (!check.best) return;
   // The twin is where the robot is only if no place explains the scan
-  // clearly better (the search ranks the twin and the tracked pose alike,
-  // as the scan tells them apart by a detail only).
-  const auto& global = options_.global;
+  // better: a search of one scan ranks the twin first when the detail that
+  // tells it from the tracked pose is in view (the evidence rose there), and
+  // another place ranked first (a corridor the same seen both ways) is not
+  // the twin's to claim.
   const geometry::Pose2D twin_laser = geometry::Compose(twin.twin, mount_);
-  const bool twin_ranked =
-      std::any_of(check.candidates.begin(), check.candidates.end(), [&](const auto& c) {
-        return !Distinct(c.pose, twin_laser, global) &&
-               c.score >= check.best->score - global.ambiguity_margin;
-      });
+  const bool twin_first = !Distinct(check.best->pose, twin_laser, options_.global);
   auto s = Sentence();
-  if (twin_ranked) {
+  if (twin_first) {
     const Kidnapping kidnapping{twin.stamp, twin.tracked, twin.twin, twin.stamp - twin.since};
     watch_->Clear();
     s << "the scans since t=" << twin.since
@@ -398,6 +426,20 @@ void StartUpPolicy::ApplyTwin(TrackingSession& session, const StartUpSearch& sea
   // too) take over.
   const geometry::Pose2D found = geometry::Compose(check.best->pose, geometry::Inverse(mount_));
   if (watch_->ClearlyBetter(search.points, found, twin.tracked)) watch_->Doubt(twin.stamp);
+}
+
+void StartUpPolicy::ApplyRecheck(TrackingSession& session, const StartUpSearch& search, double now,
+                                 StartUpOutcome& out) {
+  if (!doubt_ || !refused_ || session.WaitingForInitialPose()) return;
+  const auto& found = *search.recheck;
+  const auto kidnapping = watch_->Jumped(search.Stamp(), search.points, found.pose, search.tracked);
+  if (!kidnapping) return;
+  auto s = Sentence();
+  s << "after " << kidnapping->doubt_s
+    << " s of scans the tracked pose did not explain, by a search's pose of t="
+    << refused_->found.stamp << " weighed again on a later scan";
+  refused_.reset();
+  Jump(session, *kidnapping, found, s.str(), now, out);
 }
 
 void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
@@ -438,6 +480,7 @@ void StartUpPolicy::ForgetRecentScans() {
 
 void StartUpPolicy::EndDoubt() {
   if (watch_) watch_->Clear();
+  refused_.reset();
   if (twins_) twins_->Clear();
   doubt_ = false;
 }

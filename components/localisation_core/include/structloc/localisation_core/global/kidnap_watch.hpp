@@ -106,10 +106,20 @@ class KidnapWatch {
   // elsewhere that fits a little better would then pass for the robot's.
   std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
                                    const geometry::Pose2D& found, const geometry::Pose2D& tracked);
-  // Whether `found` (a robot pose) explains the scan (laser-frame points)
-  // clearly better than `tracked`, as Jumped requires.
-  bool ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
+  // How `found` (a robot pose) explains the scan (laser-frame points)
+  // against `tracked`: at least min_share_gain more, and no less than
+  // max_share_below_normal below the normal share. Jumped requires both.
+  struct Comparison {
+    bool better = false;
+    bool as_well_as_normal = false;
+  };
+  Comparison Compare(const std::vector<Eigen::Vector2d>& laser_points,
                      const geometry::Pose2D& found, const geometry::Pose2D& tracked) const;
+  bool ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
+                     const geometry::Pose2D& found, const geometry::Pose2D& tracked) const {
+    const auto c = Compare(laser_points, found, tracked);
+    return c.better && c.as_well_as_normal;
+  }
   // A search made for another reason (TwinWatch's) found a place that
   // explains the scan at `stamp` clearly better: the watch is in doubt at
   // once, and stays in doubt, whatever the share, until a search finds the

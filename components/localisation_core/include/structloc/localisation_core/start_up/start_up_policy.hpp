@@ -61,10 +61,11 @@ struct StartUpOptions {
 // A search the policy asks for. Run fills in its answer; Apply takes it back.
 struct StartUpSearch {
   enum class Kind {
-    kGlobal,  // a robot without a pose, against the whole map (or the hypotheses weighed)
-    kHint,    // a hint confirmed by a local search around it
-    kKidnap,  // the kidnap watch's search for a tracked robot
-    kTwin,    // the twin watch's decision, checked by a whole-map search
+    kGlobal,   // a robot without a pose, against the whole map (or the hypotheses weighed)
+    kHint,     // a hint confirmed by a local search around it
+    kKidnap,   // the kidnap watch's search for a tracked robot
+    kTwin,     // the twin watch's decision, checked by a whole-map search
+    kRecheck,  // a pose a kidnap search found, refused on its scan, weighed on a later one
   };
   Kind kind = Kind::kGlobal;
   uint64_t generation = 0;  // the policy's when it was asked for
@@ -75,6 +76,7 @@ struct StartUpSearch {
   std::vector<Eigen::Vector2d> points;       // kKidnap, kTwin: the scan's laser-frame points
   std::optional<TwinDecision> twin;          // kTwin: the decision (Run refines its twin)
   std::optional<GlobalResult> twin_check;    // kTwin: the search of the whole map for the scan
+  std::optional<InitialPoseInput> recheck;   // kRecheck: the pose carried to this scan
   // The answer (laser poses in the results, robot poses in what was found).
   std::optional<GlobalStart::Attempt> global;  // kGlobal, kKidnap
   std::optional<PoseHintCheck::Outcome> hint;  // kHint
@@ -152,6 +154,8 @@ class StartUpPolicy {
                    StartUpOutcome& out);
   void ApplyTwin(TrackingSession& session, const StartUpSearch& search, double now,
                  StartUpOutcome& out);
+  void ApplyRecheck(TrackingSession& session, const StartUpSearch& search, double now,
+                    StartUpOutcome& out);
   // A kidnapping found (by a search or the twin watch) moves the tracking.
   void Jump(TrackingSession& session, const Kidnapping& kidnapping, const InitialPoseInput& found,
             const std::string& how, double now, StartUpOutcome& out);
@@ -178,6 +182,16 @@ class StartUpPolicy {
   bool forget_when_back_ = false;
   size_t held_hypotheses_ = 0;  // after the last global attempt applied
   bool doubt_ = false;          // the kidnap watch is in doubt
+  // A pose a kidnap search found that explained its scan clearly better than
+  // the tracked one but less than the normal share (a scan taken while the
+  // robot turned fits less everywhere): carried by odometry and weighed again
+  // on the scans until `until`.
+  struct Refused {
+    InitialPoseInput found;
+    geometry::Pose2D odometry;  // the robot's odometric pose at found.stamp
+    double until = 0.0;
+  };
+  std::optional<Refused> refused_;
   size_t kidnappings_ = 0;
 };
 
