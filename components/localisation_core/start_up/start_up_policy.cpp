@@ -225,7 +225,8 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
   if (search_out_) return std::nullopt;
   const auto odometry = OdometryAt(session, report.odometry, report.stamp);
   if (refused_ && (!odometry || report.stamp > refused_->until)) refused_.reset();
-  if (refused_ && odometry && !points.empty()) {
+  if (refused_ && odometry) {  // weighed on every scan (while the tracker is lost too)
+    if (points.empty()) points = LaserPoints(report.scan);
     auto search = Hand(StartUpSearch::Kind::kRecheck, report.scan);
     const geometry::Pose2D moved = geometry::Between(refused_->odometry, *odometry);
     search.recheck = InitialPoseInput{report.stamp, geometry::Compose(refused_->found.pose, moved),
