@@ -245,6 +245,14 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
   return search;
 }
 
+geometry::Pose2D StartUpPolicy::Polished(const std::vector<Eigen::Vector2d>& laser_points,
+                                         const geometry::Pose2D& robot) const {
+  const auto& localiser = global_->Localiser();
+  const auto points = localiser.FitPoints(laser_points, options_.global.rank_points);
+  const auto laser = localiser.Polish(points, geometry::Compose(robot, mount_));
+  return geometry::Compose(laser, geometry::Inverse(mount_));
+}
+
 void StartUpPolicy::Run(StartUpSearch& search) {
   const auto t0 = std::chrono::steady_clock::now();
   switch (search.kind) {
@@ -256,21 +264,13 @@ void StartUpPolicy::Run(StartUpSearch& search) {
       search.global =
           search.odometry ? global_->Try(search.scan, *search.odometry) : global_->Try(search.scan);
       break;
-    case StartUpSearch::Kind::kTwin: {
-      const auto& localiser = global_->Localiser();
-      const auto points = localiser.FitPoints(search.points, options_.global.rank_points);
-      const auto laser = localiser.Polish(points, geometry::Compose(search.twin->twin, mount_));
-      search.twin->twin = geometry::Compose(laser, geometry::Inverse(mount_));
-      search.twin_check = localiser.Locate(search.points);
+    case StartUpSearch::Kind::kTwin:
+      search.twin->twin = Polished(search.points, search.twin->twin);
+      search.twin_check = global_->Localiser().Locate(search.points);
       break;
-    }
-    case StartUpSearch::Kind::kRecheck: {
-      const auto& localiser = global_->Localiser();
-      const auto points = localiser.FitPoints(search.points, options_.global.rank_points);
-      const auto laser = localiser.Polish(points, geometry::Compose(search.recheck->pose, mount_));
-      search.recheck->pose = geometry::Compose(laser, geometry::Inverse(mount_));
+    case StartUpSearch::Kind::kRecheck:
+      search.recheck->pose = Polished(search.points, search.recheck->pose);
       break;
-    }
   }
   search.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

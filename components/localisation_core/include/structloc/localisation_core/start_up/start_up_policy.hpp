@@ -164,6 +164,10 @@ class StartUpPolicy {
   void ForgetRecentScans();
   void EndDoubt();
   StartUpSearch Hand(StartUpSearch::Kind kind, const SessionScan& scan);
+  // The robot pose near `robot` whose laser pose explains the scan
+  // (laser-frame points) best: GlobalLocaliser::Polish.
+  geometry::Pose2D Polished(const std::vector<Eigen::Vector2d>& laser_points,
+                            const geometry::Pose2D& robot) const;
 
   StartUpOptions options_;
   std::unique_ptr<GlobalStart> global_;
