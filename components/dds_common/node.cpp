@@ -53,10 +53,13 @@ Node::Node(const NodeOptions& options)
   for (const auto& [name, value] : security) {
     participant_qos.properties().properties().emplace_back(name, value);
   }
-  participant_ =
-      eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->create_participant(
-          options.domain_id, participant_qos, monitor_.get(),
-          eprosima::fastdds::dds::StatusMask::none());
+  {
+    const std::lock_guard<std::mutex> lock(FastDdsProfileTables());
+    participant_ =
+        eprosima::fastdds::dds::DomainParticipantFactory::get_instance()->create_participant(
+            options.domain_id, participant_qos, monitor_.get(),
+            eprosima::fastdds::dds::StatusMask::none());
+  }
   if (participant_ == nullptr && options.security.Enabled()) {
     throw std::runtime_error(
         "DDS Security refused the enclave " + options.security.EnclaveFolder() +

@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <map>
+#include <mutex>
 #include <string_view>
 
 #include "structloc/config/strict_number.hpp"
@@ -133,6 +134,11 @@ std::string ProfileName(const config::XmlFile& file, const tinyxml2::XMLElement&
 
 }  // namespace
 
+std::mutex& FastDdsProfileTables() {
+  static std::mutex tables;
+  return tables;
+}
+
 bool IsSecurityProperty(const std::string& name) {
   const auto first = name.find_first_not_of(" \t\r\n");
   if (first == std::string::npos) return false;
@@ -147,6 +153,7 @@ bool IsSecurityProperty(const std::string& name) {
 QosProfiles QosProfiles::Load(const std::string& path) {
   QosProfiles result = Check(path);
   auto* factory = eprosima::fastdds::dds::DomainParticipantFactory::get_instance();
+  const std::lock_guard<std::mutex> lock(FastDdsProfileTables());
   if (factory->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
     throw QosError("QoS profiles: " + path +
                    ": Fast DDS rejected the file (see its log above for the element)");
@@ -200,6 +207,7 @@ QosProfiles QosProfiles::Check(const std::string& path) {
 eprosima::fastdds::dds::DomainParticipantQos QosProfiles::Participant(
     const std::string& profile) const {
   eprosima::fastdds::dds::DomainParticipantQos qos;
+  const std::lock_guard<std::mutex> lock(FastDdsProfileTables());
   if (participant_profiles_.count(profile) == 0 ||
       eprosima::fastdds::dds::DomainParticipantFactory::get_instance()
               ->get_participant_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
@@ -215,9 +223,11 @@ template <class Qos, class Entity, class Lookup>
 Qos EndpointQos(const std::string& path, const std::set<std::string>& known, Entity& entity,
                 const std::string& profile, const char* kind, Lookup lookup) {
   Qos qos;
+  std::unique_lock<std::mutex> lock(FastDdsProfileTables());
   if (known.count(profile) == 0 || (entity.*lookup)(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw QosError("QoS profiles: " + path + ": no " + kind + " profile '" + profile + "'");
   }
+  lock.unlock();
   if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS &&
       qos.history().depth < 1) {
     throw QosError("QoS profiles: " + path + ": " + kind + " '" + profile + "' has depth < 1");

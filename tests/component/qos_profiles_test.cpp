@@ -2,9 +2,12 @@
 // carry the values we rely on; broken files are rejected with file and problem.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <thread>
+#include <vector>
 
 #include "dds_test_support.hpp"
 #include "structloc/dds_common/qos_profiles.hpp"
@@ -145,6 +148,27 @@ INSTANTIATE_TEST_SUITE_P(
                    "</properties></propertiesPolicy>",
                    "configures DDS Security"}),
     [](const auto& info) { return std::string(info.param.tag); });
+
+// Nodes made side by side in one process (the repeated-faults test makes
+// three at once) load and read the profiles and create participants from
+// several threads: Fast DDS 2.9 keeps the profiles in tables it does not
+// lock, and unguarded that aborted the test process once in CI.
+TEST(QosProfiles, NodesMadeSideBySideInOneProcess) {
+  std::vector<std::thread> threads;
+  std::atomic<int> made{0};
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&made, t] {
+      for (int i = 0; i < 3; ++i) {
+        dds_common::Node node(
+            testing::TestNodeOptions("side_by_side_" + std::to_string(t), kDomain));
+        dds_common::QosProfiles::Load(testing::ShippedQos()).Participant("structloc_localhost");
+        ++made;
+      }
+    });
+  }
+  for (auto& thread : threads) thread.join();
+  EXPECT_EQ(made.load(), 4 * 3);
+}
 
 TEST(QosProfiles, MissingFileIsAnError) {
   EXPECT_THROW(dds_common::QosProfiles::Load("/nonexistent/structloc_qos.xml"),

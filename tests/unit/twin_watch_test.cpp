@@ -4,6 +4,8 @@
 // every scan as well as at the truth until the niche is in view.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -64,15 +66,16 @@ TEST(MapTwins, OptionsOutOfRangeAreNamed) {
 }
 
 // Drives the robot along the hall's south side towards the niche (x from 12
-// to 21 at y = 2.5, heading east), the watch told the robot is at `tracked_of`
-// of the truth; returns the first decision.
+// to 21 at y = 2.5, heading east), the watch told the robot is at the twin
+// of the truth (`tracked_at_twin`) or at the truth; returns the first
+// decision.
 std::optional<TwinDecision> DriveEast(bool tracked_at_twin) {
   const auto hall = Map("pillar_hall.xml");
   const auto scene = world_model::Scene::FromWorld(hall);
   const GlobalLocaliser localiser(hall, GlobalLocaliserOptions{});
   const auto twins = FindMapTwins(hall, localiser);
   const geometry::Pose2D mount{0.2, 0.0, 0.0};
-  TwinWatch watch(localiser, mount, twins, HypothesisOptions{});
+  TwinWatch watch(localiser, mount, twins, HypothesisOptions{}, MapTwinOptions{}.allowance_points);
   std::mt19937 rng(7);
   for (int i = 0; i <= 90; ++i) {
     const geometry::Pose2D truth{12.0 + 0.1 * i, 2.5, 0.0};
@@ -104,7 +107,8 @@ TEST(TwinWatch, ARobotTrackedWhereItIsKeepsItsPose) {
 TEST(TwinWatch, ARobotStandingStillWeighsOneScanOnly) {
   const auto hall = Map("pillar_hall.xml");
   const GlobalLocaliser localiser(hall, GlobalLocaliserOptions{});
-  TwinWatch watch(localiser, {}, FindMapTwins(hall, localiser), HypothesisOptions{});
+  TwinWatch watch(localiser, {}, FindMapTwins(hall, localiser), HypothesisOptions{},
+                  MapTwinOptions{}.allowance_points);
   const geometry::Pose2D still{20.0, 2.5, 0.0};
   EXPECT_TRUE(watch.Due(still));
   watch.Observe({}, 0.0, still, 0.0);

@@ -71,46 +71,57 @@ void Check(const GlobalLocaliserOptions& o) {
         "at least 3, coarse_keep at least 1 and ranked at least 2");
 }
 
+// The map's surfaces in pieces of at most `piece_m` (a wall's piece, or a
+// pillar's outline): for each, `visit(lo, hi, distance)` with the piece's
+// bounding box and the exact distance from a point to it.
+template <typename Visit>
+void ForEachSurfacePiece(const world_model::WorldModel& world, double piece_m, Visit&& visit) {
+  for (const auto& wall : world.Walls()) {
+    const int n = std::max(1, static_cast<int>(std::ceil(wall.Length() / piece_m)));
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d a = wall.a + (wall.b - wall.a) * (double(i) / n);
+      const Eigen::Vector2d b = wall.a + (wall.b - wall.a) * (double(i + 1) / n);
+      const Eigen::Vector2d ab = b - a;
+      const double length2 = ab.squaredNorm();
+      visit(a.cwiseMin(b), a.cwiseMax(b), [a, ab, length2](const Eigen::Vector2d& p) {
+        const double u = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+        return (a + u * ab - p).norm();
+      });
+    }
+  }
+  for (const auto& pillar : world.Cylinders()) {
+    const Eigen::Vector2d reach(pillar.radius, pillar.radius);
+    visit(pillar.centre - reach, pillar.centre + reach, [&pillar](const Eigen::Vector2d& p) {
+      return std::abs((p - pillar.centre).norm() - pillar.radius);
+    });
+  }
+}
+
 // Exact distances from the cell centres (x0 + (c + 0.5) res, y0 + (r + 0.5)
 // res) to the nearest wall or pillar outline, where that is within `band`
 // (elsewhere: infinity). The distance transform measures from the centres of
-// the cells a surface was drawn into, up to half a cell (2.5 cm) off the
-// surface, and in a direction that depends on where the surface falls in its
-// cell: a hall's east and west walls were then biased differently, so that a
-// pose and its twin (the hall turned by 180 deg) did not fit alike.
+// the cells a surface was drawn into, up to half a cell off the surface, and
+// in a direction that depends on where the surface falls in its cell: a
+// hall's east and west walls were then biased differently, so that a pose
+// and its twin (the hall turned by 180 deg) did not fit alike.
 std::vector<float> NearSurfaceDistances(const world_model::WorldModel& world, double x0, double y0,
                                         int width, int height, double res, double band) {
   std::vector<float> near(static_cast<size_t>(width) * height,
                           std::numeric_limits<float>::infinity());
-  // Over the cells within `band` of the box [lo, hi], the distance by `distance`.
-  auto sweep = [&](const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, auto&& distance) {
+  const double piece_m = 1.0;  // a long diagonal wall: the boxes of its pieces, not its own
+  ForEachSurfacePiece(world, piece_m, [&](const auto& lo, const auto& hi, const auto& to_piece) {
     const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - band - x0) / res - 0.5)));
     const int r0 = std::max(0, static_cast<int>(std::floor((lo.y() - band - y0) / res - 0.5)));
     const int c1 = std::min(width - 1, static_cast<int>(std::ceil((hi.x() + band - x0) / res)));
     const int r1 = std::min(height - 1, static_cast<int>(std::ceil((hi.y() + band - y0) / res)));
     for (int r = r0; r <= r1; ++r) {
       for (int c = c0; c <= c1; ++c) {
-        const Eigen::Vector2d centre(x0 + (c + 0.5) * res, y0 + (r + 0.5) * res);
-        const double d = distance(centre);
+        const double d = to_piece(Eigen::Vector2d(x0 + (c + 0.5) * res, y0 + (r + 0.5) * res));
         float& cell = near[static_cast<size_t>(r) * width + c];
         if (d <= band && d < cell) cell = static_cast<float>(d);
       }
     }
-  };
-  for (const auto& wall : world.Walls()) {
-    const Eigen::Vector2d ab = wall.b - wall.a;
-    const double length2 = ab.squaredNorm();
-    sweep(wall.a.cwiseMin(wall.b), wall.a.cwiseMax(wall.b), [&](const Eigen::Vector2d& p) {
-      const double u = length2 > 0.0 ? std::clamp((p - wall.a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-      return (wall.a + u * ab - p).norm();
-    });
-  }
-  for (const auto& pillar : world.Cylinders()) {
-    const Eigen::Vector2d reach(pillar.radius, pillar.radius);
-    sweep(pillar.centre - reach, pillar.centre + reach, [&](const Eigen::Vector2d& p) {
-      return std::abs((p - pillar.centre).norm() - pillar.radius);
-    });
-  }
+  });
   return near;
 }
 

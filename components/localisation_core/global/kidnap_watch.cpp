@@ -49,12 +49,12 @@ void KidnapWatch::Clear() {
   last_share_.reset();
   doubt_s_ = 0.0;
   search_period_s_ = options_.search_period_s;
-  told_to_doubt_ = false;
+  told_until_.reset();
 }
 
 void KidnapWatch::Doubt(double stamp) {
-  told_to_doubt_ = true;
-  if (!doubt_since_) doubt_since_ = stamp - options_.after_s;
+  told_until_ = stamp + options_.max_search_period_s;
+  doubt_since_ = std::min(doubt_since_.value_or(stamp), stamp - options_.after_s);
   doubt_s_ = std::max(doubt_s_, options_.after_s);
 }
 
@@ -69,8 +69,14 @@ bool KidnapWatch::Observe(const std::vector<Eigen::Vector2d>& laser_points, doub
   }
   const double floor = std::max(options_.unexplained_share,
                                 normal_share_ ? *normal_share_ - options_.max_share_drop : 0.0);
-  const bool unexplained = lost || told_to_doubt_ || (last_share_ && *last_share_ < floor);
-  if (!unexplained && checked) {
+  if (told_until_ && stamp > *told_until_) told_until_.reset();
+  const bool unexplained = lost || told_until_ || (last_share_ && *last_share_ < floor);
+  // Only shares near the normal update it: a pose that explains a little
+  // more than the floor (a robot carried to a place like the one it was in,
+  // tracked a metre off) would otherwise pull it down to its own share, and
+  // then nothing would be doubted.
+  const double near_normal = normal_share_ ? *normal_share_ - 0.5 * options_.max_share_drop : 0.0;
+  if (!unexplained && checked && *last_share_ >= near_normal) {
     normal_share_ = normal_share_ ? 0.9 * *normal_share_ + 0.1 * *last_share_ : *last_share_;
   }
   if (!unexplained) {
@@ -95,6 +101,8 @@ KidnapWatch::Comparison KidnapWatch::Compare(const std::vector<Eigen::Vector2d>&
   };
   const double at_found = share(found);
   Comparison c;
+  c.far = std::hypot(found.x - tracked.x, found.y - tracked.y) > options_.min_jump_m ||
+          std::abs(geometry::WrapAngle(found.theta - tracked.theta)) > options_.min_jump_rad;
   c.better = at_found >= share(tracked) + options_.min_share_gain;
   c.as_well_as_normal =
       !normal_share_ || at_found >= *normal_share_ - options_.max_share_below_normal;
@@ -115,17 +123,17 @@ void KidnapWatch::Spent(uint64_t work) {
 std::optional<Kidnapping> KidnapWatch::Jumped(double stamp,
                                               const std::vector<Eigen::Vector2d>& laser_points,
                                               const geometry::Pose2D& found,
-                                              const geometry::Pose2D& tracked) {
+                                              const geometry::Pose2D& tracked,
+                                              Comparison* comparison) {
   // Not a kidnapping: the doubt goes on (and its searches keep backing off)
   // for as long as the scans stay unexplained.
-  const bool far =
-      std::hypot(found.x - tracked.x, found.y - tracked.y) > options_.min_jump_m ||
-      std::abs(geometry::WrapAngle(found.theta - tracked.theta)) > options_.min_jump_rad;
-  if (!far) {
-    told_to_doubt_ = false;  // found where it is tracked
+  const Comparison c = Compare(laser_points, found, tracked);
+  if (comparison) *comparison = c;
+  if (!c.far) {
+    told_until_.reset();  // found where it is tracked
     return std::nullopt;
   }
-  if (!ClearlyBetter(laser_points, found, tracked)) return std::nullopt;
+  if (!c.better || !c.as_well_as_normal) return std::nullopt;
   const Kidnapping kidnapping{stamp, tracked, found, doubt_s_};
   Clear();
   return kidnapping;

@@ -62,12 +62,16 @@ std::vector<geometry::Pose2D> Motions(const world_model::Wall& from, const world
   return motions;
 }
 
-// Whether the motion moves some place of the map's extent distinctly: a turn
-// by the distinct heading, or a shift by the distinct distance.
+// Whether the motion is distinct from the identity: a turn by the distinct
+// heading, or a shift by the distinct distance.
 bool MovesDistinctly(const geometry::Pose2D& m, const GlobalLocaliserOptions& options) {
   return std::abs(m.theta) > options.distinct_heading_rad ||
          std::hypot(m.x, m.y) > options.distinct_distance_m;
 }
+
+// Two motions found from different walls that are one.
+constexpr double kSameMotionM = 0.2;
+constexpr double kSameMotionRad = 2.0 * geometry::kPi / 180.0;
 
 }  // namespace
 
@@ -82,6 +86,8 @@ void CheckMapTwinOptions(const MapTwinOptions& o) {
   require(o.min_wall_m >= 0.0, "min_wall_m", "at least 0");
   require(o.length_tolerance_m >= 0.0, "length_tolerance_m", "at least 0");
   require(o.on_outline_gain > 0.0 && o.on_outline_gain <= 1.0, "on_outline_gain", "in (0, 1]");
+  require(o.allowance_points >= 0.0 && o.allowance_points <= 100.0, "allowance_points",
+          "in [0, 100]");
 }
 
 std::vector<geometry::Pose2D> FindMapTwins(const world_model::WorldModel& world,
@@ -102,8 +108,8 @@ std::vector<geometry::Pose2D> FindMapTwins(const world_model::WorldModel& world,
   };
   std::vector<Twin> twins;
   auto same = [](const geometry::Pose2D& a, const geometry::Pose2D& b) {
-    return std::hypot(a.x - b.x, a.y - b.y) < 0.2 &&
-           std::abs(geometry::WrapAngle(a.theta - b.theta)) < 2.0 * geometry::kPi / 180.0;
+    return std::hypot(a.x - b.x, a.y - b.y) < kSameMotionM &&
+           std::abs(geometry::WrapAngle(a.theta - b.theta)) < kSameMotionRad;
   };
   for (const auto* from : longest) {
     for (const auto* to : longest) {

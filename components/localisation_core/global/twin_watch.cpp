@@ -7,9 +7,15 @@
 namespace structloc::localisation_core {
 
 TwinWatch::TwinWatch(const GlobalLocaliser& localiser, const geometry::Pose2D& sensor_mount,
-                     std::vector<geometry::Pose2D> twins, const HypothesisOptions& test)
+                     std::vector<geometry::Pose2D> twins, const HypothesisOptions& test,
+                     double allowance_points)
     : localiser_(localiser), mount_(sensor_mount), twins_(std::move(twins)), test_(test) {
   CheckHypothesisOptions(test_);
+  // A point explained at one pose and not at the other moves the mean
+  // log-likelihood by ln(1 / u) / fit_points; a step counts it
+  // readings_per_step times.
+  allowance_ = allowance_points * test_.readings_per_step *
+               std::log(1.0 / test_.unexplained_likelihood) / test_.fit_points;
   Clear();
 }
 
@@ -45,7 +51,7 @@ std::optional<TwinDecision> TwinWatch::Observe(const std::vector<Eigen::Vector2d
     const double ratio =
         test_.readings_per_step * (at_twin.mean_log_likelihood - at_tracked.mean_log_likelihood);
     if (evidence_[k] == 0.0) since_[k] = stamp;
-    evidence_[k] = std::max(0.0, evidence_[k] + ratio);
+    evidence_[k] = std::max(0.0, evidence_[k] + ratio - allowance_);
     const bool decided = evidence_[k] >= test_.decision_log_ratio &&
                          at_twin.share > at_tracked.share &&
                          at_twin.share >= std::max(min_share, test_.min_share);

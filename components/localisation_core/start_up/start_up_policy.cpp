@@ -83,7 +83,7 @@ StartUpPolicy::StartUpPolicy(const world_model::WorldModel* world,
   auto twins = FindMapTwins(*world, global_->Localiser(), options.twins);
   if (!twins.empty())
     twins_ = std::make_unique<TwinWatch>(global_->Localiser(), sensor_mount, std::move(twins),
-                                         options.hypotheses);
+                                         options.hypotheses, options.twins.allowance_points);
 }
 
 std::string StartUpPolicy::GivenAtStart(TrackingSession& session, const geometry::Pose2D& pose,
@@ -201,13 +201,15 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
     if (doubt_) ForgetRecentScans();
     doubt_ = false;
     refused_.reset();
-    if (!twin_due || search_out_ || !watch_->CanAfford()) return std::nullopt;
+    if (!twin_due) return std::nullopt;
     // The twin must explain the scan as well as the tracked pose did while
     // all was well, as a kidnapping's new pose must (KidnapWatch::Jumped).
+    // Weighed whether or not its search can run now: the evidence stays at
+    // the bound, and decides again at the next step.
     const auto normal = watch_->NormalShare();
     const double min_share = normal ? *normal - options_.kidnap.max_share_below_normal : 0.0;
     auto twin = twins_->Observe(points, report.stamp, report.pose.pose, min_share);
-    if (!twin) return std::nullopt;
+    if (!twin || search_out_ || !watch_->CanAfford()) return std::nullopt;
     auto search = Hand(StartUpSearch::Kind::kTwin, report.scan);
     search.tracked = report.pose.pose;
     search.twin = twin;
@@ -219,13 +221,18 @@ std::optional<StartUpSearch> StartUpPolicy::Watch(const TrackingSession& session
     s << "the tracked pose has not explained the scans for " << watch_->Options().after_s
       << " s: searching the whole map in case the robot was carried away";
     log.push_back(s.str());
-    ForgetRecentScans();  // what the start-up searched and held is of another time
+    ForgetRecentScans();          // what the start-up searched and held is of another time
+    if (twins_) twins_->Clear();  // the kidnap watch's searches decide now
     doubt_ = true;
   }
   if (search_out_) return std::nullopt;
   const auto odometry = OdometryAt(session, report.odometry, report.stamp);
-  if (refused_ && (!odometry || report.stamp > refused_->until)) refused_.reset();
-  if (refused_ && odometry) {  // weighed on every scan (while the tracker is lost too)
+  if (refused_ && report.stamp > refused_->until) refused_.reset();
+  const bool recheck_due = refused_ && odometry &&
+                           (!refused_->last_weighed || report.stamp - *refused_->last_weighed >=
+                                                           options_.kidnap.check_period_s);
+  if (recheck_due) {  // while the tracker is lost too
+    refused_->last_weighed = report.stamp;
     if (points.empty()) points = LaserPoints(report.scan);
     auto search = Hand(StartUpSearch::Kind::kRecheck, report.scan);
     const geometry::Pose2D moved = geometry::Between(refused_->odometry, *odometry);
@@ -382,24 +389,24 @@ void StartUpPolicy::ApplyKidnap(TrackingSession& session, const StartUpSearch& s
   const auto& attempt = *search.global;
   if (!attempt.found || session.WaitingForInitialPose()) return;
   ForgetRecentScans();
+  KidnapWatch::Comparison c;
   const auto kidnapping =
-      watch_->Jumped(search.Stamp(), search.points, attempt.found->pose, search.tracked);
+      watch_->Jumped(search.Stamp(), search.points, attempt.found->pose, search.tracked, &c);
   if (!kidnapping) {
-    const auto c = watch_->Compare(search.points, attempt.found->pose, search.tracked);
-    if (c.better && !c.as_well_as_normal && search.odometry)
+    if (c.far && c.better && !c.as_well_as_normal && search.odometry)
       refused_ =
-          Refused{*attempt.found, *search.odometry, search.Stamp() + options_.kidnap.after_s};
+          Refused{*attempt.found, *search.odometry, search.Stamp() + options_.kidnap.after_s, {}};
     return;
   }
   auto s = Sentence();
   s << "after " << kidnapping->doubt_s << " s of scans the tracked pose did not explain";
-  Jump(session, *kidnapping, *attempt.found, s.str(), now, out);
+  Jump(session, *kidnapping, *attempt.found, "the search for a kidnapped robot", s.str(), now, out);
 }
 
 void StartUpPolicy::ApplyTwin(TrackingSession& session, const StartUpSearch& search, double now,
                               StartUpOutcome& out) {
-  if (doubt_ || session.WaitingForInitialPose()) return;
   twins_->Clear();  // whatever the search says, the evidence starts again
+  if (doubt_ || session.WaitingForInitialPose()) return;
   const auto& twin = *search.twin;
   const auto& check = *search.twin_check;
   if (!check.best) return;
@@ -417,7 +424,8 @@ void StartUpPolicy::ApplyTwin(TrackingSession& session, const StartUpSearch& sea
     s << "the scans since t=" << twin.since
       << " fit the twin of the tracked place (the map is the same there but for a detail) "
          "better";
-    Jump(session, kidnapping, {twin.stamp, twin.twin, initial_covariance_}, s.str(), now, out);
+    Jump(session, kidnapping, {twin.stamp, twin.twin, initial_covariance_},
+         "the twin watch and a search of the map", s.str(), now, out);
     return;
   }
   // Neither: if the search found a place that explains the scan clearly
@@ -440,12 +448,12 @@ void StartUpPolicy::ApplyRecheck(TrackingSession& session, const StartUpSearch& 
     << " s of scans the tracked pose did not explain, by a search's pose of t="
     << refused_->found.stamp << " weighed again on a later scan";
   refused_.reset();
-  Jump(session, *kidnapping, found, s.str(), now, out);
+  Jump(session, *kidnapping, found, "the search for a kidnapped robot", s.str(), now, out);
 }
 
 void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
-                         const InitialPoseInput& found, const std::string& how, double now,
-                         StartUpOutcome& out) {
+                         const InitialPoseInput& found, const std::string& source,
+                         const std::string& how, double now, StartUpOutcome& out) {
   ++kidnappings_;
   out.kidnapping = kidnapping;
   // The scans taken while the search ran were tracked from where the robot
@@ -453,8 +461,8 @@ void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
   const auto latest = session.Latest();
   const double old_track_until =
       latest ? std::max(latest->stamp, kidnapping.stamp) : kidnapping.stamp;
-  out.pose_set = session.SetInitialPose(found, "the search for a kidnapped robot", now) !=
-                 TrackingSession::InitialPoseOutcome::kRejected;
+  out.pose_set =
+      session.SetInitialPose(found, source, now) != TrackingSession::InitialPoseOutcome::kRejected;
   auto s = Sentence();
   s << "kidnapped: at t=" << kidnapping.stamp << ", " << how << ", the robot was found at ";
   Write(s, kidnapping.to);

@@ -14,6 +14,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,14 @@ class QosError : public std::runtime_error {
 // True for a DDS Security property name (dds.sec.*, in any case, blanks
 // around it ignored).
 bool IsSecurityProperty(const std::string& name);
+
+// Fast DDS 2.9 keeps its XML profiles in process-wide tables it does not
+// lock, and creating a participant loads its default profiles into them
+// (upstream fixed that after 2.9): loading, reading and creating a
+// participant from several threads at once (nodes made side by side in one
+// process) can corrupt them and abort the process. Every such call holds
+// this lock.
+std::mutex& FastDdsProfileTables();
 
 class QosProfiles {
  public:

@@ -71,7 +71,9 @@ struct Kidnapping {
   double stamp = 0.0;
   geometry::Pose2D from;  // robot pose tracked then (map frame)
   geometry::Pose2D to;    // robot pose found
-  double doubt_s = 0.0;   // how long the scans were unexplained before it was found
+  // How long the scans were unexplained before it was found (found by the
+  // twin watch: how long its evidence rose).
+  double doubt_s = 0.0;
 };
 
 class KidnapWatch {
@@ -97,6 +99,15 @@ class KidnapWatch {
   bool CheckDue(double stamp, bool lost) const {
     return !lost && (!last_check_s_ || stamp - *last_check_s_ >= options_.check_period_s);
   }
+  // How `found` (a robot pose) compares with `tracked` on a scan
+  // (laser-frame points): at least min_jump_m or min_jump_rad away, explaining
+  // at least min_share_gain more, and no less than max_share_below_normal
+  // below the normal share. Jumped requires all three.
+  struct Comparison {
+    bool far = false;
+    bool better = false;
+    bool as_well_as_normal = false;
+  };
   // What a global search for the scan at `stamp` (its laser-frame points)
   // found (a found or committed robot pose), with the pose tracked then: the
   // kidnapping (and the doubt ended) if far from it and explaining the scan
@@ -104,28 +115,24 @@ class KidnapWatch {
   // is not lowered to what a doubted pose explains, even when a search finds
   // the robot there: in a part of the building the map lacks, a place
   // elsewhere that fits a little better would then pass for the robot's.
+  // `comparison`, when given, receives how the two compared.
   std::optional<Kidnapping> Jumped(double stamp, const std::vector<Eigen::Vector2d>& laser_points,
-                                   const geometry::Pose2D& found, const geometry::Pose2D& tracked);
-  // How `found` (a robot pose) explains the scan (laser-frame points)
-  // against `tracked`: at least min_share_gain more, and no less than
-  // max_share_below_normal below the normal share. Jumped requires both.
-  struct Comparison {
-    bool better = false;
-    bool as_well_as_normal = false;
-  };
+                                   const geometry::Pose2D& found, const geometry::Pose2D& tracked,
+                                   Comparison* comparison = nullptr);
   Comparison Compare(const std::vector<Eigen::Vector2d>& laser_points,
                      const geometry::Pose2D& found, const geometry::Pose2D& tracked) const;
   bool ClearlyBetter(const std::vector<Eigen::Vector2d>& laser_points,
                      const geometry::Pose2D& found, const geometry::Pose2D& tracked) const {
     const auto c = Compare(laser_points, found, tracked);
-    return c.better && c.as_well_as_normal;
+    return c.far && c.better && c.as_well_as_normal;
   }
   // A search made for another reason (TwinWatch's) found a place that
   // explains the scan at `stamp` clearly better: the watch is in doubt at
   // once, and stays in doubt, whatever the share, until a search finds the
-  // robot (far away: Jumped; or where it is tracked) or Clear. A share that
-  // sank slowly (a robot carried to a place like the one it was in) may
-  // have pulled the running mean down with it.
+  // robot (far away: Jumped; or where it is tracked), Clear, or
+  // max_search_period_s have passed. A share that sank slowly (a robot
+  // carried to a place like the one it was in) may have pulled the running
+  // mean down with it.
   void Doubt(double stamp);
   bool InDoubt() const { return doubt_since_.has_value() && doubt_s_ >= options_.after_s; }
   std::optional<double> LastShare() const { return last_share_; }
@@ -140,10 +147,10 @@ class KidnapWatch {
   std::optional<double> last_check_s_, last_search_s_, doubt_since_, last_share_;
   std::optional<double> normal_share_;  // running mean of the share outside doubt
   double doubt_s_ = 0.0;
-  double search_period_s_;      // the wait before the next search in doubt
-  double budget_;               // work units the searches may still spend
-  double last_work_ = 0.0;      // of the last search
-  bool told_to_doubt_ = false;  // by Doubt
+  double search_period_s_;            // the wait before the next search in doubt
+  double budget_;                     // work units the searches may still spend
+  double last_work_ = 0.0;            // of the last search
+  std::optional<double> told_until_;  // Doubt's doubt lasts until then at most
 };
 
 }  // namespace structloc::localisation_core

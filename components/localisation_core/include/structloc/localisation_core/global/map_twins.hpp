@@ -29,6 +29,10 @@ struct MapTwinOptions {
   // A sample carried to where GlobalLocaliser::SurfaceGain is at least this
   // lies on the outline (about 7 cm with the ranking's 0.15 m truncation).
   double on_outline_gain = 0.8;
+  // TwinWatch: the scan points one evidence step may tell the tracked pose
+  // and its twin apart by without counting (Page's reference value): a
+  // person or a box that happens to fall on a surface at one of them.
+  double allowance_points = 1.0;
 };
 
 // Throws std::invalid_argument naming the option when one is out of range.
@@ -36,10 +40,10 @@ void CheckMapTwinOptions(const MapTwinOptions& options);
 
 // The twins of `world`, each as the motion T that carries a place to its twin
 // (map frame: turned by T.theta about the origin, then shifted by (T.x,
-// T.y)); the twin of robot pose P is Compose(T, P). Motions that move no
-// place by more than the localiser's distinct_distance_m and
-// distinct_heading_rad (the identity) are not twins. `localiser` holds the
-// distance field of the same world.
+// T.y)); the twin of robot pose P is Compose(T, P). Motions that turn by no
+// more than the localiser's distinct_heading_rad and shift the origin by no
+// more than its distinct_distance_m (the identity) are not twins.
+// `localiser` holds the distance field of the same world.
 std::vector<geometry::Pose2D> FindMapTwins(const world_model::WorldModel& world,
                                            const GlobalLocaliser& localiser,
                                            const MapTwinOptions& options = {});

@@ -5,12 +5,14 @@
 // hypotheses' evidence_step_m or evidence_step_rad), the watch weighs the
 // scan at the tracked pose and at each of its twins with the hypotheses'
 // likelihood-field model (GlobalLocaliser::FitAt) and counts the difference
-// as readings_per_step independent readings, as HypothesisTracker weighs
-// rivals. The evidence for each twin is a CUSUM (Page's test: the sum of the
-// log-likelihood ratios, restarted at zero whenever it would fall below):
-// where the map is the same at both places it stays at zero, where the
-// differing detail is in view it falls for the tracked pose when that is
-// right and rises for the twin when it is, and a twin is decided for when its
+// as readings_per_step independent readings, as HypothesisTracker counts a
+// step (one scan a step here, the twin not refitted: it is the tracked pose
+// carried by the map's motion). The evidence for each twin is a CUSUM
+// (Page's test: the sum of the log-likelihood ratios less a reference value,
+// the worth of allowance_points points, restarted at zero whenever it would
+// fall below): where the map is the same at both places it stays at zero,
+// where the differing detail is in view it falls for the tracked pose when
+// that is right and rises for the twin when it is, and a twin is decided for when its
 // evidence reaches the hypotheses' decision_log_ratio (Wald's bound) and it
 // explains the scan better than the tracked pose and as well as a pose
 // rightly tracked does (a robot carried elsewhere, that neither pose
@@ -39,9 +41,11 @@ class TwinWatch {
  public:
   // `localiser` must outlive the watch; `sensor_mount`: the laser on the
   // robot; `twins`: the map's (FindMapTwins); `test`: the hypotheses'
-  // evidence model and decision bound.
+  // evidence model and decision bound; `allowance_points`: see
+  // MapTwinOptions.
   TwinWatch(const GlobalLocaliser& localiser, const geometry::Pose2D& sensor_mount,
-            std::vector<geometry::Pose2D> twins, const HypothesisOptions& test);
+            std::vector<geometry::Pose2D> twins, const HypothesisOptions& test,
+            double allowance_points);
 
   // Whether Observe at the robot's tracked pose weighs a scan (the map has
   // twins and the robot moved an evidence step since the last weighed).
@@ -61,6 +65,7 @@ class TwinWatch {
   geometry::Pose2D mount_;
   std::vector<geometry::Pose2D> twins_;
   HypothesisOptions test_;
+  double allowance_;  // per step, in the evidence's units
   std::optional<geometry::Pose2D> last_weighed_;
   std::vector<double> evidence_;  // per twin: the CUSUM of its log-likelihood ratio
   std::vector<double> since_;     // per twin: when its evidence last left zero

@@ -72,11 +72,11 @@ struct StartUpSearch {
   SessionScan scan;
   std::optional<geometry::Pose2D> odometry;  // the robot's odometric pose at the scan
   std::optional<PoseHintCheck> hint_check;   // kHint: a copy, counting its attempts
-  geometry::Pose2D tracked;                  // kKidnap: the robot pose tracked at the scan
-  std::vector<Eigen::Vector2d> points;       // kKidnap, kTwin: the scan's laser-frame points
-  std::optional<TwinDecision> twin;          // kTwin: the decision (Run refines its twin)
-  std::optional<GlobalResult> twin_check;    // kTwin: the search of the whole map for the scan
-  std::optional<InitialPoseInput> recheck;   // kRecheck: the pose carried to this scan
+  geometry::Pose2D tracked;  // kKidnap, kTwin, kRecheck: the robot pose tracked at the scan
+  std::vector<Eigen::Vector2d> points;  // kKidnap, kTwin, kRecheck: the scan's laser-frame points
+  std::optional<TwinDecision> twin;     // kTwin: the decision (Run refines its twin)
+  std::optional<GlobalResult> twin_check;   // kTwin: the search of the whole map for the scan
+  std::optional<InitialPoseInput> recheck;  // kRecheck: the pose carried to this scan
   // The answer (laser poses in the results, robot poses in what was found).
   std::optional<GlobalStart::Attempt> global;  // kGlobal, kKidnap
   std::optional<PoseHintCheck::Outcome> hint;  // kHint
@@ -157,8 +157,9 @@ class StartUpPolicy {
   void ApplyRecheck(TrackingSession& session, const StartUpSearch& search, double now,
                     StartUpOutcome& out);
   // A kidnapping found (by a search or the twin watch) moves the tracking.
+  // `source`: what found it, for the session; `how`: the log sentence's middle.
   void Jump(TrackingSession& session, const Kidnapping& kidnapping, const InitialPoseInput& found,
-            const std::string& how, double now, StartUpOutcome& out);
+            const std::string& source, const std::string& how, double now, StartUpOutcome& out);
   // The scans searched before, and the hypotheses held, are of another
   // time: forgotten now, or when the search under way comes back.
   void ForgetRecentScans();
@@ -194,6 +195,7 @@ class StartUpPolicy {
     InitialPoseInput found;
     geometry::Pose2D odometry;  // the robot's odometric pose at found.stamp
     double until = 0.0;
+    std::optional<double> last_weighed;  // weighed again once per kidnap check_period_s
   };
   std::optional<Refused> refused_;
   size_t kidnappings_ = 0;
