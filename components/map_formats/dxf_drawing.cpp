@@ -59,8 +59,12 @@ bool IsAnnouncedCount(const std::string& kind, unsigned int code) {
 constexpr size_t kMaxLineBytes = DL_DXF_MAXLINE - 2;
 
 // A line as dxflib reads it: up to its first NUL (it handles C strings), its
-// trailing CR and LF dropped.
-std::string AsDxflibReadsIt(const std::string& line) {
+// trailing CR and LF dropped. A line that starts with NUL leaves dxflib's
+// text as it was (`before`): it keeps the group code or value it read last,
+// so "10 / 0.0 / NUL / x / 90 / 4000001010" inside a LWPOLYLINE announces
+// 4e9 vertices to dxflib although a NUL line looks like group 0 here.
+std::string AsDxflibReadsIt(const std::string& line, const std::string& before) {
+  if (!line.empty() && line[0] == '\0') return before;
   std::string text = line.substr(0, line.find('\0'));
   while (!text.empty() && (text.back() == '\r' || text.back() == '\n')) text.pop_back();
   return text;
@@ -82,7 +86,7 @@ std::string Unblanked(const std::string& text) {
 // and values alternate line by line; a group 0 starts an entity.
 void CheckAnnouncedCounts(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  std::string code_line, value;
+  std::string code_line, value_line, code_text, value;
   std::string kind;
   long long announced = 0;
   const auto check_length = [&](const std::string& text, size_t line) {
@@ -91,14 +95,15 @@ void CheckAnnouncedCounts(const std::string& path) {
                               std::to_string(text.size()) + " bytes; DXF readers take at most " +
                               std::to_string(kMaxLineBytes) + " (is it a DXF drawing?)");
   };
-  for (size_t line = 1; std::getline(in, code_line) && std::getline(in, value); line += 2) {
+  for (size_t line = 1; std::getline(in, code_line) && std::getline(in, value_line); line += 2) {
     check_length(code_line, line);
-    check_length(value, line + 1);
+    check_length(value_line, line + 1);
     // As dxflib reads a group code: a line that is no number (even an empty
     // one) is code 0, and starts an entity.
-    const long code = std::strtol(AsDxflibReadsIt(code_line).c_str(), nullptr, 10);
+    code_text = AsDxflibReadsIt(code_line, code_text);
+    const long code = std::strtol(code_text.c_str(), nullptr, 10);
+    value = AsDxflibReadsIt(value_line, value);
     if (code < 0) continue;  // dxflib judges the rest
-    value = AsDxflibReadsIt(value);
     if (code == 0) {
       kind = Unblanked(value);
       continue;

@@ -300,6 +300,23 @@ TEST(DxfImport, BlockDefinitionsPaperSpaceAndOtherKindsAreNotImported) {
   EXPECT_EQ(counts.at("LINE").read, 1u);
 }
 
+// dxflib keeps the group code it read last for a line that starts with NUL,
+// so a count after one is still the LWPOLYLINE's (a fuzzer's 1 kB file made
+// dxflib ask for 12.8 GB); the guard must read the file as dxflib does.
+TEST(DxfImport, ACountAfterALineStartingWithNulIsStillCheckedAsTheEntitys) {
+  const TempDir dir;
+  const std::string entities = std::string("0\nLWPOLYLINE\n8\nW\n90\n2\n10\n0.0\n20\n0.0\n") +
+                               std::string(1, '\0') + "\nW\n90\n4000001010\n";
+  const std::string path = dir.Write("nul_code.dxf", Dxf(entities));
+  try {
+    map_formats::ReadDxfDrawing(path);
+    ADD_FAILURE() << "accepted";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("announces 4000001010 items"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(DxfImport, ACircleSeenFromBelowIsMirrored) {
   const TempDir dir;
   const auto imported =

@@ -12,12 +12,12 @@
 // the worth of allowance_points points, restarted at zero whenever it would
 // fall below): where the map is the same at both places it stays at zero,
 // where the differing detail is in view it falls for the tracked pose when
-// that is right and rises for the twin when it is, and a twin is decided for when its
-// evidence reaches the hypotheses' decision_log_ratio (Wald's bound) and it
-// explains the scan better than the tracked pose and as well as a pose
-// rightly tracked does (a robot carried elsewhere, that neither pose
-// explains, is the kidnap watch's). Off the latency path (one check per
-// evidence step); DDS-free.
+// that is right and rises for the twin when it is. A twin is decided for
+// when its evidence reaches the hypotheses' decision_log_ratio (Wald's
+// bound) and it explains the scan better than the tracked pose and as well
+// as a pose rightly tracked does (a robot carried elsewhere, that neither
+// pose explains, is the kidnap watch's). Off the latency path (one check
+// per evidence step); DDS-free.
 #pragma once
 
 #include <optional>
