@@ -329,6 +329,7 @@ class Replayer {
     if (!search) return;
     start_up_->Run(*search);
     report_.kidnap_searches += search->global && search->global->searched ? 1 : 0;
+    report_.twin_checks += search->twin_check ? 1 : 0;
     const auto outcome = start_up_->Apply(*session_, *search, report.stamp);
     if (outcome.kidnapping) report_.kidnappings.push_back(*outcome.kidnapping);
   }
@@ -622,11 +623,15 @@ std::string FormatReport(const ReplayReport& r) {
     out << "searched the whole map at " << r.kidnap_searches
         << " scans the tracked pose did not explain (in case the robot was carried away)\n";
   }
+  if (r.twin_checks > 0) {
+    out << "searched the whole map " << r.twin_checks
+        << " times for a robot tracked at the twin of its place (the map is the same turned)\n";
+  }
   for (const auto& k : r.kidnappings) {
     out << std::setprecision(2) << "kidnapped: at t = " << k.stamp << " s, after " << k.doubt_s
-        << " s of scans the tracked pose did not explain, the robot was found at (" << k.to.x
-        << " m, " << k.to.y << " m, " << k.to.theta << " rad), not at (" << k.from.x << " m, "
-        << k.from.y << " m, " << k.from.theta << " rad)\n"
+        << " s of doubt, the robot was found at (" << k.to.x << " m, " << k.to.y << " m, "
+        << k.to.theta << " rad), not at (" << k.from.x << " m, " << k.from.y << " m, "
+        << k.from.theta << " rad)\n"
         << std::setprecision(1);
   }
   out.precision(3);

@@ -454,8 +454,6 @@ void StartUpPolicy::ApplyRecheck(TrackingSession& session, const StartUpSearch& 
 void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
                          const InitialPoseInput& found, const std::string& source,
                          const std::string& how, double now, StartUpOutcome& out) {
-  ++kidnappings_;
-  out.kidnapping = kidnapping;
   // The scans taken while the search ran were tracked from where the robot
   // was lifted: the poses up to the latest of them are of the old track.
   const auto latest = session.Latest();
@@ -464,6 +462,14 @@ void StartUpPolicy::Jump(TrackingSession& session, const Kidnapping& kidnapping,
   out.pose_set =
       session.SetInitialPose(found, source, now) != TrackingSession::InitialPoseOutcome::kRejected;
   auto s = Sentence();
+  if (!out.pose_set) {  // the session says why (NoteProblem); the tracking goes on as it was
+    s << "a kidnapped robot was found at t=" << kidnapping.stamp << " (" << how
+      << "), but the session refused the pose";
+    out.log.push_back(s.str());
+    return;
+  }
+  ++kidnappings_;
+  out.kidnapping = kidnapping;
   s << "kidnapped: at t=" << kidnapping.stamp << ", " << how << ", the robot was found at ";
   Write(s, kidnapping.to);
   s << ", not at ";

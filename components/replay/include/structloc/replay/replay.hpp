@@ -116,6 +116,7 @@ struct ReplayReport {
   // Where the tracked robot was found carried elsewhere (odometry saw nothing).
   std::vector<localisation_core::Kidnapping> kidnappings;
   size_t kidnap_searches = 0;     // global searches made in doubt
+  size_t twin_checks = 0;         // global searches checking the twin watch's decisions
   std::string kidnap_watch_off;   // why there was no kidnap watch (empty: there was)
   geometry::Pose2D initial_pose;  // robot pose tracking started from
 };
