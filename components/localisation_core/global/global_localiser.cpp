@@ -10,6 +10,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "structloc/world_model/outline_points.hpp"
+
 namespace structloc::localisation_core {
 namespace {
 
@@ -187,18 +189,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
     const int r = static_cast<int>(std::floor((p.y() - cells_.y0) / res));
     if (c >= 0 && r >= 0 && c < cells_.width && r < cells_.height) image.at<uchar>(r, c) = 0;
   };
-  for (const auto& wall : world.Walls()) {
-    const int n = static_cast<int>(std::ceil(wall.Length() / (0.25 * res)));
-    for (int i = 0; i <= n; ++i) mark(wall.a + (wall.b - wall.a) * (double(i) / n));
-  }
-  for (const auto& pillar : world.Cylinders()) {
-    const int n =
-        std::max(16, static_cast<int>(std::ceil(2 * geometry::kPi * pillar.radius / (0.25 * res))));
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * geometry::kPi * i / n;
-      mark(pillar.centre + pillar.radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
-    }
-  }
+  for (const auto& p : world_model::OutlinePoints(world, 0.25 * res, 16)) mark(p);
   cv::Mat distance;
   cv::distanceTransform(image, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   // The gains depend on distances up to the coarse field's blur plus the

@@ -7,25 +7,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "structloc/world_model/outline_points.hpp"
+
 namespace structloc::localisation_core {
 namespace {
 
-// The map's outline as points every `step` metres along walls and pillar outlines.
+// The map's outline as points every `step` metres, spread over the map so
+// that a motion that misses shows it early.
 std::vector<Eigen::Vector2d> Outline(const world_model::WorldModel& world, double step) {
-  std::vector<Eigen::Vector2d> samples;
-  for (const auto& wall : world.Walls()) {
-    const int n = std::max(1, static_cast<int>(std::ceil(wall.Length() / step)));
-    for (int i = 0; i <= n; ++i) samples.push_back(wall.a + (wall.b - wall.a) * (double(i) / n));
-  }
-  for (const auto& pillar : world.Cylinders()) {
-    const int n =
-        std::max(4, static_cast<int>(std::ceil(2.0 * geometry::kPi * pillar.radius / step)));
-    for (int i = 0; i < n; ++i) {
-      const double a = 2.0 * geometry::kPi * i / n;
-      samples.push_back(pillar.centre + pillar.radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
-    }
-  }
-  // Spread over the map, so that a motion that misses shows it early.
+  const auto samples = world_model::OutlinePoints(world, step, 4);
   std::vector<Eigen::Vector2d> spread(samples.size());
   size_t stride = 7919;
   while (!samples.empty() && std::gcd(stride, samples.size()) != 1) stride += 2;
@@ -60,13 +50,6 @@ std::vector<geometry::Pose2D> Motions(const world_model::Wall& from, const world
     motions.push_back({shift.x(), shift.y(), m.theta});
   }
   return motions;
-}
-
-// Whether the motion is distinct from the identity: a turn by the distinct
-// heading, or a shift by the distinct distance.
-bool MovesDistinctly(const geometry::Pose2D& m, const GlobalLocaliserOptions& options) {
-  return std::abs(m.theta) > options.distinct_heading_rad ||
-         std::hypot(m.x, m.y) > options.distinct_distance_m;
 }
 
 // Two motions found from different walls that are one.
@@ -115,7 +98,7 @@ std::vector<geometry::Pose2D> FindMapTwins(const world_model::WorldModel& world,
     for (const auto* to : longest) {
       if (std::abs(from->Length() - to->Length()) > options.length_tolerance_m) continue;
       for (const auto& motion : Motions(*from, *to)) {
-        if (!MovesDistinctly(motion, localiser.Options())) continue;
+        if (!Distinct(geometry::Pose2D{}, motion, localiser.Options())) continue;  // the identity
         if (std::any_of(twins.begin(), twins.end(),
                         [&](const Twin& t) { return same(t.motion, motion); }))
           continue;
