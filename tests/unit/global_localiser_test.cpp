@@ -247,6 +247,33 @@ TEST(GlobalLocalisation, TheBranchAndBoundFindsWhatScoringEveryPositionFinds) {
   }
 }
 
+// In the corridor of twelve identical rooms a scan from inside one room fits
+// each of them as well. The hits of each room are many (neighbouring lattice
+// positions and headings) and only the best of each neighbourhood is refined:
+// every room must still be among the ranked poses, or the search would look
+// surer than it is.
+TEST(GlobalLocalisation, EachOfTheIdenticalRoomsIsRanked) {
+  const auto world =
+      world_model::LoadWorldModel(std::string(STRUCTLOC_SOURCE_DIR) + "/maps/room_corridor.xml");
+  const auto scene = world_model::Scene::FromWorld(world);
+  const GlobalLocaliser localiser(world, GlobalLocaliserOptions{});
+  std::mt19937 rng(13);
+  const geometry::Pose2D truth{27.3, 10.9, 1.4};  // in the sixth room, facing its back wall
+  const auto result = localiser.Locate(
+      Points(testing::CastScan(scene, truth, {541, 4.71238898038469, 30.0, 0.01}, rng)));
+  EXPECT_EQ(result.decision, GlobalDecision::kAmbiguous);
+  int rooms = 0;
+  for (int room = 0; room < 12; ++room) {
+    const geometry::Pose2D same{truth.x + 5.0 * (room - 5), truth.y, truth.theta};
+    const bool ranked = std::any_of(
+        result.candidates.begin(), result.candidates.end(),
+        [&](const localisation_core::GlobalCandidate& c) { return Close(c.pose, same); });
+    rooms += ranked ? 1 : 0;
+    std::printf("room %d: %s\n", room, ranked ? "ranked" : "not ranked");
+  }
+  EXPECT_EQ(rooms, 12);
+}
+
 TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   const testing::OfficeScene office(2 * geometry::kPi);
   GlobalLocaliserOptions options;
@@ -278,6 +305,13 @@ TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
   options = {};
   options.coarse_points = options.max_points + 1;
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.max_points = 400;
+  options.coarse_points = 300;  // its 16-bit gains no longer sum exactly in a float
+  EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
+  options = {};
+  options.refine_precision_m = 0.0;  // climbs that never end
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
 }
 

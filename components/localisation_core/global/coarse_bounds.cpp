@@ -3,35 +3,43 @@
 // takes the largest value under the square).
 #include "structloc/localisation_core/global/coarse_bounds.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <opencv2/imgproc.hpp>
 
 namespace structloc::localisation_core {
-CoarseBounds::CoarseBounds(const std::vector<float>& gain, int width, int height, int step_cells,
-                           int levels)
+
+CoarseGain ToCoarseGain(double gain) {
+  return static_cast<CoarseGain>(std::lround(65535.0 * std::clamp(gain, 0.0, 1.0)));
+}
+
+CoarseBounds::CoarseBounds(const std::vector<CoarseGain>& gain, int width, int height,
+                           int step_cells, int levels)
     : width_(width), height_(height) {
-  const cv::Mat source(height, width, CV_32F, const_cast<float*>(gain.data()));
+  const cv::Mat source(height, width, CV_16U, const_cast<CoarseGain*>(gain.data()));
   for (int level = 1; level <= levels; ++level) {
     // A point o cells from the block's positions p .. p + reach falls into
     // cells p + o .. p + o + reach. The grid has `reach` more columns and
     // rows before the field's first, for points that fall before it from
     // the block's first position but not from its last.
     const int reach = ((1 << level) - 1) * step_cells;
-    cv::Mat padded(height + reach, width + reach, CV_32F, cv::Scalar(0));
+    cv::Mat padded(height + reach, width + reach, CV_16U, cv::Scalar(0));
     source.copyTo(padded(cv::Rect(reach, reach, width, height)));
     const cv::Mat square = cv::Mat::ones(reach + 1, reach + 1, CV_8U);
     cv::Mat dilated;
     cv::dilate(padded, dilated, square, cv::Point(0, 0), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-    grids_.emplace_back(dilated.begin<float>(), dilated.end<float>());
+    grids_.emplace_back(dilated.begin<CoarseGain>(), dilated.end<CoarseGain>());
     reach_.push_back(reach);
   }
 }
 
 float CoarseBounds::Bound(int level, int column, int row, const int* offsets, size_t n) const {
-  const float* grid = grids_[static_cast<size_t>(level - 1)].data();
+  const CoarseGain* grid = grids_[static_cast<size_t>(level - 1)].data();
   const int reach = reach_[static_cast<size_t>(level - 1)];
   const auto columns = static_cast<unsigned>(width_ + reach);
   const auto rows = static_cast<unsigned>(height_ + reach);
-  float sum = 0.0f;
+  uint32_t sum = 0;
   for (size_t i = 0; i < n; ++i) {
     // In the padded grid; off it (a negative cell wraps to a large unsigned
     // one) the block's points all fall off the field and count nothing.
@@ -39,7 +47,7 @@ float CoarseBounds::Bound(int level, int column, int row, const int* offsets, si
     const auto r = static_cast<unsigned>(row + reach + offsets[2 * i + 1]);
     if (c < columns && r < rows) sum += grid[static_cast<size_t>(r) * columns + c];
   }
-  return sum;
+  return static_cast<float>(sum);
 }
 
 }  // namespace structloc::localisation_core

@@ -162,19 +162,19 @@ void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& heading
   const int column = CellColumn(g_.positions_[k].x()), row = CellRow(g_.positions_[k].y());
   const auto width = static_cast<unsigned>(cells.width),
              height = static_cast<unsigned>(cells.height);
-  const float* gain = g_.coarse_gain_.data();
+  const CoarseGain* gain = g_.coarse_gain_.data();
   const size_t n = coarse_count_;
   std::fill(scores_.begin(), scores_.end(), -1.0f);  // not scored: never the best
   for (const uint16_t h : headings) {
     const int* off = &offsets_[static_cast<size_t>(h) * n * 2];
-    float sum = 0.0f;
+    uint32_t sum = 0;
     for (size_t i = 0; i < n; ++i) {
       // Off the grid (a negative cell wraps to a large unsigned one): nothing.
       const auto c = static_cast<unsigned>(column + off[2 * i]);
       const auto r = static_cast<unsigned>(row + off[2 * i + 1]);
       if (c < width && r < height) sum += gain[static_cast<size_t>(r) * width + c];
     }
-    scores_[h] = sum;
+    scores_[h] = static_cast<float>(sum);  // exact: coarse_points <= 256
     work_ += n;
   }
   // The best heading here, and the best one clearly turned from it.

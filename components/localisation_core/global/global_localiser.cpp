@@ -62,6 +62,14 @@ void Check(const GlobalLocaliserOptions& o) {
     throw std::invalid_argument("global localiser option min_score must lie in (0, 1]");
   if (!(o.ambiguity_margin > 0.0 && o.ambiguity_margin < 1.0))
     throw std::invalid_argument("global localiser option ambiguity_margin must lie in (0, 1)");
+  if (!(o.refine_precision_m > 0.0 && o.refine_precision_m < 0.5 * o.coarse_step_m))
+    throw std::invalid_argument(
+        "global localiser option refine_precision_m must lie between 0 and half of coarse_step_m "
+        "(the refinement's first step)");
+  if (o.coarse_points > 256)
+    throw std::invalid_argument(
+        "global localiser option coarse_points must be at most 256 (a coarse score sums one "
+        "16-bit gain a point, exactly only up to 256 points)");
   if (o.coarse_points > o.max_points)
     throw std::invalid_argument(
         "global localiser option coarse_points must not exceed max_points (the coarse search "
@@ -215,7 +223,7 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
       fine_gain_[i] = static_cast<float>(1.0 - fine * fine / (t * t));
       const double sharp = std::min(d, tr);
       rank_gain_[i] = static_cast<float>(1.0 - sharp * sharp / (tr * tr));
-      coarse_gain_[i] = static_cast<float>(1.0 - coarse * coarse / (t * t));
+      coarse_gain_[i] = ToCoarseGain(1.0 - coarse * coarse / (t * t));
       wall_distance_[i] =
           static_cast<uint8_t>(std::min(255.0f, std::floor(distance.at<float>(r, c))));
     }
@@ -417,7 +425,8 @@ std::vector<Eigen::Vector2d> GlobalLocaliser::FitPoints(const std::vector<Eigen:
 
 geometry::Pose2D GlobalLocaliser::Polish(const std::vector<Eigen::Vector2d>& fit_points,
                                          const geometry::Pose2D& laser_pose) const {
-  auto climb = StartClimb(rank_gain_, fit_points, laser_pose, 0.05, 0.01, nullptr);
+  auto climb =
+      StartClimb(rank_gain_, fit_points, laser_pose, 0.05, 0.01, kPolishPrecisionM, nullptr);
   while (!climb.Done()) ClimbRound(rank_gain_, fit_points, climb, nullptr);
   return climb.pose;
 }
@@ -462,8 +471,9 @@ bool GlobalLocaliser::InWindow(const geometry::Pose2D& pose, const SearchWindow&
 GlobalLocaliser::Climb GlobalLocaliser::StartClimb(const std::vector<float>& gain,
                                                    const std::vector<Eigen::Vector2d>& points,
                                                    const geometry::Pose2D& pose, double step,
-                                                   double turn, uint64_t* work) const {
-  Climb climb{pose, 0.0, step, turn, {}, {}};
+                                                   double turn, double precision_m,
+                                                   uint64_t* work) const {
+  Climb climb{pose, 0.0, step, turn, precision_m, {}, {}};
   TurnPoints(points, pose.theta, climb.turned);
   climb.score = TurnedScore(gain, climb.turned, pose.x, pose.y, work);
   return climb;

@@ -5,22 +5,31 @@
 // correlative matcher, here exact for the candidates the search keeps. Level
 // L covers blocks of 2^L x 2^L lattice positions; its grid holds, per cell,
 // the largest coarse gain in the square of cells that a point looked up from
-// any position of the block can fall into.
+// any position of the block can fall into. Gains are held as 16-bit counts
+// of 1/65535 (CoarseGain), half the memory of floats, so that the field of a
+// floor stays in the cache; sums of them are exact.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace structloc::localisation_core {
 
+// A gain in [0, 1] as a count of 1/65535.
+using CoarseGain = uint16_t;
+CoarseGain ToCoarseGain(double gain);
+
 class CoarseBounds {
  public:
-  // Levels 1..levels over `gain` (width x height cells, gains >= 0, row
-  // major), for lattice positions `step_cells` whole cells apart.
-  CoarseBounds(const std::vector<float>& gain, int width, int height, int step_cells, int levels);
+  // Levels 1..levels over `gain` (width x height cells, row major), for
+  // lattice positions `step_cells` whole cells apart.
+  CoarseBounds(const std::vector<CoarseGain>& gain, int width, int height, int step_cells,
+               int levels);
   CoarseBounds() = default;
 
   int Levels() const { return static_cast<int>(grids_.size()); }
-  // At least the coarse score (the sum of the gains of the cells the points
+  // At least the coarse score (the sum of the gains, in counts, of the cells the points
   // fall into, points off the grid counting nothing) of every position of a
   // level-`level` block whose first (lowest x and y) position lies in cell
   // (column, row), for points `offsets` (column, row pairs, n of them) cells
@@ -29,8 +38,8 @@ class CoarseBounds {
 
  private:
   int width_ = 0, height_ = 0;
-  std::vector<std::vector<float>> grids_;  // level L at L - 1
-  std::vector<int> reach_;                 // level L's square: reach_[L - 1] + 1 cells a side
+  std::vector<std::vector<CoarseGain>> grids_;  // level L at L - 1
+  std::vector<int> reach_;                      // level L's square: reach_[L - 1] + 1 cells a side
 };
 
 }  // namespace structloc::localisation_core

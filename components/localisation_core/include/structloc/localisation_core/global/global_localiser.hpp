@@ -49,6 +49,10 @@ struct GlobalLocaliserOptions {
   // (for 0.1-0.4 s more per scan, measured when the search took three times
   // as long as now).
   int coarse_keep = 3000;
+  // Refinement climbs stop once their step falls to this: the ranked poses
+  // are polished again from 0.05 m, so the refinement has only to tell the
+  // places apart and order them.
+  double refine_precision_m = 0.02;
   double truncation_m = 0.3;          // refinement: points farther from a surface count nothing
   int ranked = 30;                    // distinct refined poses polished and ranked
   double rank_truncation_m = 0.15;    // ranking: a point farther than this explains nothing
@@ -230,7 +234,8 @@ class GlobalLocaliser {
   struct Climb {
     geometry::Pose2D pose;
     double score = 0.0, step = 0.0, turn = 0.0;
-    bool Done() const { return !(step > 0.005); }
+    double precision = 0.0;  // done once the step falls to this
+    bool Done() const { return !(step > precision); }
     // The points turned to the pose's heading, in cells (TurnPoints), and
     // to a trial heading: the moves in x and y only shift them.
     std::vector<Eigen::Vector2d> turned, trial_turned;
@@ -245,8 +250,13 @@ class GlobalLocaliser {
   // Bilinear gain at cell coordinates (column, row) counted from the centre
   // of cell (0, 0); 0 off the grid.
   double GainAtCell(const std::vector<float>& gain, double gx, double gy) const;
+  // A climb from `pose` with first moves of `step` and `turn`, done once the
+  // step falls to `precision_m`.
   Climb StartClimb(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
-                   const geometry::Pose2D& pose, double step, double turn, uint64_t* work) const;
+                   const geometry::Pose2D& pose, double step, double turn, double precision_m,
+                   uint64_t* work) const;
+  // Polishing climbs (on the sharp field) stop at this step.
+  static constexpr double kPolishPrecisionM = 0.005;
   void ClimbRound(const std::vector<float>& gain, const std::vector<Eigen::Vector2d>& points,
                   Climb& climb, uint64_t* work) const;
 
@@ -267,10 +277,10 @@ class GlobalLocaliser {
     std::vector<int> positions_before;
   };
   Lattice lattice_;
-  CoarseBounds coarse_bounds_;      // of coarse_gain_ over blocks of the lattice
-  std::vector<float> fine_gain_;    // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
-  std::vector<float> rank_gain_;    // the same with the ranking truncation
-  std::vector<float> coarse_gain_;  // the same with d shortened by coarse_blur_m
+  CoarseBounds coarse_bounds_;    // of coarse_gain_ over blocks of the lattice
+  std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
+  std::vector<float> rank_gain_;  // the same with the ranking truncation
+  std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
   // Per cell: how far (in whole cells, centre to centre, rounded down and at
   // most 255) the nearest cell a wall or pillar outline passes through is; 0
   // in such a cell. A byte per cell, so that tracing a beam through the map
@@ -329,6 +339,8 @@ class GlobalSearch {
                   std::vector<BoundedHeading>& out);
   void ExpandBlock(const Block& block);
   void SelectHits();
+  // Of the kept hits, drops each one next to a better one (DropNeighbouredHits).
+  void DropNeighbouredHits();
   // One round of the climb of hit (candidate) `i`; true when its climb is done.
   bool RefineHit(size_t i);
   void ChooseRanked();
@@ -378,6 +390,7 @@ class GlobalSearch {
   };
   std::vector<CoarseHit> hits_;
   size_t keep_ = 0;
+  std::vector<char> dropped_;  // per kept hit: next to a better one
   std::vector<GlobalCandidate> converged_;
   std::vector<GlobalCandidate> refined_;
   std::optional<GlobalLocaliser::Climb> climb_;  // of the hit or candidate next_
