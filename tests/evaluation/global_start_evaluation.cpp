@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -36,12 +35,6 @@
 namespace {
 
 using namespace structloc;
-
-double ThreadCpuUs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
-}
 
 std::vector<simulation_core::SimScan> Simulate(const simulation_core::Scenario& scenario) {
   simulation_core::Simulation sim(scenario);
@@ -103,9 +96,9 @@ Trial Run(const world_model::WorldModel& world, const simulation_core::Scenario&
       trial.travel_m += std::hypot(s.odometry.x - p.x, s.odometry.y - p.y);
     }
     const bool holding = start.HoldingHypotheses();
-    const double t0 = ThreadCpuUs();
+    const double t0 = testing::ThreadCpuUs();
     const auto attempt = start.Try(ToSessionScan(s), s.odometry);
-    const double cpu_us = ThreadCpuUs() - t0;
+    const double cpu_us = testing::ThreadCpuUs() - t0;
     trial.cpu_us += cpu_us;
     ++trial.scans;
     if (attempt.searched) trial.search_cpu_us += cpu_us;

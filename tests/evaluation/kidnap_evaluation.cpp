@@ -18,7 +18,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -37,12 +36,6 @@ namespace {
 
 using namespace structloc;
 namespace fs = std::filesystem;
-
-double ThreadCpuUs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
-}
 
 std::vector<std::string> Lines(const fs::path& path) {
   std::ifstream in(path);
@@ -187,10 +180,10 @@ int main(int argc, char** argv) {
       o.truth_path = dir / "truth.tum";
       o.out_tum = dir / "estimate.tum";
       o.initial_pose = scenario.initial_pose;
-      const double cpu0 = ThreadCpuUs();
+      const double cpu0 = testing::ThreadCpuUs();
       const auto report = replay::RunReplay(o);
-      const double cpu_per_scan =
-          (ThreadCpuUs() - cpu0) / static_cast<double>(std::max<size_t>(1, report.scans_used));
+      const double cpu_per_scan = (testing::ThreadCpuUs() - cpu0) /
+                                  static_cast<double>(std::max<size_t>(1, report.scans_used));
       cpu_per_scan_us.push_back(cpu_per_scan);
       const auto truth = log_formats::ReadTum(o.truth_path);
       auto truth_at = [&](double stamp) {

@@ -1,17 +1,25 @@
 // What the scenario evaluations (global start, kidnapping) share: their
-// command line "SCENARIO.xml [COUNT] [--seed N] [--check] [--start SCAN]"
-// and the median they print.
+// command line "SCENARIO.xml [COUNT] [--seed N] [--check] [--start SCAN]",
+// the median they print and the thread's CPU clock they time with.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace structloc::testing {
+
+// The calling thread's CPU time so far, in microseconds.
+inline double ThreadCpuUs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
+}
 
 struct TrialArguments {
   std::string scenario;
