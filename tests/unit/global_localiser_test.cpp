@@ -311,7 +311,7 @@ TEST(GlobalLocalisation, RefusesOptionsOutOfRange) {
   options.coarse_points = 300;  // its 16-bit gains no longer sum exactly in a float
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
   options = {};
-  options.refine_precision_m = 0.0;  // climbs that never end
+  options.refine_precision_m = 0.0;  // climbs that go on until the step underflows
   EXPECT_THROW(GlobalLocaliser(office.world, options), std::invalid_argument);
 }
 

@@ -165,7 +165,7 @@ void GlobalSearch::SelectHits() {
       keep_ = std::min(static_cast<size_t>(tied_end - hits_.begin()), 2 * keep);
     }
   }
-  DropNeighbouredHits();
+  KeepLocalMaxima();
   // Refined by heading and position (whatever order the coarse phase found
   // them in), so that neighbouring climbs look up neighbouring cells, still
   // in the cache.
@@ -178,16 +178,20 @@ void GlobalSearch::SelectHits() {
   next_ = 0;
 }
 
-// Non-maximum suppression: a kept hit is dropped when a kept hit at its own
-// or a neighbouring lattice position (one coarse step in x, y or both),
-// turned at most one coarse heading step from it, scores more (of equal ones
-// the first in position and heading order stays). Their climbs start a
-// lattice step and a heading step apart at most, which their first moves
-// (half of each) cover, and nearly always meet: in the pillared hall the
-// 3000 hits kept climbed to about 600 distinct poses. Neighbours are never
-// distinct places for the ranking (0.35 m and 1.5 deg apart at most), so no
-// rival is dropped for another.
-void GlobalSearch::DropNeighbouredHits() {
+// Non-maximum suppression: only the local maxima of the coarse score are
+// refined. A kept hit is dropped when a kept hit at its own or a neighbouring
+// lattice position (one coarse step in x, y or both), turned at most one
+// coarse heading step from it and not a distinct place from it, scores more
+// (of equal ones the first in position and heading order stays). The better
+// neighbour may be dropped in turn, so a dropped hit's climb is not always
+// replaced by one started next to it; what is refined is every peak of the
+// coarse score, and each place whose score peaks is climbed from its peak.
+// Climbs from neighbouring hits start at most a lattice step and a heading
+// step apart, which their first moves (half of each) cover: in the pillared
+// hall the 3000 hits kept climbed to about 600 distinct poses, and about 600
+// local maxima remain. With the default options neighbours are never
+// distinct places (0.35 m and 1.5 deg apart at most).
+void GlobalSearch::KeepLocalMaxima() {
   const auto kept_end = hits_.begin() + static_cast<std::ptrdiff_t>(keep_);
   auto by_place = [](const CoarseHit& a, const CoarseHit& b) {
     return a.position != b.position ? a.position < b.position : a.heading < b.heading;
@@ -195,6 +199,10 @@ void GlobalSearch::DropNeighbouredHits() {
   std::sort(hits_.begin(), kept_end, by_place);
   const auto& lattice = g_.lattice_;
   const double step = g_.options_.coarse_step_m;
+  auto pose = [&](const CoarseHit& h) {
+    const Eigen::Vector2d& at = g_.positions_[static_cast<size_t>(h.position)];
+    return geometry::Pose2D{at.x(), at.y(), geometry::WrapAngle(h.heading * heading_step_)};
+  };
   dropped_.assign(keep_, 0);
   for (size_t i = 0; i < keep_; ++i) {
     const CoarseHit& hit = hits_[i];
@@ -212,7 +220,8 @@ void GlobalSearch::DropNeighbouredHits() {
           const auto j = static_cast<size_t>(other - hits_.begin());
           const int apart = std::abs(other->heading - hit.heading);
           const bool near = std::min(apart, headings_ - apart) <= 1;
-          if (j != i && near && (other->score > hit.score || (other->score == hit.score && j < i)))
+          const bool better = other->score > hit.score || (other->score == hit.score && j < i);
+          if (j != i && near && better && !Distinct(pose(*other), pose(hit), g_.options_))
             dropped_[i] = 1;
         }
       }

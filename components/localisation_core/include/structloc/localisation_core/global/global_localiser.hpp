@@ -3,8 +3,9 @@
 // thesis' position update needs a prior pose; this search gives it one. The
 // map's walls and pillar outlines are drawn into a grid and turned into a
 // distance field (OpenCV's distance transform); a coarse search over positions
-// and headings with a blurred field keeps the best candidates, each is refined
-// by a local search on the fine field, and the distinct refined poses are
+// and headings with a blurred field keeps the best candidates, those that are
+// the best of their neighbourhood are refined by a local search on the fine
+// field, and the distinct refined poses are
 // polished and ranked by the share of scan points they explain (beams that
 // would pass through a wall explain nothing). The best pose is "found" only
 // when it explains enough points and no distinct runner-up explains nearly as
@@ -46,12 +47,13 @@ struct GlobalLocaliserOptions {
   // Coarse candidates refined. With 1000, the true pose of 3 in 200 random
   // Freiburg 079 scans was never refined (long corridors fill the list with
   // near-identical hits) although it explains the scan best; 3000 finds them
-  // (for 0.1-0.4 s more per scan, measured when the search took three times
-  // as long as now).
+  // (for 0.1-0.4 s more per scan, measured when a search took about seven
+  // times as long as now).
   int coarse_keep = 3000;
-  // Refinement climbs stop once their step falls to this: the ranked poses
-  // are polished again from 0.05 m, so the refinement has only to tell the
-  // places apart and order them.
+  // Refinement climbs stop once their step is at most this (the last moves
+  // tried are up to twice as long): the ranked poses are polished again from
+  // 0.05 m, so the refinement has only to tell the places apart and order
+  // them.
   double refine_precision_m = 0.02;
   double truncation_m = 0.3;          // refinement: points farther from a surface count nothing
   int ranked = 30;                    // distinct refined poses polished and ranked
@@ -230,7 +232,8 @@ class GlobalLocaliser {
   double Gain(const std::vector<float>& gain, double x, double y) const;  // bilinear, map frame
   // Hill climbing on a field, a round at a time (so that a search's slice
   // can stop between rounds): from `pose` with moves of `step` and `turn`,
-  // halved whenever no move raises the score, until the step is below 5 mm.
+  // halved whenever no move raises the score, until the step is at most
+  // `precision`.
   struct Climb {
     geometry::Pose2D pose;
     double score = 0.0, step = 0.0, turn = 0.0;
@@ -292,7 +295,7 @@ class GlobalLocaliser {
 
 // One search of the global localiser, done a slice at a time: a tracker that
 // lost the map, or a component without a pose, searches over several scans
-// instead of stalling one (a search of a building takes 0.05-0.3 s). Each
+// instead of stalling one (a search of a building takes about 0.05-0.1 s). Each
 // Advance does about `work` more units (one unit: one scan point looked up in
 // a distance field; a point checked for a beam through a wall counts ten),
 // stopping between positions (or blocks of them), candidates or rankings;
@@ -339,8 +342,9 @@ class GlobalSearch {
                   std::vector<BoundedHeading>& out);
   void ExpandBlock(const Block& block);
   void SelectHits();
-  // Of the kept hits, drops each one next to a better one (DropNeighbouredHits).
-  void DropNeighbouredHits();
+  // Of the kept hits, keeps only those no neighbour outscores (see
+  // global_search.cpp).
+  void KeepLocalMaxima();
   // One round of the climb of hit (candidate) `i`; true when its climb is done.
   bool RefineHit(size_t i);
   void ChooseRanked();
@@ -390,7 +394,7 @@ class GlobalSearch {
   };
   std::vector<CoarseHit> hits_;
   size_t keep_ = 0;
-  std::vector<char> dropped_;  // per kept hit: next to a better one
+  std::vector<char> dropped_;  // per kept hit: a neighbour outscores it
   std::vector<GlobalCandidate> converged_;
   std::vector<GlobalCandidate> refined_;
   std::optional<GlobalLocaliser::Climb> climb_;  // of the hit or candidate next_
