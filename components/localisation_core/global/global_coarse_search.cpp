@@ -73,13 +73,7 @@ void GlobalSearch::ExpandBlock(const Block& block) {
   const auto& lattice = g_.lattice_;
   const int half = 1 << (block.level - 1);
   if (block.level == 1) {
-    for (int row = block.row; row < std::min(block.row + 2, lattice.rows); ++row) {
-      for (int column = block.column; column < std::min(block.column + 2, lattice.columns);
-           ++column) {
-        const int k = lattice.position[static_cast<size_t>(row) * lattice.columns + column];
-        if (k >= 0) CoarsePosition(static_cast<size_t>(k), expanding_);
-      }
-    }
+    CoarseBlock(block);
     return;
   }
   Block quarters[4];
@@ -177,13 +171,46 @@ void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& heading
     scores_[h] = static_cast<float>(sum);  // exact: coarse_points <= 256
     work_ += n;
   }
+  AddHits(k, scores_);
+}
+
+// The four positions of a level-1 block at once, from the field laid out by
+// lattice phase (LatticeGains): the same sums as CoarsePosition's for each,
+// and their hits added in the same order.
+void GlobalSearch::CoarseBlock(const Block& block) {
+  const auto& lattice = g_.lattice_;
+  const size_t n = coarse_count_;
+  int positions = 0;
+  int k[4];
+  for (int q = 0; q < 4; ++q) {
+    const int column = block.column + q % 2, row = block.row + q / 2;
+    k[q] = column < lattice.columns && row < lattice.rows
+               ? lattice.position[static_cast<size_t>(row) * lattice.columns + column]
+               : -1;
+    positions += k[q] >= 0 ? 1 : 0;
+    std::fill(block_scores_[q].begin(), block_scores_[q].end(), -1.0f);
+  }
+  for (const uint16_t h : expanding_) {
+    const LatticeGains::Offset* offsets = &lattice_offsets_[static_cast<size_t>(h) * n];
+    uint32_t sums[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < n; ++i)
+      g_.lattice_gains_.AddBlock(offsets[i], block.column, block.row, sums);
+    for (int q = 0; q < 4; ++q) block_scores_[q][h] = static_cast<float>(sums[q]);
+    work_ += n * static_cast<uint64_t>(positions);
+  }
+  for (int q = 0; q < 4; ++q) {
+    if (k[q] >= 0) AddHits(static_cast<size_t>(k[q]), block_scores_[q]);
+  }
+}
+
+void GlobalSearch::AddHits(size_t k, const std::vector<float>& scores) {
   // The best heading here, and the best one clearly turned from it.
   const int best =
-      static_cast<int>(std::max_element(scores_.begin(), scores_.end()) - scores_.begin());
+      static_cast<int>(std::max_element(scores.begin(), scores.end()) - scores.begin());
   int second = -1;
   for (int h = 0; h < headings_; ++h) {
     const int apart = std::min(std::abs(h - best), headings_ - std::abs(h - best));
-    if (apart >= separation_ && (second < 0 || scores_[h] > scores_[second])) second = h;
+    if (apart >= separation_ && (second < 0 || scores[h] > scores[second])) second = h;
   }
   const size_t keep = static_cast<size_t>(g_.options_.coarse_keep);
   auto add = [&](float score, int heading) {
@@ -197,8 +224,8 @@ void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& heading
       std::push_heap(kept_scores_.begin(), kept_scores_.end(), std::greater<float>());
     }
   };
-  add(scores_[best], best);
-  if (second >= 0 && scores_[second] >= 0.0f) add(scores_[second], second);
+  add(scores[best], best);
+  if (second >= 0 && scores[second] >= 0.0f) add(scores[second], second);
 }
 
 }  // namespace structloc::localisation_core

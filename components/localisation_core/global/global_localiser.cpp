@@ -255,8 +255,26 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   cv::Mat positions_before;
   cv::integral(clear, positions_before, CV_32S);
   lattice_.positions_before.assign(positions_before.begin<int>(), positions_before.end<int>());
-  coarse_bounds_ = CoarseBounds(coarse_gain_, cells_.width, cells_.height,
-                                static_cast<int>(std::lround(step / res)), kCoarseBoundLevels);
+  const int step_cells = static_cast<int>(std::lround(step / res));
+  coarse_bounds_ =
+      CoarseBounds(coarse_gain_, cells_.width, cells_.height, step_cells, kCoarseBoundLevels);
+  // The search looks a position's cell up as the nearest cell corner; the
+  // lattice starts on one and steps whole cells.
+  const int first_column = static_cast<int>(std::lround((lattice_.x0 - cells_.x0) / res));
+  const int first_row = static_cast<int>(std::lround((lattice_.y0 - cells_.y0) / res));
+  for (int j = 0; j < lattice_.rows; ++j) {
+    for (int i = 0; i < lattice_.columns; ++i) {
+      const int k = lattice_.position[static_cast<size_t>(j) * lattice_.columns + i];
+      if (k < 0) continue;
+      const auto& p = positions_[static_cast<size_t>(k)];
+      if (std::lround((p.x() - cells_.x0) / res) != first_column + step_cells * i ||
+          std::lround((p.y() - cells_.y0) / res) != first_row + step_cells * j)
+        throw std::logic_error("global localiser: lattice position " + std::to_string(k) +
+                               " is not a whole number of cells from the first");
+    }
+  }
+  lattice_gains_ =
+      LatticeGains(coarse_gain_, cells_.width, cells_.height, step_cells, first_column, first_row);
 }
 
 // Every `step`-th of the points, at most `most` of them, spread over the scan.

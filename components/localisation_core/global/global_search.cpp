@@ -92,6 +92,9 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
     }
   }
   work_ += offsets_.size();
+  lattice_offsets_.reserve(offsets_.size() / 2);
+  for (size_t i = 0; i + 1 < offsets_.size(); i += 2)
+    lattice_offsets_.push_back(g_.lattice_gains_.Prepare(offsets_[i], offsets_[i + 1]));
   separation_ =
       std::max(1, static_cast<int>(std::ceil(o.distinct_heading_rad * 2 / heading_step_)));
   // A lattice position half a lattice diagonal outside the window can still
@@ -112,6 +115,7 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
   hits_.reserve(window_ ? 64 : static_cast<size_t>(o.coarse_keep) * 2);
   kept_scores_.reserve(static_cast<size_t>(o.coarse_keep));
   scores_.resize(static_cast<size_t>(headings_));
+  for (auto& scores : block_scores_) scores.resize(static_cast<size_t>(headings_));
 }
 
 bool GlobalSearch::Advance(uint64_t work) {

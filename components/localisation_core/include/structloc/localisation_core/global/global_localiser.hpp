@@ -23,6 +23,7 @@
 
 #include "structloc/geometry/pose2d.hpp"
 #include "structloc/localisation_core/global/coarse_bounds.hpp"
+#include "structloc/localisation_core/global/lattice_gains.hpp"
 #include "structloc/world_model/world_model.hpp"
 
 namespace structloc::localisation_core {
@@ -281,6 +282,7 @@ class GlobalLocaliser {
   };
   Lattice lattice_;
   CoarseBounds coarse_bounds_;    // of coarse_gain_ over blocks of the lattice
+  LatticeGains lattice_gains_;    // coarse_gain_ laid out by lattice phase
   std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;  // the same with the ranking truncation
   std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
@@ -324,6 +326,8 @@ class GlobalSearch {
   // The coarse scores of position k at `headings` (the others -1), and its
   // hits: the best heading and the best one clearly turned from it.
   void CoarsePosition(size_t k, const std::vector<uint16_t>& headings);
+  // Position k's hits from its scores per heading (-1: not scored).
+  void AddHits(size_t k, const std::vector<float>& scores);
   // The score below which a hit can no longer be among the coarse_keep best.
   float KeepThreshold() const;
   struct BoundedHeading {
@@ -336,6 +340,9 @@ class GlobalSearch {
     float bound = 0.0f;         // the best of its headings' bounds
   };
   bool BlockHasPositions(const Block& block) const;
+  // The coarse scores of a level-1 block's positions at the headings being
+  // expanded, and their hits.
+  void CoarseBlock(const Block& block);
   // The block's headings (of `headings`) whose bound reaches KeepThreshold,
   // into `out`; the block's bound is the best of them.
   void BoundBlock(Block& block, const std::vector<uint16_t>& headings,
@@ -368,12 +375,15 @@ class GlobalSearch {
   // Per heading, per coarse point: its cell's column and row from the
   // position's (the lattice's positions lie on cell corners).
   std::vector<int> offsets_;
+  // The same prepared for LatticeGains, per heading, per coarse point.
+  std::vector<LatticeGains::Offset> lattice_offsets_;
   // A lattice position's cell.
   int CellColumn(double x) const;
   int CellRow(double y) const;
   // With a window, the coarse positions in it (else every position is tried).
   std::vector<size_t> window_positions_;
   std::vector<float> scores_;
+  std::vector<float> block_scores_[4];  // CoarseBlock's, per position of the block
   // The headings positions are scored at: all of them, or a window's.
   std::vector<uint16_t> scored_headings_;
   // The branch and bound over the whole map: the top-level blocks not yet
