@@ -76,6 +76,9 @@ void GlobalSearch::ExpandBlock(const Block& block) {
     CoarseBlock(block);
     return;
   }
+  // A level-2 block's quarters are bounded together (the same bounds).
+  const bool together = block.level == 2;
+  if (together) BoundQuarters(block);
   Block quarters[4];
   int count = 0;
   for (int q = 0; q < 4; ++q) {
@@ -86,7 +89,8 @@ void GlobalSearch::ExpandBlock(const Block& block) {
     if (quarter.column >= lattice.columns || quarter.row >= lattice.rows) continue;
     if (!BlockHasPositions(quarter)) continue;
     quarter_headings_[count].clear();
-    BoundBlock(quarter, expanding_, quarter_headings_[count]);
+    BoundBlock(quarter, expanding_, quarter_headings_[count],
+               together ? &quarter_bounds_[q] : nullptr);
     if (!quarter_headings_[count].empty()) ++count;
   }
   // The most promising quarter goes on top of the stack, so it is expanded next.
@@ -118,8 +122,19 @@ bool GlobalSearch::BlockHasPositions(const Block& block) const {
          0;
 }
 
+void GlobalSearch::BoundQuarters(const Block& block) {
+  const size_t n = coarse_count_;
+  for (const uint16_t h : expanding_) {
+    const LatticeGains::Offset* offsets = &quarter_offsets_[static_cast<size_t>(h) * n];
+    uint32_t sums[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < n; ++i)
+      g_.quarter_gains_.AddBlock(offsets[i], block.column / 2, block.row / 2, sums);
+    for (int q = 0; q < 4; ++q) quarter_bounds_[q][h] = static_cast<float>(sums[q]);
+  }
+}
+
 void GlobalSearch::BoundBlock(Block& block, const std::vector<uint16_t>& headings,
-                              std::vector<BoundedHeading>& out) {
+                              std::vector<BoundedHeading>& out, const std::vector<float>* bounds) {
   const double step = g_.options_.coarse_step_m;
   // The block's first position's cell.
   const int column = CellColumn(g_.lattice_.x0 + block.column * step);
@@ -128,8 +143,10 @@ void GlobalSearch::BoundBlock(Block& block, const std::vector<uint16_t>& heading
   const size_t n = coarse_count_;
   block.bound = -std::numeric_limits<float>::infinity();
   for (const uint16_t h : headings) {
-    const float bound = g_.coarse_bounds_.Bound(block.level, column, row,
-                                                &offsets_[static_cast<size_t>(h) * n * 2], n);
+    const float bound = bounds != nullptr
+                            ? (*bounds)[h]
+                            : g_.coarse_bounds_.Bound(block.level, column, row,
+                                                      &offsets_[static_cast<size_t>(h) * n * 2], n);
     work_ += n;
     if (bound < threshold) continue;
     out.push_back({h, bound});
@@ -158,7 +175,6 @@ void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& heading
              height = static_cast<unsigned>(cells.height);
   const CoarseGain* gain = g_.coarse_gain_.data();
   const size_t n = coarse_count_;
-  std::fill(scores_.begin(), scores_.end(), -1.0f);  // not scored: never the best
   for (const uint16_t h : headings) {
     const int* off = &offsets_[static_cast<size_t>(h) * n * 2];
     uint32_t sum = 0;
@@ -171,7 +187,7 @@ void GlobalSearch::CoarsePosition(size_t k, const std::vector<uint16_t>& heading
     scores_[h] = static_cast<float>(sum);  // exact: coarse_points <= 256
     work_ += n;
   }
-  AddHits(k, scores_);
+  AddHits(k, headings, scores_);
 }
 
 // The four positions of a level-1 block at once, from the field laid out by
@@ -188,7 +204,6 @@ void GlobalSearch::CoarseBlock(const Block& block) {
                ? lattice.position[static_cast<size_t>(row) * lattice.columns + column]
                : -1;
     positions += k[q] >= 0 ? 1 : 0;
-    std::fill(block_scores_[q].begin(), block_scores_[q].end(), -1.0f);
   }
   for (const uint16_t h : expanding_) {
     const LatticeGains::Offset* offsets = &lattice_offsets_[static_cast<size_t>(h) * n];
@@ -199,16 +214,21 @@ void GlobalSearch::CoarseBlock(const Block& block) {
     work_ += n * static_cast<uint64_t>(positions);
   }
   for (int q = 0; q < 4; ++q) {
-    if (k[q] >= 0) AddHits(static_cast<size_t>(k[q]), block_scores_[q]);
+    if (k[q] >= 0) AddHits(static_cast<size_t>(k[q]), expanding_, block_scores_[q]);
   }
 }
 
-void GlobalSearch::AddHits(size_t k, const std::vector<float>& scores) {
-  // The best heading here, and the best one clearly turned from it.
-  const int best =
-      static_cast<int>(std::max_element(scores.begin(), scores.end()) - scores.begin());
+void GlobalSearch::AddHits(size_t k, const std::vector<uint16_t>& headings,
+                           const std::vector<float>& scores) {
+  if (headings.empty()) return;
+  // The best heading here, and the best one clearly turned from it (of
+  // equal ones the first; the headings come in increasing order).
+  int best = headings.front();
+  for (const uint16_t h : headings) {
+    if (scores[h] > scores[best]) best = h;
+  }
   int second = -1;
-  for (int h = 0; h < headings_; ++h) {
+  for (const uint16_t h : headings) {
     const int apart = std::min(std::abs(h - best), headings_ - std::abs(h - best));
     if (apart >= separation_ && (second < 0 || scores[h] > scores[second])) second = h;
   }

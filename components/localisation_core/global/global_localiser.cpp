@@ -275,6 +275,13 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
   }
   lattice_gains_ =
       LatticeGains(coarse_gain_, cells_.width, cells_.height, step_cells, first_column, first_row);
+  // The quarters of a level-2 block are level-1 blocks two lattice steps apart.
+  if (coarse_bounds_.Levels() >= 2) {
+    const int reach = coarse_bounds_.Reach(1);
+    quarter_gains_ =
+        LatticeGains(coarse_bounds_.Grid(1), coarse_bounds_.Columns(1), coarse_bounds_.Rows(1),
+                     2 * step_cells, first_column + reach, first_row + reach);
+  }
 }
 
 // Every `step`-th of the points, at most `most` of them, spread over the scan.

@@ -93,8 +93,11 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
   }
   work_ += offsets_.size();
   lattice_offsets_.reserve(offsets_.size() / 2);
-  for (size_t i = 0; i + 1 < offsets_.size(); i += 2)
+  quarter_offsets_.reserve(offsets_.size() / 2);
+  for (size_t i = 0; i + 1 < offsets_.size(); i += 2) {
     lattice_offsets_.push_back(g_.lattice_gains_.Prepare(offsets_[i], offsets_[i + 1]));
+    quarter_offsets_.push_back(g_.quarter_gains_.Prepare(offsets_[i], offsets_[i + 1]));
+  }
   separation_ =
       std::max(1, static_cast<int>(std::ceil(o.distinct_heading_rad * 2 / heading_step_)));
   // A lattice position half a lattice diagonal outside the window can still
@@ -116,6 +119,7 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
   kept_scores_.reserve(static_cast<size_t>(o.coarse_keep));
   scores_.resize(static_cast<size_t>(headings_));
   for (auto& scores : block_scores_) scores.resize(static_cast<size_t>(headings_));
+  for (auto& bounds : quarter_bounds_) bounds.resize(static_cast<size_t>(headings_));
 }
 
 bool GlobalSearch::Advance(uint64_t work) {

@@ -281,8 +281,11 @@ class GlobalLocaliser {
     std::vector<int> positions_before;
   };
   Lattice lattice_;
-  CoarseBounds coarse_bounds_;    // of coarse_gain_ over blocks of the lattice
-  LatticeGains lattice_gains_;    // coarse_gain_ laid out by lattice phase
+  CoarseBounds coarse_bounds_;  // of coarse_gain_ over blocks of the lattice
+  LatticeGains lattice_gains_;  // coarse_gain_ laid out by lattice phase
+  // coarse_bounds_' level-1 grid laid out for the quarters of level-2 blocks
+  // (empty with fewer levels).
+  LatticeGains quarter_gains_;
   std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;  // the same with the ranking truncation
   std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
@@ -323,11 +326,11 @@ class GlobalSearch {
   // of the window, or (over the whole map) bounds one top-level block or
   // expands one block of the branch and bound into its four quarters.
   void CoarseStep();
-  // The coarse scores of position k at `headings` (the others -1), and its
+  // The coarse scores of position k at `headings` (in increasing order), and its
   // hits: the best heading and the best one clearly turned from it.
   void CoarsePosition(size_t k, const std::vector<uint16_t>& headings);
-  // Position k's hits from its scores per heading (-1: not scored).
-  void AddHits(size_t k, const std::vector<float>& scores);
+  // Position k's hits from its scores at `headings` (in increasing order).
+  void AddHits(size_t k, const std::vector<uint16_t>& headings, const std::vector<float>& scores);
   // The score below which a hit can no longer be among the coarse_keep best.
   float KeepThreshold() const;
   struct BoundedHeading {
@@ -346,7 +349,10 @@ class GlobalSearch {
   // The block's headings (of `headings`) whose bound reaches KeepThreshold,
   // into `out`; the block's bound is the best of them.
   void BoundBlock(Block& block, const std::vector<uint16_t>& headings,
-                  std::vector<BoundedHeading>& out);
+                  std::vector<BoundedHeading>& out, const std::vector<float>* bounds = nullptr);
+  // The bounds of a level-2 block's four quarters at the headings being
+  // expanded, all at once (quarter_gains_), into quarter_bounds_.
+  void BoundQuarters(const Block& block);
   void ExpandBlock(const Block& block);
   void SelectHits();
   // Of the kept hits, keeps only those no neighbour outscores (see
@@ -375,8 +381,10 @@ class GlobalSearch {
   // Per heading, per coarse point: its cell's column and row from the
   // position's (the lattice's positions lie on cell corners).
   std::vector<int> offsets_;
-  // The same prepared for LatticeGains, per heading, per coarse point.
-  std::vector<LatticeGains::Offset> lattice_offsets_;
+  // The same prepared for LatticeGains, per heading, per coarse point: for
+  // the field and for the quarters' bounds.
+  std::vector<LatticeGains::Offset> lattice_offsets_, quarter_offsets_;
+  std::vector<float> quarter_bounds_[4];  // BoundQuarters', per quarter, per heading
   // A lattice position's cell.
   int CellColumn(double x) const;
   int CellRow(double y) const;
