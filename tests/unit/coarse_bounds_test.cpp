@@ -3,11 +3,13 @@
 // coarse score of every position in it, including points that fall off the
 // field from some of the block's positions and not from others. A bound
 // below one score would let the branch and bound drop the best candidate.
+// The four quarters of a block bounded together give the same bounds.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "structloc/localisation_core/global/coarse_bounds.hpp"
+#include "structloc/localisation_core/global/lattice_gains.hpp"
 
 namespace structloc {
 namespace {
@@ -59,6 +61,39 @@ TEST(CoarseBounds, ABlocksBoundIsAtLeastTheScoreOfEachOfItsPositions) {
   const std::vector<int> far_away = {1000, 1000, -1000, 5};
   EXPECT_EQ(bounds.Bound(2, 0, 0, far_away.data(), 2), 0.0f);
   EXPECT_GT(tight, 0);
+}
+
+// The global search bounds a level-2 block's four quarters at once from the
+// level-1 grid laid out by phase (as GlobalLocaliser builds it): the same
+// bounds as one Bound per quarter.
+TEST(CoarseBounds, TheQuartersBoundTogetherAreBoundAsOneByOne) {
+  constexpr int kWidth = 61, kHeight = 44, kStep = 5, kLevels = 2;
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<localisation_core::CoarseGain> gain(static_cast<size_t>(kWidth) * kHeight);
+  for (auto& g : gain) g = localisation_core::ToCoarseGain(unit(rng) < 0.9f ? 0.0f : unit(rng));
+  const localisation_core::CoarseBounds bounds(gain, kWidth, kHeight, kStep, kLevels);
+  const int first_column = 2, first_row = 3;  // the lattice's first position's cell
+  const int reach = bounds.Reach(1);
+  const localisation_core::LatticeGains quarters(bounds.Grid(1), bounds.Columns(1), bounds.Rows(1),
+                                                 2 * kStep, first_column + reach,
+                                                 first_row + reach);
+  std::uniform_int_distribution<int> offset(-70, 70), block(-2, 4);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<int> offsets(2 * 20);
+    for (auto& o : offsets) o = offset(rng);
+    const int i = 4 * block(rng), j = 4 * block(rng);  // a level-2 block's first position
+    uint32_t sums[4] = {0, 0, 0, 0};
+    for (size_t p = 0; p + 1 < offsets.size(); p += 2)
+      quarters.AddBlock(quarters.Prepare(offsets[p], offsets[p + 1]), i / 2, j / 2, sums);
+    for (int q = 0; q < 4; ++q) {
+      const int column = first_column + kStep * (i + 2 * (q % 2));
+      const int row = first_row + kStep * (j + 2 * (q / 2));
+      EXPECT_EQ(static_cast<float>(sums[q]),
+                bounds.Bound(1, column, row, offsets.data(), offsets.size() / 2))
+          << "block at " << i << ", " << j << ", quarter " << q;
+    }
+  }
 }
 
 }  // namespace
