@@ -1,12 +1,14 @@
 // The coarse phase of the global search (see global_localiser.hpp): every
 // lattice position at every heading scored on the blurred field. In a window
 // each position is scored. Over the whole map the lattice is searched by
-// branch and bound: blocks of 16 x 16 positions are bounded (CoarseBounds),
+// branch and bound: blocks of 4 x 4 positions are bounded (CoarseBounds),
 // the most promising first are split into quarters down to single positions,
 // and a block or heading whose bound falls below the coarse_keep-th best hit
 // so far is never looked at again. The hits kept are those that scoring
 // every position would keep: a position's hits score at most its block's
-// bound, and a hit below coarse_keep others is never kept.
+// bound, and a hit below coarse_keep others is never kept. A block's four
+// quarters are bounded, and a 2 x 2 block's positions scored, together
+// (LatticeGains).
 #include <algorithm>
 #include <cmath>
 #include <functional>
