@@ -1,10 +1,10 @@
 // The global search's blurred field (or a grid of its bounds) laid out for
 // its lattice of positions (or of blocks), so that a block of 2 x 2
 // positions is scored (or a block's four quarters bounded) with two short
-// loads a point instead of four scattered ones. Positions lie a whole number of cells
-// (`step`) apart; a point a given offset from each of them falls into cells
-// with the same column and row modulo `step` (the same phase), one step
-// apart. Phase (mx, my) keeps those cells of the field side by side, one per
+// loads a point instead of four scattered ones. Positions lie a whole
+// number of cells (`step`) apart; a point a given offset from each of them
+// falls into cells with the same column and row modulo `step` (the same
+// phase), one step apart. Phase (mx, my) keeps those cells of the field side by side, one per
 // lattice step, so that the cells a point falls into from neighbouring
 // positions are neighbours in memory. Same gains, same sums (integer counts):
 // only the layout differs from the field.
