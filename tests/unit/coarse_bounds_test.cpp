@@ -3,7 +3,7 @@
 // coarse score of every position in it, including points that fall off the
 // field from some of the block's positions and not from others. A bound
 // below one score would let the branch and bound drop the best candidate.
-// The four quarters of a block bounded together give the same bounds.
+// Blocks bounded 2 x 2 at a time give the same bounds.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -63,10 +63,11 @@ TEST(CoarseBounds, ABlocksBoundIsAtLeastTheScoreOfEachOfItsPositions) {
   EXPECT_GT(tight, 0);
 }
 
-// The global search bounds a level-2 block's four quarters at once from the
-// level-1 grid laid out by phase (as GlobalLocaliser builds it): the same
-// bounds as one Bound per quarter.
-TEST(CoarseBounds, TheQuartersBoundTogetherAreBoundAsOneByOne) {
+// The global search bounds blocks of a level 2 x 2 at a time from that
+// level's grid laid out by phase, as GlobalLocaliser builds it (the quarters
+// of a level-2 block at level 1, the top-level blocks at level 2): the same
+// bounds as one Bound per block.
+TEST(CoarseBounds, BlocksBoundTogetherAreBoundAsOneByOne) {
   constexpr int kWidth = 61, kHeight = 44, kStep = 5, kLevels = 2;
   std::mt19937 rng(6);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -74,24 +75,27 @@ TEST(CoarseBounds, TheQuartersBoundTogetherAreBoundAsOneByOne) {
   for (auto& g : gain) g = localisation_core::ToCoarseGain(unit(rng) < 0.9f ? 0.0f : unit(rng));
   const localisation_core::CoarseBounds bounds(gain, kWidth, kHeight, kStep, kLevels);
   const int first_column = 2, first_row = 3;  // the lattice's first position's cell
-  const int reach = bounds.Reach(1);
-  const localisation_core::LatticeGains quarters(bounds.Grid(1), bounds.Columns(1), bounds.Rows(1),
-                                                 2 * kStep, first_column + reach,
-                                                 first_row + reach);
   std::uniform_int_distribution<int> offset(-70, 70), block(-2, 4);
-  for (int trial = 0; trial < 100; ++trial) {
-    std::vector<int> offsets(2 * 20);
-    for (auto& o : offsets) o = offset(rng);
-    const int i = 4 * block(rng), j = 4 * block(rng);  // a level-2 block's first position
-    uint32_t sums[4] = {0, 0, 0, 0};
-    for (size_t p = 0; p + 1 < offsets.size(); p += 2)
-      quarters.AddBlock(quarters.Prepare(offsets[p], offsets[p + 1]), i / 2, j / 2, sums);
-    for (int q = 0; q < 4; ++q) {
-      const int column = first_column + kStep * (i + 2 * (q % 2));
-      const int row = first_row + kStep * (j + 2 * (q / 2));
-      EXPECT_EQ(static_cast<float>(sums[q]),
-                bounds.Bound(1, column, row, offsets.data(), offsets.size() / 2))
-          << "block at " << i << ", " << j << ", quarter " << q;
+  for (int level = 1; level <= kLevels; ++level) {
+    const int side = 1 << level;  // lattice steps between the level's blocks
+    const int reach = bounds.Reach(level);
+    const localisation_core::LatticeGains blocks(bounds.Grid(level), bounds.Columns(level),
+                                                 bounds.Rows(level), side * kStep,
+                                                 first_column + reach, first_row + reach);
+    for (int trial = 0; trial < 100; ++trial) {
+      std::vector<int> offsets(2 * 20);
+      for (auto& o : offsets) o = offset(rng);
+      const int i = block(rng), j = block(rng);  // in blocks of the level
+      uint32_t sums[4] = {0, 0, 0, 0};
+      for (size_t p = 0; p + 1 < offsets.size(); p += 2)
+        blocks.AddBlock(blocks.Prepare(offsets[p], offsets[p + 1]), i, j, sums);
+      for (int q = 0; q < 4; ++q) {
+        const int column = first_column + kStep * side * (i + q % 2);
+        const int row = first_row + kStep * side * (j + q / 2);
+        EXPECT_EQ(static_cast<float>(sums[q]),
+                  bounds.Bound(level, column, row, offsets.data(), offsets.size() / 2))
+            << "level " << level << ", block " << i + q % 2 << ", " << j + q / 2;
+      }
     }
   }
 }

@@ -6,9 +6,9 @@
 // and a block or heading whose bound falls below the coarse_keep-th best hit
 // so far is never looked at again. The hits kept are those that scoring
 // every position would keep: a position's hits score at most its block's
-// bound, and a hit below coarse_keep others is never kept. A block's four
-// quarters are bounded, and a 2 x 2 block's positions scored, together
-// (LatticeGains).
+// bound, and a hit below coarse_keep others is never kept. Top-level blocks
+// 2 x 2 at a time and a block's four quarters are bounded, and a 2 x 2
+// block's positions scored, together (LatticeGains).
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -34,15 +34,24 @@ void GlobalSearch::CoarseStep() {
       static_cast<size_t>(top_columns) * static_cast<size_t>((g_.lattice_.rows + side - 1) / side);
   if (next_top_ < top_count) {
     // Every top-level block is bounded before any is expanded, so that the
-    // most promising of the whole map is expanded first.
+    // most promising of the whole map is expanded first; row by row, the
+    // bounds computed 2 x 2 blocks at a time.
+    const int top_column = static_cast<int>(next_top_ % static_cast<size_t>(top_columns));
+    const int top_row = static_cast<int>(next_top_ / static_cast<size_t>(top_columns));
+    if (top_bounds_.empty())
+      top_bounds_.assign(2 * (static_cast<size_t>(top_columns) + 1),
+                         std::vector<float>(static_cast<size_t>(headings_)));
+    if (top_column % 2 == 0 && top_row % 2 == 0) BoundTops(top_column, top_row);
     Block block;
     block.level = top;
-    block.column = static_cast<int>(next_top_ % static_cast<size_t>(top_columns)) * side;
-    block.row = static_cast<int>(next_top_ / static_cast<size_t>(top_columns)) * side;
+    block.column = top_column * side;
+    block.row = top_row * side;
     ++next_top_;
     if (BlockHasPositions(block)) {
       block.first = top_headings_.size();
-      BoundBlock(block, scored_headings_, top_headings_);
+      BoundBlock(block, scored_headings_, top_headings_,
+                 &top_bounds_[static_cast<size_t>(top_row % 2) * (top_columns + 1) +
+                              static_cast<size_t>(top_column)]);
       block.end = top_headings_.size();
       if (block.end > block.first) tops_.push_back(block);
     }
@@ -132,6 +141,20 @@ void GlobalSearch::BoundQuarters(const Block& block) {
     for (size_t i = 0; i < n; ++i)
       g_.quarter_gains_.AddBlock(offsets[i], block.column / 2, block.row / 2, sums);
     for (int q = 0; q < 4; ++q) quarter_bounds_[q][h] = static_cast<float>(sums[q]);
+  }
+}
+
+void GlobalSearch::BoundTops(int column, int row) {
+  const size_t n = coarse_count_;
+  const size_t columns = top_bounds_.size() / 2;
+  for (const uint16_t h : scored_headings_) {
+    const LatticeGains::Offset* offsets = &top_offsets_[static_cast<size_t>(h) * n];
+    uint32_t sums[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < n; ++i) g_.top_gains_.AddBlock(offsets[i], column, row, sums);
+    for (int q = 0; q < 4; ++q) {
+      top_bounds_[static_cast<size_t>(q / 2) * columns + static_cast<size_t>(column + q % 2)][h] =
+          static_cast<float>(sums[q]);
+    }
   }
 }
 

@@ -282,6 +282,12 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
         LatticeGains(coarse_bounds_.Grid(1), coarse_bounds_.Columns(1), coarse_bounds_.Rows(1),
                      2 * step_cells, first_column + reach, first_row + reach);
   }
+  // Top-level blocks lie 2^levels lattice steps apart.
+  const int top = coarse_bounds_.Levels();
+  top_gains_ =
+      LatticeGains(coarse_bounds_.Grid(top), coarse_bounds_.Columns(top), coarse_bounds_.Rows(top),
+                   (1 << top) * step_cells, first_column + coarse_bounds_.Reach(top),
+                   first_row + coarse_bounds_.Reach(top));
 }
 
 // Every `step`-th of the points, at most `most` of them, spread over the scan.

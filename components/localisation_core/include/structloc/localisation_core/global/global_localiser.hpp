@@ -286,6 +286,7 @@ class GlobalLocaliser {
   // coarse_bounds_' level-1 grid laid out for the quarters of level-2 blocks
   // (empty with fewer levels).
   LatticeGains quarter_gains_;
+  LatticeGains top_gains_;        // its top level's grid, for the top-level blocks
   std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;  // the same with the ranking truncation
   std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
@@ -353,6 +354,9 @@ class GlobalSearch {
   // The bounds of a level-2 block's four quarters at the headings being
   // expanded, all at once (quarter_gains_), into quarter_bounds_.
   void BoundQuarters(const Block& block);
+  // The bounds of the 2 x 2 top-level blocks from top-level column and row
+  // (column, row), both even, at every heading scored, into top_bounds_.
+  void BoundTops(int column, int row);
   void ExpandBlock(const Block& block);
   void SelectHits();
   // Of the kept hits, keeps only those no neighbour outscores (see
@@ -383,8 +387,11 @@ class GlobalSearch {
   std::vector<int> offsets_;
   // The same prepared for LatticeGains, per heading, per coarse point: for
   // the field and for the quarters' bounds.
-  std::vector<LatticeGains::Offset> lattice_offsets_, quarter_offsets_;
+  std::vector<LatticeGains::Offset> lattice_offsets_, quarter_offsets_, top_offsets_;
   std::vector<float> quarter_bounds_[4];  // BoundQuarters', per quarter, per heading
+  // The top-level blocks' bounds, per heading, of two rows of them (their
+  // row modulo 2, then column), computed 2 x 2 blocks at a time (BoundTops).
+  std::vector<std::vector<float>> top_bounds_;
   // A lattice position's cell.
   int CellColumn(double x) const;
   int CellRow(double y) const;
