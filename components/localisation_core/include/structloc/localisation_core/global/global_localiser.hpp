@@ -286,7 +286,7 @@ class GlobalLocaliser {
   // coarse_bounds_' level-1 grid laid out for the quarters of level-2 blocks
   // (empty with fewer levels).
   LatticeGains quarter_gains_;
-  LatticeGains top_gains_;        // its top level's grid, for the top-level blocks
+  LatticeGains top_gains_;        // coarse_bounds_' top level laid out for 2 x 2 top blocks
   std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;  // the same with the ranking truncation
   std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
