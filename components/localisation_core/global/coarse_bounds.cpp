@@ -34,20 +34,4 @@ CoarseBounds::CoarseBounds(const std::vector<CoarseGain>& gain, int width, int h
   }
 }
 
-float CoarseBounds::Bound(int level, int column, int row, const int* offsets, size_t n) const {
-  const CoarseGain* grid = grids_[static_cast<size_t>(level - 1)].data();
-  const int reach = reach_[static_cast<size_t>(level - 1)];
-  const auto columns = static_cast<unsigned>(width_ + reach);
-  const auto rows = static_cast<unsigned>(height_ + reach);
-  uint32_t sum = 0;
-  for (size_t i = 0; i < n; ++i) {
-    // In the padded grid; off it (a negative cell wraps to a large unsigned
-    // one) the block's points all fall off the field and count nothing.
-    const auto c = static_cast<unsigned>(column + reach + offsets[2 * i]);
-    const auto r = static_cast<unsigned>(row + reach + offsets[2 * i + 1]);
-    if (c < columns && r < rows) sum += grid[static_cast<size_t>(r) * columns + c];
-  }
-  return static_cast<float>(sum);
-}
-
 }  // namespace structloc::localisation_core

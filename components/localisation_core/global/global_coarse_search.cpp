@@ -6,10 +6,12 @@
 // and a block or heading whose bound falls below the coarse_keep-th best hit
 // so far is never looked at again. The hits kept are those that scoring
 // every position would keep: a position's hits score at most its block's
-// bound, and a hit below coarse_keep others is never kept. Top-level blocks
-// 2 x 2 at a time and a block's four quarters are bounded, and a 2 x 2
-// block's positions scored, together (LatticeGains).
+// bound, and a hit below coarse_keep others is never kept. Scores and
+// bounds are summed four at a time (SumFour over the grids laid out by
+// phase, LatticeGains): the top-level blocks 2 x 2, a block's four
+// quarters, a 2 x 2 block's positions.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -41,7 +43,13 @@ void GlobalSearch::CoarseStep() {
     if (top_bounds_.empty())
       top_bounds_.assign(2 * (static_cast<size_t>(top_columns) + 1),
                          std::vector<float>(static_cast<size_t>(headings_)));
-    if (top_column % 2 == 0 && top_row % 2 == 0) BoundTops(top_column, top_row);
+    if (top_column % 2 == 0 && top_row % 2 == 0) {
+      const size_t at = static_cast<size_t>(top_column);
+      const size_t below = static_cast<size_t>(top_columns) + 1 + at;
+      SumFour(
+          top, top_column, top_row, scored_headings_,
+          {&top_bounds_[at], &top_bounds_[at + 1], &top_bounds_[below], &top_bounds_[below + 1]});
+    }
     Block block;
     block.level = top;
     block.column = top_column * side;
@@ -49,9 +57,10 @@ void GlobalSearch::CoarseStep() {
     ++next_top_;
     if (BlockHasPositions(block)) {
       block.first = top_headings_.size();
-      BoundBlock(block, scored_headings_, top_headings_,
-                 &top_bounds_[static_cast<size_t>(top_row % 2) * (top_columns + 1) +
-                              static_cast<size_t>(top_column)]);
+      BoundBlock(block, scored_headings_,
+                 top_bounds_[static_cast<size_t>(top_row % 2) * (top_columns + 1) +
+                             static_cast<size_t>(top_column)],
+                 top_headings_);
       block.end = top_headings_.size();
       if (block.end > block.first) tops_.push_back(block);
     }
@@ -87,9 +96,10 @@ void GlobalSearch::ExpandBlock(const Block& block) {
     CoarseBlock(block);
     return;
   }
-  // A level-2 block's quarters are bounded together (the same bounds).
-  const bool together = block.level == 2;
-  if (together) BoundQuarters(block);
+  // The quarters' bounds, all four at once.
+  const int below = block.level - 1;
+  SumFour(below, block.column >> below, block.row >> below, expanding_,
+          {&quarter_bounds_[0], &quarter_bounds_[1], &quarter_bounds_[2], &quarter_bounds_[3]});
   Block quarters[4];
   int count = 0;
   for (int q = 0; q < 4; ++q) {
@@ -100,8 +110,7 @@ void GlobalSearch::ExpandBlock(const Block& block) {
     if (quarter.column >= lattice.columns || quarter.row >= lattice.rows) continue;
     if (!BlockHasPositions(quarter)) continue;
     quarter_headings_[count].clear();
-    BoundBlock(quarter, expanding_, quarter_headings_[count],
-               together ? &quarter_bounds_[q] : nullptr);
+    BoundBlock(quarter, expanding_, quarter_bounds_[q], quarter_headings_[count]);
     if (!quarter_headings_[count].empty()) ++count;
   }
   // The most promising quarter goes on top of the stack, so it is expanded next.
@@ -133,46 +142,27 @@ bool GlobalSearch::BlockHasPositions(const Block& block) const {
          0;
 }
 
-void GlobalSearch::BoundQuarters(const Block& block) {
+void GlobalSearch::SumFour(int level, int column, int row, const std::vector<uint16_t>& headings,
+                           const std::array<std::vector<float>*, 4>& out) const {
   const size_t n = coarse_count_;
-  for (const uint16_t h : expanding_) {
-    const LatticeGains::Offset* offsets = &quarter_offsets_[static_cast<size_t>(h) * n];
+  const LatticeGains& gains = g_.phase_gains_[static_cast<size_t>(level)];
+  const LatticeGains::Offset* prepared = phase_offsets_[static_cast<size_t>(level)].data();
+  float* const sums_out[4] = {out[0]->data(), out[1]->data(), out[2]->data(), out[3]->data()};
+  for (const uint16_t h : headings) {
+    const LatticeGains::Offset* offsets = prepared + static_cast<size_t>(h) * n;
     uint32_t sums[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < n; ++i)
-      g_.quarter_gains_.AddBlock(offsets[i], block.column / 2, block.row / 2, sums);
-    for (int q = 0; q < 4; ++q) quarter_bounds_[q][h] = static_cast<float>(sums[q]);
-  }
-}
-
-void GlobalSearch::BoundTops(int column, int row) {
-  const size_t n = coarse_count_;
-  const size_t columns = top_bounds_.size() / 2;
-  for (const uint16_t h : scored_headings_) {
-    const LatticeGains::Offset* offsets = &top_offsets_[static_cast<size_t>(h) * n];
-    uint32_t sums[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < n; ++i) g_.top_gains_.AddBlock(offsets[i], column, row, sums);
-    for (int q = 0; q < 4; ++q) {
-      top_bounds_[static_cast<size_t>(q / 2) * columns + static_cast<size_t>(column + q % 2)][h] =
-          static_cast<float>(sums[q]);
-    }
+    for (size_t i = 0; i < n; ++i) gains.AddBlock(offsets[i], column, row, sums);
+    for (int q = 0; q < 4; ++q) sums_out[q][h] = static_cast<float>(sums[q]);
   }
 }
 
 void GlobalSearch::BoundBlock(Block& block, const std::vector<uint16_t>& headings,
-                              std::vector<BoundedHeading>& out, const std::vector<float>* bounds) {
-  const double step = g_.options_.coarse_step_m;
-  // The block's first position's cell.
-  const int column = CellColumn(g_.lattice_.x0 + block.column * step);
-  const int row = CellRow(g_.lattice_.y0 + block.row * step);
+                              const std::vector<float>& bounds, std::vector<BoundedHeading>& out) {
   const float threshold = KeepThreshold();
-  const size_t n = coarse_count_;
   block.bound = -std::numeric_limits<float>::infinity();
   for (const uint16_t h : headings) {
-    const float bound = bounds != nullptr
-                            ? (*bounds)[h]
-                            : g_.coarse_bounds_.Bound(block.level, column, row,
-                                                      &offsets_[static_cast<size_t>(h) * n * 2], n);
-    work_ += n;
+    const float bound = bounds[h];
+    work_ += coarse_count_;
     if (bound < threshold) continue;
     out.push_back({h, bound});
     block.bound = std::max(block.bound, bound);
@@ -230,14 +220,9 @@ void GlobalSearch::CoarseBlock(const Block& block) {
                : -1;
     positions += k[q] >= 0 ? 1 : 0;
   }
-  for (const uint16_t h : expanding_) {
-    const LatticeGains::Offset* offsets = &lattice_offsets_[static_cast<size_t>(h) * n];
-    uint32_t sums[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < n; ++i)
-      g_.lattice_gains_.AddBlock(offsets[i], block.column, block.row, sums);
-    for (int q = 0; q < 4; ++q) block_scores_[q][h] = static_cast<float>(sums[q]);
-    work_ += n * static_cast<uint64_t>(positions);
-  }
+  SumFour(0, block.column, block.row, expanding_,
+          {&block_scores_[0], &block_scores_[1], &block_scores_[2], &block_scores_[3]});
+  work_ += n * expanding_.size() * static_cast<uint64_t>(positions);
   for (int q = 0; q < 4; ++q) {
     if (k[q] >= 0) AddHits(static_cast<size_t>(k[q]), expanding_, block_scores_[q]);
   }

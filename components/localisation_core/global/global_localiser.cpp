@@ -273,21 +273,14 @@ GlobalLocaliser::GlobalLocaliser(const world_model::WorldModel& world,
                                " is not a whole number of cells from the first");
     }
   }
-  lattice_gains_ =
-      LatticeGains(coarse_gain_, cells_.width, cells_.height, step_cells, first_column, first_row);
-  // The quarters of a level-2 block are level-1 blocks two lattice steps apart.
-  if (coarse_bounds_.Levels() >= 2) {
-    const int reach = coarse_bounds_.Reach(1);
-    quarter_gains_ =
-        LatticeGains(coarse_bounds_.Grid(1), coarse_bounds_.Columns(1), coarse_bounds_.Rows(1),
-                     2 * step_cells, first_column + reach, first_row + reach);
+  phase_gains_.emplace_back(coarse_gain_, cells_.width, cells_.height, step_cells, first_column,
+                            first_row);
+  for (int level = 1; level <= coarse_bounds_.Levels(); ++level) {
+    const int reach = coarse_bounds_.Reach(level);
+    phase_gains_.emplace_back(coarse_bounds_.Grid(level), coarse_bounds_.Columns(level),
+                              coarse_bounds_.Rows(level), (1 << level) * step_cells,
+                              first_column + reach, first_row + reach);
   }
-  // Top-level blocks lie 2^levels lattice steps apart.
-  const int top = coarse_bounds_.Levels();
-  top_gains_ =
-      LatticeGains(coarse_bounds_.Grid(top), coarse_bounds_.Columns(top), coarse_bounds_.Rows(top),
-                   (1 << top) * step_cells, first_column + coarse_bounds_.Reach(top),
-                   first_row + coarse_bounds_.Reach(top));
 }
 
 // Every `step`-th of the points, at most `most` of them, spread over the scan.

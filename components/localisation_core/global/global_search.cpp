@@ -92,12 +92,11 @@ GlobalSearch::GlobalSearch(const GlobalLocaliser& localiser, const Readings& rea
     }
   }
   work_ += offsets_.size();
-  lattice_offsets_.reserve(offsets_.size() / 2);
-  quarter_offsets_.reserve(offsets_.size() / 2);
-  for (size_t i = 0; i + 1 < offsets_.size(); i += 2) {
-    lattice_offsets_.push_back(g_.lattice_gains_.Prepare(offsets_[i], offsets_[i + 1]));
-    quarter_offsets_.push_back(g_.quarter_gains_.Prepare(offsets_[i], offsets_[i + 1]));
-    top_offsets_.push_back(g_.top_gains_.Prepare(offsets_[i], offsets_[i + 1]));
+  for (const auto& gains : g_.phase_gains_) {
+    auto& prepared = phase_offsets_.emplace_back();
+    prepared.reserve(offsets_.size() / 2);
+    for (size_t i = 0; i + 1 < offsets_.size(); i += 2)
+      prepared.push_back(gains.Prepare(offsets_[i], offsets_[i + 1]));
   }
   separation_ =
       std::max(1, static_cast<int>(std::ceil(o.distinct_heading_rad * 2 / heading_step_)));

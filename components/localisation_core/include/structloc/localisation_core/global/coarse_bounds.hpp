@@ -31,20 +31,17 @@ class CoarseBounds {
 
   int Levels() const { return static_cast<int>(grids_.size()); }
   // Level `level`'s grid (row major, Columns(level) x Rows(level) cells): a
-  // block whose first position lies in cell (c, r) of the field looks a
-  // point o cells away up in cell (c + o + Reach(level), ...) of it.
+  // block whose first (lowest x and y) position lies in cell (c, r) of the
+  // field looks a point o cells away up in cell (c + o + Reach(level), ...)
+  // of it. The sum of those cells over a scan's points (off the grid
+  // nothing) is at least the coarse score (the sum of the gains, in counts,
+  // of the cells the points fall into) of every position of the block.
   const std::vector<CoarseGain>& Grid(int level) const {
     return grids_[static_cast<size_t>(level - 1)];
   }
   int Reach(int level) const { return reach_[static_cast<size_t>(level - 1)]; }
   int Columns(int level) const { return width_ + Reach(level); }
   int Rows(int level) const { return height_ + Reach(level); }
-  // At least the coarse score (the sum of the gains, in counts, of the cells the points
-  // fall into, points off the grid counting nothing) of every position of a
-  // level-`level` block whose first (lowest x and y) position lies in cell
-  // (column, row), for points `offsets` (column, row pairs, n of them) cells
-  // from each position.
-  float Bound(int level, int column, int row, const int* offsets, size_t n) const;
 
  private:
   int width_ = 0, height_ = 0;

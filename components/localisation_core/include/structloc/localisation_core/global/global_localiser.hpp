@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -282,11 +283,10 @@ class GlobalLocaliser {
   };
   Lattice lattice_;
   CoarseBounds coarse_bounds_;  // of coarse_gain_ over blocks of the lattice
-  LatticeGains lattice_gains_;  // coarse_gain_ laid out by lattice phase
-  // coarse_bounds_' level-1 grid laid out for the quarters of level-2 blocks
-  // (empty with fewer levels).
-  LatticeGains quarter_gains_;
-  LatticeGains top_gains_;        // coarse_bounds_' top level laid out for 2 x 2 top blocks
+  // The blurred field (level 0) and coarse_bounds_' grids (levels 1 to its
+  // Levels()) laid out by phase: level L's blocks of 2^L x 2^L positions,
+  // 2 x 2 of them at a time (a level-0 block is a position).
+  std::vector<LatticeGains> phase_gains_;
   std::vector<float> fine_gain_;  // per cell: 1 - min(d, t)^2 / t^2, d to the nearest surface
   std::vector<float> rank_gain_;  // the same with the ranking truncation
   std::vector<CoarseGain> coarse_gain_;  // the same with d shortened by coarse_blur_m
@@ -350,13 +350,13 @@ class GlobalSearch {
   // The block's headings (of `headings`) whose bound reaches KeepThreshold,
   // into `out`; the block's bound is the best of them.
   void BoundBlock(Block& block, const std::vector<uint16_t>& headings,
-                  std::vector<BoundedHeading>& out, const std::vector<float>* bounds = nullptr);
-  // The bounds of a level-2 block's four quarters at the headings being
-  // expanded, all at once (quarter_gains_), into quarter_bounds_.
-  void BoundQuarters(const Block& block);
-  // The bounds of the 2 x 2 top-level blocks from top-level column and row
-  // (column, row), both even, at every heading scored, into top_bounds_.
-  void BoundTops(int column, int row);
+                  const std::vector<float>& bounds, std::vector<BoundedHeading>& out);
+  // The sums at `level` (phase_gains_: 0 the positions' scores, above the
+  // blocks' bounds) of the 2 x 2 level-`level` blocks from (column, row),
+  // counted in such blocks, at `headings`: out[q][h] for block
+  // (column + q % 2, row + q / 2).
+  void SumFour(int level, int column, int row, const std::vector<uint16_t>& headings,
+               const std::array<std::vector<float>*, 4>& out) const;
   void ExpandBlock(const Block& block);
   void SelectHits();
   // Of the kept hits, keeps only those no neighbour outscores (see
@@ -385,12 +385,11 @@ class GlobalSearch {
   // Per heading, per coarse point: its cell's column and row from the
   // position's (the lattice's positions lie on cell corners).
   std::vector<int> offsets_;
-  // The same prepared for LatticeGains, per heading, per coarse point: for
-  // the field and for the quarters' bounds.
-  std::vector<LatticeGains::Offset> lattice_offsets_, quarter_offsets_, top_offsets_;
-  std::vector<float> quarter_bounds_[4];  // BoundQuarters', per quarter, per heading
+  // The same prepared for phase_gains_: per level, per heading, per coarse point.
+  std::vector<std::vector<LatticeGains::Offset>> phase_offsets_;
+  std::vector<float> quarter_bounds_[4];  // a block's quarters', per heading
   // The top-level blocks' bounds, per heading, of two rows of them (their
-  // row modulo 2, then column), computed 2 x 2 blocks at a time (BoundTops).
+  // row modulo 2, then column), computed 2 x 2 blocks at a time.
   std::vector<std::vector<float>> top_bounds_;
   // A lattice position's cell.
   int CellColumn(double x) const;
