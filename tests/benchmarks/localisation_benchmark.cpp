@@ -68,7 +68,7 @@ struct Prepared {
       cylinders.push_back(ExpectPoint(i, c.id, c.centre, c.radius, -1, sensor_prior, no_memory));
     }
     AssignWindowsByExpectation(windows, expected, sensor_prior, Eigen::Matrix3d::Identity(),
-                               WallOptions().clusters, assignment);
+                               WallOptions().clusters, wall_work, assignment);
     BuildWallClusters(windows, assignment, points, office.options.line_fit.window_points, expected,
                       WallOptions().clusters, wall_work, walls);
   }
@@ -98,13 +98,19 @@ void BM_LineFit(benchmark::State& state) {
     FitWindowLines(p.points, p.office.options.line_fit, windows);
     benchmark::DoNotOptimize(windows.data());
   }
+  // What the later stages work through: the points kept, their windows and
+  // the windows that pass the rms check.
+  state.counters["points"] = static_cast<double>(p.points.Size());
+  state.counters["windows"] = static_cast<double>(windows.size());
+  state.counters["valid"] = static_cast<double>(
+      std::count_if(windows.begin(), windows.end(), [](const auto& w) { return w.valid; }));
 }
 
 void BM_WallClustering(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     AssignWindowsByExpectation(p.windows, p.expected, p.sensor_prior, Eigen::Matrix3d::Identity(),
-                               p.WallOptions().clusters, p.assignment);
+                               p.WallOptions().clusters, p.wall_work, p.assignment);
     BuildWallClusters(p.windows, p.assignment, p.points, p.office.options.line_fit.window_points,
                       p.expected, p.WallOptions().clusters, p.wall_work, p.walls);
     benchmark::DoNotOptimize(p.walls.data());

@@ -58,7 +58,8 @@ TEST(PairingGates, AWindowInADoorwayPairsWithNoWall) {
   AddLine(f, 2.0, {{-3.0, -0.5}, {0.5, 3.0}});  // a 1 m doorway around x = 0
   const std::vector<WindowLine> windows = {Window(1.5, 2.0), Window(0.0, 2.0), Window(-2.0, 2.0)};
   std::vector<int> assignment;
-  AssignWindowsByExpectation(windows, f, {}, kPrior, RealMapOptions(), assignment);
+  WallClusterWork work;
+  AssignWindowsByExpectation(windows, f, {}, kPrior, RealMapOptions(), work, assignment);
   EXPECT_EQ(assignment, (std::vector<int>{0, -1, 0}));
 }
 
@@ -67,11 +68,12 @@ TEST(PairingGates, AWindowFarFromItsWallUnderATightPriorPairsWithNothing) {
   AddLine(f, 2.0, {{-3.0, 3.0}});
   const std::vector<WindowLine> windows = {Window(1.0, 2.15)};  // 15 cm off; prior sigma 2 cm
   std::vector<int> assignment;
-  AssignWindowsByExpectation(windows, f, {}, kPrior, RealMapOptions(), assignment);
+  WallClusterWork work;
+  AssignWindowsByExpectation(windows, f, {}, kPrior, RealMapOptions(), work, assignment);
   EXPECT_EQ(assignment[0], -1);
   WallClusterOptions thesis = RealMapOptions();
   thesis.gate_chi2 = 0.0;  // the thesis' fixed 0.2 m gate alone takes it
-  AssignWindowsByExpectation(windows, f, {}, kPrior, thesis, assignment);
+  AssignWindowsByExpectation(windows, f, {}, kPrior, thesis, work, assignment);
   EXPECT_EQ(assignment[0], 0);
 }
 

@@ -14,6 +14,7 @@ void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
   const size_t windows = points.wraps ? n : n - o + 1;
   out.resize(windows);  // every field of every window is written below
   const double max_sse = options.max_rms_m * options.max_rms_m * static_cast<double>(o);
+  const double inv_o = 1.0 / static_cast<double>(o);  // every window holds o points
   const double ox = points.x[0], oy = points.y[0];
   LineSums sums;
   for (size_t k = 0; k < o; ++k) sums.Add(points.x[k] - ox, points.y[k] - oy);
@@ -25,7 +26,7 @@ void FitWindowLines(const ScanPoints& points, const LineFitOptions& options,
       sums.Add(points.x[entering] - ox, points.y[entering] - oy);
     }
     WindowLine& w = out[i];
-    w.line = FitLine(sums, ox, oy);
+    w.line = FitMoments(Moments(sums, ox, oy, inv_o));
     w.first = static_cast<int>(i);
     w.valid = !w.line.degenerate && w.line.sse <= max_sse;
   }

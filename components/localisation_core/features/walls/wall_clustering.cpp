@@ -33,10 +33,58 @@ double AlongLine(const ExpectedWall& x, const geometry::Pose2D& pose, double px,
 
 }  // namespace
 
+namespace {
+
+// The walls that may pass the (r, alpha) gates of any window line close to a
+// reference line: the gates widened by how far such a line may be from the
+// reference (triangle inequality in r and in the angle between lines).
+// Scan-ordered windows on one wall reuse the list, so that most windows test
+// one or two walls instead of all (the result is the same).
+class GateCandidates {
+ public:
+  GateCandidates(const WallClusterOptions& o, std::vector<int>& list)
+      : list_(list),
+        slack_r_(o.gate_r_m),
+        // Below pi/2 together with the gate: a window and its reference then
+        // face every candidate from the same side, so that r's sign agrees.
+        slack_alpha_(std::min(o.gate_alpha_rad, 0.5 * (geometry::kHalfPi - o.gate_alpha_rad))),
+        min_dot_(std::cos(std::min(o.gate_alpha_rad + slack_alpha_, geometry::kHalfPi)) - 1e-12),
+        max_dr_(o.gate_r_m + slack_r_ + 1e-12),
+        near_dot_(std::cos(slack_alpha_)) {}
+
+  // The candidates for line `l`, recomputed when `l` is not near the reference.
+  const std::vector<int>& For(const LineEstimate& l, const ExpectedWalls& expected) {
+    const bool near =
+        has_reference_ && std::abs(l.r - reference_.r) <= slack_r_ &&
+        l.cos_alpha * reference_.cos_alpha + l.sin_alpha * reference_.sin_alpha >= near_dot_;
+    if (near) return list_;
+    has_reference_ = true;
+    reference_ = l;
+    list_.clear();
+    for (size_t e = 0; e < expected.walls.size(); ++e) {
+      const auto& x = expected.walls[e];
+      const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
+      const double dr = std::copysign(l.r, signed_dot) - x.r;
+      if (std::abs(signed_dot) >= min_dot_ && std::abs(dr) <= max_dr_) {
+        list_.push_back(static_cast<int>(e));
+      }
+    }
+    return list_;
+  }
+
+ private:
+  std::vector<int>& list_;
+  const double slack_r_, slack_alpha_, min_dot_, max_dr_, near_dot_;
+  bool has_reference_ = false;
+  LineEstimate reference_;
+};
+
+}  // namespace
+
 void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
                                 const ExpectedWalls& expected, const geometry::Pose2D& pose,
                                 const Eigen::Matrix3d& cov, const WallClusterOptions& o,
-                                std::vector<int>& assignment) {
+                                WallClusterWork& work, std::vector<int>& assignment) {
   assignment.assign(windows.size(), -1);
   if (expected.walls.empty()) return;
   const double min_dot = std::cos(o.gate_alpha_rad);
@@ -47,6 +95,7 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
   const bool check_extent = o.extent_margin_m > 0.0;
   const bool mahalanobis = o.gate_chi2 > 0.0;
   const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
+  GateCandidates candidates(o, work.gate_candidates);
   for (size_t i = 0; i < windows.size(); ++i) {
     const auto& w = windows[i];
     if (!w.valid) continue;
@@ -55,7 +104,8 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
     const Eigen::Vector2d v(pc * l.xm - ps * l.ym, ps * l.xm + pc * l.ym);  // R p
     int best = -1;
     double best_d = 3.0;  // > 2 = outside both gates
-    for (size_t e = 0; e < expected.walls.size(); ++e) {
+    for (const int candidate : candidates.For(l, expected)) {
+      const auto e = static_cast<size_t>(candidate);
       const auto& x = expected.walls[e];
       // A fit whose normal points the other way is flipped (sign of the dot
       // product); the three cheap gates are one test, so that the branch is
@@ -80,7 +130,7 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
           if (off * off > o.gate_chi2 * var) continue;
         }
       }
-      best = static_cast<int>(e);
+      best = candidate;
       best_d = d;
     }
     assignment[i] = best;
@@ -154,6 +204,7 @@ void GateWallClusters(const ExpectedWalls& expected, const geometry::Pose2D& pos
 }
 
 void WallClusterWork::Reserve(size_t points, size_t expected) {
+  gate_candidates.reserve(expected);
   point_label.reserve(points);
   sums.reserve(expected);
   r_sum.reserve(expected);
@@ -199,11 +250,21 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
     done = std::max(done, end);
   }
   // Sums relative to each cluster's first point would be ideal; the sensor
-  // origin is close enough for indoor ranges in double precision.
+  // origin is close enough for indoor ranges in double precision. A run of
+  // points of one wall is summed in a local copy (the same additions in the
+  // same order, without a store and reload per point).
+  int run_label = -1;
+  LineSums run;
   for (size_t k = 0; k < np; ++k) {
     const int e = work.point_label[k];
-    if (e >= 0) work.sums[static_cast<size_t>(e)].Add(points.x[k], points.y[k]);
+    if (e != run_label) {
+      if (run_label >= 0) work.sums[static_cast<size_t>(run_label)] = run;
+      run_label = e;
+      if (e >= 0) run = work.sums[static_cast<size_t>(e)];
+    }
+    if (e >= 0) run.Add(points.x[k], points.y[k]);
   }
+  if (run_label >= 0) work.sums[static_cast<size_t>(run_label)] = run;
   const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
   for (size_t e = 0; e < ne; ++e) {
     const int n = work.count[e];

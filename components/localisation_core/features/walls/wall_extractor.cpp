@@ -74,7 +74,7 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
     AssignWindowsByKohonen(*in.windows, expected, options_, kohonen_, rng_, assignment_);
   } else {
     AssignWindowsByExpectation(*in.windows, expected, in.sensor_prior, in.sensor_prior_covariance,
-                               options_, assignment_);
+                               options_, work_, assignment_);
   }
   BuildWallClusters(*in.windows, assignment_, *in.points, in.window_points, expected, options_,
                     work_, clusters_);

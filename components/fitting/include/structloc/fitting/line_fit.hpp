@@ -49,39 +49,64 @@ struct LineEstimate {
   }
 };
 
-// Total least squares line of the summed points; (ox, oy) is the origin the
-// sums were taken relative to, the result is in the original frame. Inline:
-// the localiser calls it for every sliding window of every scan.
-inline LineEstimate FitLine(const LineSums& s, double ox, double oy) {
-  LineEstimate e;
-  if (s.n < 2) return e;
-  const double inv_n = 1.0 / s.n;
+// The centroid of a point set and its second moments about it (EQ 20's
+// Suu, Svv, Suv).
+struct LineMoments {
+  double xm = 0.0, ym = 0.0;
+  double suu = 0.0, svv = 0.0, suv = 0.0;
+};
+
+// The moments of the summed points (n >= 1); (ox, oy) is the origin the sums
+// were taken relative to, the centroid is in the original frame. `inv_n` is
+// 1 / s.n (given, where many sums of one count are fitted).
+inline LineMoments Moments(const LineSums& s, double ox, double oy, double inv_n) {
   const double mx = s.sx * inv_n, my = s.sy * inv_n;
-  const double suu = std::max(0.0, s.sxx - s.sx * mx);
-  const double svv = std::max(0.0, s.syy - s.sy * my);
-  const double suv = s.sxy - s.sx * my;
+  LineMoments m;
+  m.xm = mx + ox;
+  m.ym = my + oy;
+  m.suu = std::max(0.0, s.sxx - s.sx * mx);
+  m.svv = std::max(0.0, s.syy - s.sy * my);
+  m.suv = s.sxy - s.sx * my;
+  return m;
+}
+
+// Total least squares line from the moments. Without branches (selects only),
+// so that a loop over many windows vectorises.
+inline LineEstimate FitMoments(const LineMoments& m) {
+  LineEstimate e;
   // EQ 20: alpha = 1/2 atan2(-2 Suv, Svv - Suu), via cos/sin of 2 alpha.
-  const double a = -2.0 * suv, b = svv - suu;
+  const double a = -2.0 * m.suv, b = m.svv - m.suu;
   const double h = std::sqrt(a * a + b * b);
-  e.xm = mx + ox;
-  e.ym = my + oy;
-  e.sse = std::max(0.0, 0.5 * (suu + svv - h));
-  e.along_spread = 0.5 * (suu + svv + h);
-  if (!(h > 1e-300)) return e;
-  const double cos2 = b / h;
-  double c = std::sqrt(std::max(0.0, 0.5 * (1.0 + cos2)));
-  double sn = std::copysign(std::sqrt(std::max(0.0, 0.5 * (1.0 - cos2))), a);
-  double r = e.xm * c + e.ym * sn;  // EQ 18
-  if (r < 0.0) {
-    r = -r;
-    c = -c;
-    sn = -sn;
-  }
-  e.r = r;
-  e.cos_alpha = c;
-  e.sin_alpha = sn;
-  e.degenerate = false;
+  e.xm = m.xm;
+  e.ym = m.ym;
+  e.sse = std::max(0.0, 0.5 * (m.suu + m.svv - h));
+  e.along_spread = 0.5 * (m.suu + m.svv + h);
+  e.degenerate = !(h > 1e-300);
+  // EQ 20's half angle without trigonometry: (cos alpha, sin alpha) is parallel
+  // to (h + b, a) and to (a, h - b); the one without cancellation is taken,
+  // normalised by its length sqrt(2 h (h + |b|)), with cos alpha >= 0.
+  const double u = h + std::abs(b);
+  const double k = 1.0 / std::sqrt(2.0 * h * u);
+  // (Every value is computed before it is selected: selects of computed
+  // values, not conditional arithmetic, are what vectorises.)
+  const double abs_a = std::abs(a), signed_u = std::copysign(u, a);
+  const bool b_positive = b >= 0.0;
+  const double c0 = (b_positive ? u : abs_a) * k;
+  const double s0 = (b_positive ? a : signed_u) * k;
+  const double r0 = e.xm * c0 + e.ym * s0;    // EQ 18
+  const double flip = r0 < 0.0 ? -1.0 : 1.0;  // r >= 0: the normal points away
+  const double r = flip * r0, c = flip * c0, sn = flip * s0;
+  e.r = e.degenerate ? 0.0 : r;
+  e.cos_alpha = e.degenerate ? 1.0 : c;
+  e.sin_alpha = e.degenerate ? 0.0 : sn;
   return e;
+}
+
+// Total least squares line of the summed points; (ox, oy) is the origin the
+// sums were taken relative to, the result is in the original frame.
+inline LineEstimate FitLine(const LineSums& s, double ox, double oy) {
+  if (s.n < 2) return LineEstimate{};
+  return FitMoments(Moments(s, ox, oy, 1.0 / s.n));
 }
 
 }  // namespace structloc::fitting

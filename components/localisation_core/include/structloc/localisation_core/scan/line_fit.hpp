@@ -21,8 +21,10 @@ struct LineFitOptions {
 
 // The fit itself is the fitting library's (map making uses it too).
 using fitting::FitLine;
+using fitting::FitMoments;
 using fitting::LineEstimate;
 using fitting::LineSums;
+using fitting::Moments;
 
 struct WindowLine {
   LineEstimate line;

@@ -46,16 +46,10 @@ struct WallCluster {
   Eigen::Vector2d centroid{0, 0};                            // of the member points
 };
 
-// Window i -> expected wall index, or -1. Nearest (normalised) match wins.
-// With options.gate_chi2 > 0 a window's centroid must also lie within that
-// Mahalanobis gate of the expected line under `sensor_covariance` (the prior's).
-void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
-                                const ExpectedWalls& expected, const geometry::Pose2D& sensor_pose,
-                                const Eigen::Matrix3d& sensor_covariance,
-                                const WallClusterOptions& options, std::vector<int>& assignment);
-
-// Scratch space for BuildWallClusters, reused across updates.
+// Scratch space for AssignWindowsByExpectation and BuildWallClusters, reused
+// across updates.
 struct WallClusterWork {
+  std::vector<int> gate_candidates;  // expected walls near the current window lines
   std::vector<int> point_label;
   std::vector<LineSums> sums;
   std::vector<double> r_sum, c_sum, s_sum;
@@ -63,6 +57,15 @@ struct WallClusterWork {
   std::vector<size_t> labelled_end;  // per expected wall: points labelled so far
   void Reserve(size_t points, size_t expected);
 };
+
+// Window i -> expected wall index, or -1. Nearest (normalised) match wins.
+// With options.gate_chi2 > 0 a window's centroid must also lie within that
+// Mahalanobis gate of the expected line under `sensor_covariance` (the prior's).
+void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
+                                const ExpectedWalls& expected, const geometry::Pose2D& sensor_pose,
+                                const Eigen::Matrix3d& sensor_covariance,
+                                const WallClusterOptions& options, WallClusterWork& work,
+                                std::vector<int>& assignment);
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
                        const ScanPoints& points, int window_points, const ExpectedWalls& expected,
