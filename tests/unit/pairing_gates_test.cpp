@@ -27,6 +27,7 @@ void AddLine(ExpectedWalls& f, double y0, const std::vector<std::pair<double, do
     f.extents.push_back({e.line_index, -x1, -x0, -0.5 * (x0 + x1), 0.5 * (x1 - x0)});
   }
   f.walls.push_back(e);
+  f.IndexExtents();
 }
 
 WindowLine Window(double x, double y) {

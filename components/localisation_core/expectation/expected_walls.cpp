@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace structloc::localisation_core {
 
@@ -32,6 +33,9 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
 void ExpectedWalls::Reserve(size_t l, size_t w) {
   walls.reserve(l);
   extents.reserve(w);
+  first_extent_.reserve(l + 1);
+  next_.reserve(l);
+  sorted_.reserve(w);
 }
 
 void ComputeExpectedWalls(const world_model::WorldModel& world,
@@ -70,12 +74,29 @@ void ComputeExpectedWalls(const world_model::WorldModel& world,
     e.s = std::sin(a);
     out.walls.push_back(e);
   }
+  out.IndexExtents();
+}
+
+void ExpectedWalls::IndexExtents() {
+  // A counting sort: stable, and without allocating once reserved.
+  first_extent_.assign(walls.size() + 1, 0);
+  for (const auto& x : extents) ++first_extent_[static_cast<size_t>(x.expected_index) + 1];
+  for (size_t e = 0; e < walls.size(); ++e) first_extent_[e + 1] += first_extent_[e];
+  sorted_.resize(extents.size());
+  next_.assign(first_extent_.begin(), first_extent_.end() - 1);
+  for (const auto& x : extents) sorted_[static_cast<size_t>(next_[x.expected_index]++)] = x;
+  extents.swap(sorted_);
 }
 
 double ExpectedWalls::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
+  if (first_extent_.size() != walls.size() + 1) {
+    throw std::logic_error("ExpectedWalls::DistanceOutside before IndexExtents");
+  }
   double best = 1e300;
-  for (const auto& x : extents) {
-    if (x.expected_index != e) continue;
+  const auto begin = extents.begin() + first_extent_[static_cast<size_t>(e)];
+  const auto end = extents.begin() + first_extent_[static_cast<size_t>(e) + 1];
+  for (auto it = begin; it != end; ++it) {
+    const auto& x = *it;
     const double d = std::max({x.lo - t, t - x.hi, 0.0});
     if (d < best) {
       best = d;

@@ -207,11 +207,7 @@ void WallClusterWork::Reserve(size_t points, size_t expected) {
   gate_candidates.reserve(expected);
   point_label.reserve(points);
   sums.reserve(expected);
-  r_sum.reserve(expected);
-  c_sum.reserve(expected);
-  s_sum.reserve(expected);
-  count.reserve(expected);
-  labelled_end.reserve(expected);
+  windows.reserve(expected);
 }
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
@@ -222,33 +218,38 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
   const size_t ne = expected.walls.size();
   const size_t np = points.Size();
   work.sums.assign(ne, LineSums{});
-  work.r_sum.assign(ne, 0.0);
-  work.c_sum.assign(ne, 0.0);
-  work.s_sum.assign(ne, 0.0);
-  work.count.assign(ne, 0);
-  work.labelled_end.assign(ne, 0);
+  work.windows.assign(ne, WallClusterWork::WindowSums{});
   work.point_label.assign(np, -1);
+  // A run of windows of one wall is summed in a local copy (the same
+  // additions in the same order, without a store and reload per window).
+  int run_wall = -1;
+  WallClusterWork::WindowSums run_windows;
   for (size_t i = 0; i < windows.size(); ++i) {
     const int e = assignment[i];
     if (e < 0) continue;
+    if (e != run_wall) {
+      if (run_wall >= 0) work.windows[static_cast<size_t>(run_wall)] = run_windows;
+      run_wall = e;
+      run_windows = work.windows[static_cast<size_t>(e)];
+    }
     const auto& x = expected.walls[static_cast<size_t>(e)];
     const auto& l = windows[i].line;
     const double sign = (l.cos_alpha * x.c + l.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
-    work.r_sum[static_cast<size_t>(e)] += sign * l.r;
-    work.c_sum[static_cast<size_t>(e)] += sign * l.cos_alpha;
-    work.s_sum[static_cast<size_t>(e)] += sign * l.sin_alpha;
-    ++work.count[static_cast<size_t>(e)];
+    run_windows.r += sign * l.r;
+    run_windows.c += sign * l.cos_alpha;
+    run_windows.s += sign * l.sin_alpha;
+    ++run_windows.count;
     // Windows come in scan order, so the points of this window before
-    // labelled_end[e] already carry label e: label each point once per run.
+    // labelled_end already carry label e: label each point once per run.
     const size_t first = static_cast<size_t>(windows[i].first);
     const size_t end = first + static_cast<size_t>(window_points);
-    size_t& done = work.labelled_end[static_cast<size_t>(e)];
-    for (size_t u = std::max(first, done); u < end; ++u) {
+    for (size_t u = std::max(first, run_windows.labelled_end); u < end; ++u) {
       int& label = work.point_label[u < np ? u : u - np];
       label = (label == -1 || label == e) ? e : -2;  // -2: claimed by two walls
     }
-    done = std::max(done, end);
+    run_windows.labelled_end = std::max(run_windows.labelled_end, end);
   }
+  if (run_wall >= 0) work.windows[static_cast<size_t>(run_wall)] = run_windows;
   // Sums relative to each cluster's first point would be ideal; the sensor
   // origin is close enough for indoor ranges in double precision. A run of
   // points of one wall is summed in a local copy (the same additions in the
@@ -267,14 +268,14 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
   if (run_label >= 0) work.sums[static_cast<size_t>(run_label)] = run;
   const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
   for (size_t e = 0; e < ne; ++e) {
-    const int n = work.count[e];
+    const int n = work.windows[e].count;
     if (n < o.min_cluster_size || work.sums[e].n < 3) continue;
     const auto& x = expected.walls[e];
     WallCluster cl;
     cl.expected_index = static_cast<int>(e);
     cl.members = n;
-    cl.mean_r = work.r_sum[e] / n;
-    cl.mean_alpha = std::atan2(work.s_sum[e], work.c_sum[e]);
+    cl.mean_r = work.windows[e].r / n;
+    cl.mean_alpha = std::atan2(work.windows[e].s, work.windows[e].c);
     const LineEstimate fit = FitLine(work.sums[e], 0.0, 0.0);
     if (fit.degenerate) continue;
     const double sign = (fit.cos_alpha * x.c + fit.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;

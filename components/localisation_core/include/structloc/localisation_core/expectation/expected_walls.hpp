@@ -51,11 +51,20 @@ struct ExpectedExtent {
 
 struct ExpectedWalls {
   std::vector<ExpectedWall> walls;
-  std::vector<ExpectedExtent> extents;  // one per visible map wall
+  std::vector<ExpectedExtent> extents;  // one per visible map wall; by wall after IndexExtents
   void Reserve(size_t lines, size_t walls);
+  // Orders the extents by expected wall (keeping their order within a wall)
+  // and indexes them, so that DistanceOutside reads only the wall's own; call
+  // once walls and extents are filled.
+  void IndexExtents();
   // The extent of expected wall `e` nearest to `t` (along its world line):
   // the distance outside it (0 inside) and, through `wall`, that extent.
   double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const;
+
+ private:
+  std::vector<int> first_extent_;  // of wall e; walls.size() + 1 entries
+  std::vector<int> next_;          // IndexExtents' scratch
+  std::vector<ExpectedExtent> sorted_;
 };
 
 // `wall_line_of` maps a wall index to its WallLineModel index. An expected

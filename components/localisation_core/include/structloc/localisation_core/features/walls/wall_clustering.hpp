@@ -51,10 +51,15 @@ struct WallCluster {
 struct WallClusterWork {
   std::vector<int> gate_candidates;  // expected walls near the current window lines
   std::vector<int> point_label;
-  std::vector<LineSums> sums;
-  std::vector<double> r_sum, c_sum, s_sum;
-  std::vector<int> count;
-  std::vector<size_t> labelled_end;  // per expected wall: points labelled so far
+  std::vector<LineSums> sums;  // per expected wall: of its points
+  // Per expected wall: the sums of its window lines' r, cos and sin of alpha
+  // (flipped like the wall), their count, and the points labelled so far.
+  struct WindowSums {
+    double r = 0.0, c = 0.0, s = 0.0;
+    int count = 0;
+    size_t labelled_end = 0;
+  };
+  std::vector<WindowSums> windows;
   void Reserve(size_t points, size_t expected);
 };
 
