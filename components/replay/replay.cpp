@@ -348,7 +348,7 @@ class Replayer {
       directions_.Update(view);
       localisation_core::PrefilterStats stats;
       RangeGate(view, directions_, params_.prefilter, points_, stats);
-      RejectUnsupported(params_.prefilter, points_, keep_, stats);
+      RejectUnsupported(params_.prefilter, points_, stats);
       Thin(params_.prefilter, points_, stats);
       FitWindowLines(points_, params_.line_fit, windows_);
     }
@@ -515,7 +515,6 @@ class Replayer {
   std::vector<Eigen::Vector2d> scan_points_;
   localisation_core::BeamDirections directions_;
   localisation_core::ScanPoints points_;
-  std::vector<unsigned char> keep_;
   std::vector<localisation_core::WindowLine> windows_;
 };
 

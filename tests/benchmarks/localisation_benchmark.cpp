@@ -29,7 +29,6 @@ struct Prepared {
   testing::SyntheticScan scan;
   localisation_core::BeamDirections directions;
   localisation_core::ScanPoints points;
-  std::vector<unsigned char> keep;
   std::vector<localisation_core::WindowLine> windows;
   localisation_core::ExpectedWalls expected;
   std::vector<localisation_core::ExpectedPoint> corners, cylinders;
@@ -46,7 +45,7 @@ struct Prepared {
     directions.Update(scan.View());
     localisation_core::PrefilterStats stats;
     RangeGate(scan.View(), directions, office.options.prefilter, points, stats);
-    RejectUnsupported(office.options.prefilter, points, keep, stats);
+    RejectUnsupported(office.options.prefilter, points, stats);
     Thin(office.options.prefilter, points, stats);
     FitWindowLines(points, office.options.line_fit, windows);
     const auto lines = localisation_core::GroupCollinearWalls(office.world);
@@ -84,7 +83,7 @@ void BM_Prefilter(benchmark::State& state) {
   for (auto _ : state) {
     localisation_core::PrefilterStats stats;
     RangeGate(p.scan.View(), p.directions, p.office.options.prefilter, points, stats);
-    RejectUnsupported(p.office.options.prefilter, points, p.keep, stats);
+    RejectUnsupported(p.office.options.prefilter, points, stats);
     Thin(p.office.options.prefilter, points, stats);
     benchmark::DoNotOptimize(points.x.data());
   }

@@ -55,9 +55,8 @@ TEST(Prefilter, DropsUnsupportedPointsAndThinsAndWrapsOnlyFullScans) {
   for (int i = 0; i < 10; ++i) pts.Push(1.0, 0.02 * i, i);
   pts.x[5] = 2.0;
   PrefilterStats stats;
-  std::vector<unsigned char> keep;
   PrefilterOptions o;
-  RejectUnsupported(o, pts, keep, stats);
+  RejectUnsupported(o, pts, stats);
   EXPECT_EQ(stats.unsupported, 1u);
   EXPECT_EQ(pts.Size(), 9u);
   Thin(o, pts, stats);  // 6 cm thinning of 2 cm spacing keeps every third point
@@ -72,7 +71,7 @@ TEST(Prefilter, DropsUnsupportedPointsAndThinsAndWrapsOnlyFullScans) {
     for (int i = 1; i < 9; ++i) ring.Push(3.0, 0.1 * i, i);
     ring.Push(1.0, -0.05, 9);
     PrefilterStats ring_stats;
-    RejectUnsupported(o, ring, keep, ring_stats);
+    RejectUnsupported(o, ring, ring_stats);
     EXPECT_EQ(ring_stats.unsupported, wraps ? 0u : 2u) << wraps;
   }
 }

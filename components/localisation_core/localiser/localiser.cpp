@@ -117,7 +117,6 @@ Localiser::Localiser(const world_model::WorldModel& world, const LocaliserOption
   const size_t beams = static_cast<size_t>(options_.max_beams);
   directions_.Reserve(beams);
   points_.Reserve(beams);
-  keep_.reserve(beams);
   windows_.reserve(beams);
   expected_.Reserve(lines_.size(), world.Walls().size());
   // The wall lines take the first slots of the map-error memory, each other
@@ -253,7 +252,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   directions_.Update(scan);
   RangeGate(scan, directions_, options_.prefilter, points_, result_.prefilter);
   if (input.motion != nullptr) Deskew(*input.motion, points_);
-  RejectUnsupported(options_.prefilter, points_, keep_, result_.prefilter);
+  RejectUnsupported(options_.prefilter, points_, result_.prefilter);
   Thin(options_.prefilter, points_, result_.prefilter);
   const auto t1 = Clock::now();
   // 2. Sliding line fits.

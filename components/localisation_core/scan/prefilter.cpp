@@ -31,28 +31,33 @@ inline void MovePoint(ScanPoints& points, size_t i, size_t w) {
 
 void RangeGate(const ScanView& scan, const BeamDirections& directions,
                const PrefilterOptions& options, ScanPoints& out, PrefilterStats& stats) {
-  out.Clear();
   out.wraps = scan.WrapsAround();
   stats.beams = scan.count;
   const double lo = std::max(options.min_range_m, scan.range_min);
   const double hi =
       scan.range_max > 0.0 ? std::min(options.max_range_m, scan.range_max) : options.max_range_m;
+  // Every beam is written to the next free slot, which advances only for a
+  // usable one: no branch to mispredict on a scan full of drop-outs.
+  out.Truncate(scan.count);
+  size_t kept = 0, non_finite = 0, negative = 0;
   for (size_t i = 0; i < scan.count; ++i) {
     const double r = scan.ranges[i];
-    if (!std::isfinite(r)) {
-      ++stats.non_finite;
-    } else if (r < 0.0) {
-      ++stats.negative;
-    } else if (r < lo || r > hi) {
-      ++stats.out_of_range;
-    } else {
-      out.Push(r * directions.Cos(i), r * directions.Sin(i), static_cast<int>(i));
-    }
+    const bool finite = std::isfinite(r);
+    const bool usable = finite & (r >= lo) & (r <= hi);
+    non_finite += !finite;
+    negative += finite & (r < 0.0);
+    out.x[kept] = r * directions.Cos(i);
+    out.y[kept] = r * directions.Sin(i);
+    out.beam[kept] = static_cast<int>(i);
+    kept += usable;
   }
+  out.Truncate(kept);
+  stats.non_finite += non_finite;
+  stats.negative += negative;
+  stats.out_of_range += scan.count - kept - non_finite - negative;
 }
 
-void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points,
-                       std::vector<unsigned char>& keep, PrefilterStats& stats) {
+void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats) {
   const size_t n = points.Size();
   if (n < 3) return;
   const double d2 = options.max_neighbour_distance_m * options.max_neighbour_distance_m;
@@ -60,41 +65,41 @@ void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points,
     const double dx = points.x[a] - points.x[b], dy = points.y[a] - points.y[b];
     return dx * dx + dy * dy > d2;
   };
-  keep.assign(n, 1);
-  for (size_t i = 0; i < n; ++i) {
-    const bool has_prev = i > 0 || points.wraps;
-    const bool has_next = i + 1 < n || points.wraps;
-    const size_t prev = i > 0 ? i - 1 : n - 1;
-    const size_t next = i + 1 < n ? i + 1 : 0;
-    const bool far_prev = !has_prev || far(i, prev);
-    const bool far_next = !has_next || far(i, next);
-    if (far_prev && far_next) keep[i] = 0;
-  }
+  // One pass: each gap to the next point is measured once, on the points as
+  // they came (slot w <= i is written only after point i is read, and the
+  // wrap-around gap is measured first); each point is copied to the next
+  // free slot, which advances only when the point is kept.
+  const bool last_gap_far = !points.wraps || far(n - 1, 0);
+  bool far_prev = last_gap_far;  // point 0 from its predecessor
   size_t w = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (!keep[i]) {
-      ++stats.unsupported;
-      continue;
-    }
-    MovePoint(points, i, w++);
+    const bool far_next = i + 1 < n ? far(i, i + 1) : last_gap_far;
+    const bool keep = !(far_prev & far_next);
+    MovePoint(points, i, w);
+    w += keep;
+    far_prev = far_next;
   }
+  stats.unsupported += n - w;
   points.Truncate(w);
 }
 
 void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats) {
   const size_t n = points.Size();
   const double d2 = options.min_neighbour_distance_m * options.min_neighbour_distance_m;
+  // As in RangeGate: each point is copied to the next free slot, which
+  // advances only when the point is kept (no branch on the data).
   size_t w = 0;
+  double last_x = 0.0, last_y = 0.0;  // the last point kept
   for (size_t i = 0; i < n; ++i) {
-    if (w > 0) {
-      const double dx = points.x[i] - points.x[w - 1], dy = points.y[i] - points.y[w - 1];
-      if (dx * dx + dy * dy < d2) {
-        ++stats.thinned;
-        continue;
-      }
-    }
-    MovePoint(points, i, w++);
+    const double x = points.x[i], y = points.y[i];
+    const double dx = x - last_x, dy = y - last_y;
+    const bool keep = (w == 0) | !(dx * dx + dy * dy < d2);
+    MovePoint(points, i, w);
+    last_x = keep ? x : last_x;
+    last_y = keep ? y : last_y;
+    w += keep;
   }
+  stats.thinned += n - w;
   points.Truncate(w);
   stats.kept = w;
 }

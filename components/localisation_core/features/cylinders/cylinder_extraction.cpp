@@ -8,6 +8,7 @@ namespace structloc::localisation_core {
 
 void CylinderWork::Reserve(size_t points, size_t expected) {
   sums.reserve(expected);
+  ring.reserve(expected);
   point_label.reserve(points);
   members.reserve(points);
 }
@@ -55,17 +56,21 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
   work.point_label.assign(points.Size(), -1);
   const double gate2 = o.gate_m * o.gate_m;
   const size_t np = points.Size();
+  // The ring around each expected surface a candidate's centroid lies in,
+  // squared (no square root in the loop over windows).
+  work.ring.clear();
+  for (const auto& c : expected) {
+    const double lo = std::max(0.0, c.radius - o.candidate_gate_m);
+    const double hi = c.radius + o.candidate_gate_m;
+    work.ring.push_back({c.sensor.x(), c.sensor.y(), lo * lo, hi * hi});
+  }
   for (const auto& w : windows) {
-    // Candidate only when the window's centroid lies near an expected surface
-    // (compared squared: no square root in this loop).
     int near = -1;
     for (size_t e = 0; e < ne; ++e) {
-      const auto& c = expected[e];
-      const double dx = w.line.xm - c.sensor.x(), dy = w.line.ym - c.sensor.y();
+      const auto& ring = work.ring[e];
+      const double dx = w.line.xm - ring.x, dy = w.line.ym - ring.y;
       const double d2 = dx * dx + dy * dy;
-      const double lo = std::max(0.0, c.radius - o.candidate_gate_m);
-      const double hi = c.radius + o.candidate_gate_m;
-      if (d2 >= lo * lo && d2 <= hi * hi) near = static_cast<int>(e);
+      near = (d2 >= ring.lo2) & (d2 <= ring.hi2) ? static_cast<int>(e) : near;
     }
     if (near < 0) continue;
     const CircleFit fit =

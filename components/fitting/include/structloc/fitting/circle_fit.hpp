@@ -15,8 +15,8 @@ struct CircleFit {
 };
 
 // The circle through the `count` points (x[i], y[i]) from index `first` on
-// (indices wrap modulo x.size(): a scan over a full turn), computed about
-// their centroid.
+// (indices wrap modulo x.size(): a scan over a full turn; count <= x.size()),
+// computed about their centroid.
 CircleFit FitCircle(const std::vector<double>& x, const std::vector<double>& y, size_t first,
                     size_t count);
 

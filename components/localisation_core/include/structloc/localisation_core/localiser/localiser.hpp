@@ -144,7 +144,6 @@ class Localiser {
 
   BeamDirections directions_;
   ScanPoints points_;
-  std::vector<unsigned char> keep_;
   std::vector<WindowLine> windows_;
   ExpectedWalls expected_;
   MapErrorMemory map_errors_;

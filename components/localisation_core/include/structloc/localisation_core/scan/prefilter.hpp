@@ -32,9 +32,7 @@ struct PrefilterStats {
 void RangeGate(const ScanView& scan, const BeamDirections& directions,
                const PrefilterOptions& options, ScanPoints& out, PrefilterStats& stats);
 // Drops points farther than max_neighbour_distance_m from both neighbours.
-// `keep` is scratch space of the same capacity as the points.
-void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points,
-                       std::vector<unsigned char>& keep, PrefilterStats& stats);
+void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats);
 // Drops points closer than min_neighbour_distance_m to the last kept point.
 void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats);
 

@@ -35,6 +35,12 @@ inline CircleFit FitCircle(const ScanPoints& points, size_t first, size_t count)
 }
 
 struct CylinderWork {
+  // Per expected pillar: its centre in the sensor frame and the squared radii
+  // of the ring a candidate window's centroid lies in.
+  struct Ring {
+    double x, y, lo2, hi2;
+  };
+  std::vector<Ring> ring;
   std::vector<PointSums> sums;
   std::vector<int> point_label;
   std::vector<int> members;  // one pillar's points, for its refinement
