@@ -131,9 +131,9 @@ void BM_WallClusteringKohonen(benchmark::State& state) {
 
 void BM_Corners(benchmark::State& state) {
   Prepared p(static_cast<int>(state.range(0)));
-  std::vector<localisation_core::PointSums> work;
+  localisation_core::CornerWork work;
   std::vector<localisation_core::PointCluster> out;
-  work.reserve(64);
+  work.Reserve(4096, 64);
   out.reserve(64);
   for (auto _ : state) {
     ExtractCorners(p.windows, p.points.wraps, p.corners,

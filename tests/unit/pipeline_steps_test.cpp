@@ -128,7 +128,7 @@ TEST(Corners, TwoKnownLinesIntersectWhereExpected) {
   tight.max_rms_m = 1e-6;
   FitWindowLines(pts, tight, lines);
   const std::vector<ExpectedPoint> expected{{0, 7, {0, 0}, {2.0, 0.0}, 0.0}};
-  std::vector<PointSums> work;
+  CornerWork work;
   std::vector<PointCluster> out;
   ExtractCorners(lines, false, expected, CornerOptions{}, 7, work, out);
   // Windows straddling the corner are excluded by the rms check (tight here).

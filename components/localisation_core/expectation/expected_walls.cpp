@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 namespace structloc::localisation_core {
 
@@ -86,24 +85,6 @@ void ExpectedWalls::IndexExtents() {
   next_.assign(first_extent_.begin(), first_extent_.end() - 1);
   for (const auto& x : extents) sorted_[static_cast<size_t>(next_[x.expected_index]++)] = x;
   extents.swap(sorted_);
-}
-
-double ExpectedWalls::DistanceOutside(int e, double t, const ExpectedExtent** wall) const {
-  if (first_extent_.size() != walls.size() + 1) {
-    throw std::logic_error("ExpectedWalls::DistanceOutside before IndexExtents");
-  }
-  double best = 1e300;
-  const auto begin = extents.begin() + first_extent_[static_cast<size_t>(e)];
-  const auto end = extents.begin() + first_extent_[static_cast<size_t>(e) + 1];
-  for (auto it = begin; it != end; ++it) {
-    const auto& x = *it;
-    const double d = std::max({x.lo - t, t - x.hi, 0.0});
-    if (d < best) {
-      best = d;
-      if (wall != nullptr) *wall = &x;
-    }
-  }
-  return best;
 }
 
 }  // namespace structloc::localisation_core

@@ -27,24 +27,67 @@ Eigen::Matrix2d PointSums::Scatter() const {
   return c;
 }
 
+void CornerWork::Reserve(size_t windows, size_t expected) {
+  sums.reserve(expected);
+  turn.reserve(2 * windows + 1);
+}
+
+namespace {
+
+// asin(1/2) / (1/2) = (pi / 6) / (1 / 2), rounded up.
+constexpr double kSmallTurnFactor = 1.0472;
+
+// work.turn[j]: a bound on the angle the normal turns from window 0 to window
+// j through every window between. A step between two usable windows whose
+// normals lie within 90 deg turns by asin |sin|, at most pi/2 |sin|, and at
+// most (pi/6) / (1/2) |sin| while |sin| <= 1/2 (asin(x) / x grows with x);
+// any other step counts as a full turn.
+void BoundTurns(const std::vector<WindowLine>& windows, bool wraps, size_t reach,
+                std::vector<double>& turn) {
+  const size_t n = windows.size();
+  const size_t steps = wraps ? n + reach : n - 1;
+  turn.resize(steps + 1);
+  double sum = 0.0;
+  turn[0] = sum;
+  size_t ia = 0, ib = n > 1 ? 1 : 0;  // j and j + 1, wrapped
+  for (size_t j = 0; j < steps; ++j, ia = ib, ib = ib + 1 < n ? ib + 1 : 0) {
+    const auto& a = windows[ia];
+    const auto& b = windows[ib];
+    const double cross = a.line.cos_alpha * b.line.sin_alpha - a.line.sin_alpha * b.line.cos_alpha;
+    const double dot = a.line.cos_alpha * b.line.cos_alpha + a.line.sin_alpha * b.line.sin_alpha;
+    const double sin = std::abs(cross);
+    const double factor = sin <= 0.5 ? kSmallTurnFactor : geometry::kHalfPi;
+    const bool bounded = a.valid & b.valid & (dot >= 0.0);
+    sum += bounded ? factor * sin : geometry::kPi;
+    turn[j + 1] = sum;
+  }
+}
+
+}  // namespace
+
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
                     const std::vector<ExpectedPoint>& expected, const CornerOptions& o,
-                    int window_points, std::vector<PointSums>& work,
-                    std::vector<PointCluster>& out) {
+                    int window_points, CornerWork& work, std::vector<PointCluster>& out) {
   out.clear();
   const size_t ne = expected.size();
-  if (ne == 0) return;
-  work.assign(ne, PointSums{});
+  const size_t n = windows.size();
+  if (ne == 0 || n == 0) return;
+  work.sums.assign(ne, PointSums{});
   const double min_sin = std::cos(o.angle_tolerance_rad);  // |sin(angle)| near 1
   const double gate2 = o.gate_m * o.gate_m;
-  const size_t n = windows.size();
   const size_t k = static_cast<size_t>(o.next_windows);
+  // The next k usable windows: windows straddling the corner itself fail the
+  // rms check, so the search looks up to one window length further.
+  const size_t reach = k + static_cast<size_t>(window_points);
+  // A window whose normal cannot turn by pi/2 - tolerance within reach meets
+  // none of them at a corner (the margin covers rounding in the bound).
+  BoundTurns(windows, wraps, reach, work.turn);
+  const double min_turn = geometry::kHalfPi - o.angle_tolerance_rad - 1e-9;
+  const size_t last = work.turn.size() - 1;
   for (size_t i = 0; i < n; ++i) {
     if (!windows[i].valid) continue;
+    if (work.turn[std::min(i + reach, last)] - work.turn[i] < min_turn) continue;
     const auto& p = windows[i].line;
-    // The next k usable windows: windows straddling the corner itself fail the
-    // rms check, so the search looks up to one window length further.
-    const size_t reach = k + static_cast<size_t>(window_points);
     size_t used = 0;
     for (size_t j = 1; j <= reach && used < k; ++j) {
       if (!wraps && i + j >= n) break;
@@ -57,12 +100,12 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
       const double x = (p.r * q.line.sin_alpha - q.line.r * p.sin_alpha) / det;
       const double y = (p.cos_alpha * q.line.r - q.line.cos_alpha * p.r) / det;
       const int e = NearestWithin(expected, x, y, gate2);
-      if (e >= 0) work[static_cast<size_t>(e)].Add(x, y);
+      if (e >= 0) work.sums[static_cast<size_t>(e)].Add(x, y);
     }
   }
   for (size_t e = 0; e < ne; ++e) {
-    if (work[e].n < o.min_cluster_size) continue;
-    out.push_back(work[e].ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m));
+    if (work.sums[e].n < o.min_cluster_size) continue;
+    out.push_back(work.sums[e].ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m));
   }
 }
 

@@ -45,15 +45,16 @@ std::vector<LocaliserOptionTable> CornerSections() {
 FeatureKind CornerKind() {
   return {"corners", CornerSections,
           [](const LocaliserOptions& o) { return o.kinds.Get<CornerKindOptions>().enabled; },
-          [](const LocaliserOptions& o, const world_model::WorldModel& map, size_t) {
+          [](const LocaliserOptions& o, const world_model::WorldModel& map, size_t max_beams) {
             return std::unique_ptr<FeatureExtractor>(std::make_unique<CornerExtractor>(
-                o.kinds.Get<CornerKindOptions>().extraction, map.Corners().size()));
+                o.kinds.Get<CornerKindOptions>().extraction, max_beams, map.Corners().size()));
           }};
 }
 
-CornerExtractor::CornerExtractor(const CornerOptions& options, size_t corners) : options_(options) {
+CornerExtractor::CornerExtractor(const CornerOptions& options, size_t max_beams, size_t corners)
+    : options_(options) {
   expected_.reserve(corners);
-  work_.reserve(corners);
+  work_.Reserve(max_beams, corners);
   clusters_.reserve(corners);
 }
 

@@ -5,6 +5,8 @@
 // does); each point kind places its own points (expected_points.hpp).
 #pragma once
 
+#include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -59,7 +61,23 @@ struct ExpectedWalls {
   void IndexExtents();
   // The extent of expected wall `e` nearest to `t` (along its world line):
   // the distance outside it (0 inside) and, through `wall`, that extent.
-  double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const;
+  // Inline: the wall gate asks it for every window line.
+  double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const {
+    if (first_extent_.size() != walls.size() + 1) {
+      throw std::logic_error("ExpectedWalls::DistanceOutside before IndexExtents");
+    }
+    double best = 1e300;
+    const auto begin = extents.begin() + first_extent_[static_cast<size_t>(e)];
+    const auto end = extents.begin() + first_extent_[static_cast<size_t>(e) + 1];
+    for (auto it = begin; it != end; ++it) {
+      const double d = std::max({it->lo - t, t - it->hi, 0.0});
+      if (d < best) {
+        best = d;
+        if (wall != nullptr) *wall = &*it;
+      }
+    }
+    return best;
+  }
 
  private:
   std::vector<int> first_extent_;  // of wall e; walls.size() + 1 entries

@@ -27,9 +27,17 @@ struct CornerOptions {
   double gate_chi2 = 0.0;          // Mahalanobis gate, 2 dof (point_gate.hpp; 0: gate_m only)
 };
 
+// Scratch space for ExtractCorners, reused across scans.
+struct CornerWork {
+  std::vector<PointSums> sums;  // per expected corner
+  // Bound on how far the normal turns from window 0 to window j through the
+  // windows between (cumulative; continued past the end of a wrapping scan).
+  std::vector<double> turn;
+  void Reserve(size_t windows, size_t expected);
+};
+
 void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
                     const std::vector<ExpectedPoint>& expected, const CornerOptions& options,
-                    int window_points, std::vector<PointSums>& work,
-                    std::vector<PointCluster>& out);
+                    int window_points, CornerWork& work, std::vector<PointCluster>& out);
 
 }  // namespace structloc::localisation_core

@@ -18,7 +18,7 @@ struct CornerKindOptions {
 class CornerExtractor : public FeatureExtractor {
  public:
   // Buffers for `corners` expected corners.
-  CornerExtractor(const CornerOptions& options, size_t corners);
+  CornerExtractor(const CornerOptions& options, size_t max_beams, size_t corners);
   const char* Kind() const override { return "corners"; }
   FeatureShape Shape() const override { return FeatureShape::kPoint; }
   int TakeSlots(const world_model::WorldModel& map, int first_slot) override;
@@ -36,7 +36,7 @@ class CornerExtractor : public FeatureExtractor {
   CornerOptions options_;
   int first_slot_ = -1;  // none until TakeSlots: no map-error memory
   std::vector<ExpectedPoint> expected_;
-  std::vector<PointSums> work_;
+  CornerWork work_;
   std::vector<PointCluster> clusters_;
 };
 
