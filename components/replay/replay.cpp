@@ -348,8 +348,7 @@ class Replayer {
       directions_.Update(view);
       localisation_core::PrefilterStats stats;
       RangeGate(view, directions_, params_.prefilter, points_, stats);
-      RejectUnsupported(params_.prefilter, points_, stats);
-      Thin(params_.prefilter, points_, stats);
+      RejectUnsupportedAndThin(params_.prefilter, points_, stats);
       FitWindowLines(points_, params_.line_fit, windows_);
     }
     times_us_.push_back(

@@ -45,8 +45,7 @@ struct Prepared {
     directions.Update(scan.View());
     localisation_core::PrefilterStats stats;
     RangeGate(scan.View(), directions, office.options.prefilter, points, stats);
-    RejectUnsupported(office.options.prefilter, points, stats);
-    Thin(office.options.prefilter, points, stats);
+    RejectUnsupportedAndThin(office.options.prefilter, points, stats);
     FitWindowLines(points, office.options.line_fit, windows);
     const auto lines = localisation_core::GroupCollinearWalls(office.world);
     std::vector<int> line_of(office.world.Walls().size());
@@ -83,8 +82,7 @@ void BM_Prefilter(benchmark::State& state) {
   for (auto _ : state) {
     localisation_core::PrefilterStats stats;
     RangeGate(p.scan.View(), p.directions, p.office.options.prefilter, points, stats);
-    RejectUnsupported(p.office.options.prefilter, points, stats);
-    Thin(p.office.options.prefilter, points, stats);
+    RejectUnsupportedAndThin(p.office.options.prefilter, points, stats);
     benchmark::DoNotOptimize(points.x.data());
   }
 }

@@ -56,12 +56,12 @@ TEST(Prefilter, DropsUnsupportedPointsAndThinsAndWrapsOnlyFullScans) {
   pts.x[5] = 2.0;
   PrefilterStats stats;
   PrefilterOptions o;
-  RejectUnsupported(o, pts, stats);
+  RejectUnsupportedAndThin(o, pts, stats);
   EXPECT_EQ(stats.unsupported, 1u);
-  EXPECT_EQ(pts.Size(), 9u);
-  Thin(o, pts, stats);  // 6 cm thinning of 2 cm spacing keeps every third point
+  // 6 cm thinning of the nine left, 2 cm apart, keeps every third point.
   EXPECT_EQ(stats.kept, pts.Size());
-  EXPECT_LT(pts.Size(), 5u);
+  EXPECT_EQ(stats.unsupported + stats.thinned + stats.kept, 10u);
+  EXPECT_EQ(pts.Size(), 4u);  // y = 0, 0.06, 0.12, 0.18
   // The first point's only close neighbour is the last point: kept in a full
   // (wrapping) scan, unsupported in an open one.
   for (bool wraps : {true, false}) {
@@ -71,7 +71,7 @@ TEST(Prefilter, DropsUnsupportedPointsAndThinsAndWrapsOnlyFullScans) {
     for (int i = 1; i < 9; ++i) ring.Push(3.0, 0.1 * i, i);
     ring.Push(1.0, -0.05, 9);
     PrefilterStats ring_stats;
-    RejectUnsupported(o, ring, ring_stats);
+    RejectUnsupportedAndThin(o, ring, ring_stats);
     EXPECT_EQ(ring_stats.unsupported, wraps ? 0u : 2u) << wraps;
   }
 }

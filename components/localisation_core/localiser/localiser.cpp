@@ -252,8 +252,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
   directions_.Update(scan);
   RangeGate(scan, directions_, options_.prefilter, points_, result_.prefilter);
   if (input.motion != nullptr) Deskew(*input.motion, points_);
-  RejectUnsupported(options_.prefilter, points_, result_.prefilter);
-  Thin(options_.prefilter, points_, result_.prefilter);
+  RejectUnsupportedAndThin(options_.prefilter, points_, result_.prefilter);
   const auto t1 = Clock::now();
   // 2. Sliding line fits.
   FitWindowLines(points_, options_.line_fit, windows_);

@@ -57,49 +57,44 @@ void RangeGate(const ScanView& scan, const BeamDirections& directions,
   stats.out_of_range += scan.count - kept - non_finite - negative;
 }
 
-void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats) {
+void RejectUnsupportedAndThin(const PrefilterOptions& options, ScanPoints& points,
+                              PrefilterStats& stats) {
   const size_t n = points.Size();
-  if (n < 3) return;
-  const double d2 = options.max_neighbour_distance_m * options.max_neighbour_distance_m;
+  stats.kept = 0;
+  if (n == 0) return;
+  const double far2 = options.max_neighbour_distance_m * options.max_neighbour_distance_m;
+  const double near2 = options.min_neighbour_distance_m * options.min_neighbour_distance_m;
   auto far = [&](size_t a, size_t b) {
     const double dx = points.x[a] - points.x[b], dy = points.y[a] - points.y[b];
-    return dx * dx + dy * dy > d2;
+    return dx * dx + dy * dy > far2;
   };
-  // One pass: each gap to the next point is measured once, on the points as
-  // they came (slot w <= i is written only after point i is read, and the
-  // wrap-around gap is measured first); each point is copied to the next
-  // free slot, which advances only when the point is kept.
+  // Support needs two neighbours: fewer than three points are all kept.
+  const bool check_support = n >= 3;
+  // One pass, in place. Each gap to the next point is measured once, on the
+  // points as they came (slot w <= i is written only after point i is read,
+  // and the wrap-around gap is measured first). Each point is copied to the
+  // next free slot, which advances only when the point is kept: no branch on
+  // the data.
   const bool last_gap_far = !points.wraps || far(n - 1, 0);
   bool far_prev = last_gap_far;  // point 0 from its predecessor
-  size_t w = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const bool far_next = i + 1 < n ? far(i, i + 1) : last_gap_far;
-    const bool keep = !(far_prev & far_next);
-    MovePoint(points, i, w);
-    w += keep;
-    far_prev = far_next;
-  }
-  stats.unsupported += n - w;
-  points.Truncate(w);
-}
-
-void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats) {
-  const size_t n = points.Size();
-  const double d2 = options.min_neighbour_distance_m * options.min_neighbour_distance_m;
-  // As in RangeGate: each point is copied to the next free slot, which
-  // advances only when the point is kept (no branch on the data).
-  size_t w = 0;
-  double last_x = 0.0, last_y = 0.0;  // the last point kept
+  size_t w = 0, unsupported = 0;
+  double last_x = 0.0, last_y = 0.0;  // the last point kept, for thinning
   for (size_t i = 0; i < n; ++i) {
     const double x = points.x[i], y = points.y[i];
+    const bool far_next = i + 1 < n ? far(i, i + 1) : last_gap_far;
+    const bool supported = !check_support | !(far_prev & far_next);
     const double dx = x - last_x, dy = y - last_y;
-    const bool keep = (w == 0) | !(dx * dx + dy * dy < d2);
+    const bool spaced = (w == 0) | !(dx * dx + dy * dy < near2);
+    const bool keep = supported & spaced;
     MovePoint(points, i, w);
+    unsupported += !supported;
     last_x = keep ? x : last_x;
     last_y = keep ? y : last_y;
     w += keep;
+    far_prev = far_next;
   }
-  stats.thinned += n - w;
+  stats.unsupported += unsupported;
+  stats.thinned += n - w - unsupported;
   points.Truncate(w);
   stats.kept = w;
 }

@@ -11,6 +11,9 @@ void SolveOutput::Reserve(size_t walls, size_t points) {
   wall_used.reserve(walls);
   point_residual.reserve(points);
   point_used.reserve(points);
+  wall_direction.reserve(walls);
+  wall_information.reserve(walls);
+  point_information.reserve(points);
 }
 
 namespace {
@@ -20,9 +23,11 @@ struct Row2 {
   Eigen::Matrix<double, 2, 3> jacobian;
 };
 
-// Wall: measured (r, alpha) minus predicted (EQ 23, 24) at `pose`.
-Row2 WallRow(const WallMeasurement& m, const geometry::Pose2D& pose) {
-  const double cw = std::cos(m.world_alpha), sw = std::sin(m.world_alpha);
+// Wall: measured (r, alpha) minus predicted (EQ 23, 24) at `pose`;
+// `direction` is (cos, sin) of the wall's world angle.
+Row2 WallRow(const WallMeasurement& m, const Eigen::Vector2d& direction,
+             const geometry::Pose2D& pose) {
+  const double cw = direction.x(), sw = direction.y();
   Row2 row;
   row.residual << m.r - (m.world_r - (pose.x * cw + pose.y * sw)),
       geometry::WrapAngle(m.alpha - (m.world_alpha - pose.theta));
@@ -30,9 +35,9 @@ Row2 WallRow(const WallMeasurement& m, const geometry::Pose2D& pose) {
   return row;
 }
 
-// Point: measured sensor-frame position minus R(theta)^T (world - t).
-Row2 PointRow(const PointMeasurement& m, const geometry::Pose2D& pose) {
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+// Point: measured sensor-frame position minus R(theta)^T (world - t);
+// (c, s) are cos and sin of pose.theta.
+Row2 PointRow(const PointMeasurement& m, const geometry::Pose2D& pose, double c, double s) {
   const double dx = m.world.x() - pose.x, dy = m.world.y() - pose.y;
   Row2 row;
   row.residual << m.sensor.x() - (c * dx + s * dy), m.sensor.y() - (-s * dx + c * dy);
@@ -51,6 +56,17 @@ void SolveWeighted(const SolveInput& in, const SolverOptions& o, SolveOutput& ou
   for (size_t i = 0; i < points.size(); ++i) out.point_used[i] = points[i].use_in_weighted;
   out.wall_residual.assign(walls.size(), 0.0);
   out.point_residual.assign(points.size(), 0.0);
+  // What no iteration changes, once.
+  out.wall_direction.resize(walls.size());
+  out.wall_information.resize(walls.size());
+  out.point_information.resize(points.size());
+  for (size_t i = 0; i < walls.size(); ++i) {
+    out.wall_direction[i] = {std::cos(walls[i].world_alpha), std::sin(walls[i].world_alpha)};
+    out.wall_information[i] = walls[i].covariance.inverse();
+  }
+  for (size_t i = 0; i < points.size(); ++i) {
+    out.point_information[i] = points[i].covariance.inverse();
+  }
   const Eigen::Matrix3d prior_info = in.prior_covariance.inverse();
   geometry::Pose2D pose = in.prior;
   Eigen::Matrix3d h = prior_info;
@@ -65,17 +81,18 @@ void SolveWeighted(const SolveInput& in, const SolverOptions& o, SolveOutput& ou
       Eigen::Vector3d g = prior_info * prior_res;  // gradient of 1/2 chi2
       for (size_t i = 0; i < walls.size(); ++i) {
         if (!out.wall_used[i]) continue;
-        const Row2 row = WallRow(walls[i], pose);
-        const Eigen::Matrix2d w = walls[i].covariance.inverse();
+        const Row2 row = WallRow(walls[i], out.wall_direction[i], pose);
+        const Eigen::Matrix2d& w = out.wall_information[i];
         const Eigen::Matrix3d hi = row.jacobian.transpose() * w * row.jacobian;
         h += hi;
         out.feature_information += hi;
         g += row.jacobian.transpose() * w * row.residual;
       }
+      const double c = std::cos(pose.theta), s = std::sin(pose.theta);
       for (size_t i = 0; i < points.size(); ++i) {
         if (!out.point_used[i]) continue;
-        const Row2 row = PointRow(points[i], pose);
-        const Eigen::Matrix2d w = points[i].covariance.inverse();
+        const Row2 row = PointRow(points[i], pose, c, s);
+        const Eigen::Matrix2d& w = out.point_information[i];
         const Eigen::Matrix3d hi = row.jacobian.transpose() * w * row.jacobian;
         h += hi;
         out.feature_information += hi;
@@ -98,10 +115,10 @@ void SolveWeighted(const SolveInput& in, const SolverOptions& o, SolveOutput& ou
     double worst = o.outlier_chi2;
     int worst_wall = -1, worst_point = -1;
     for (size_t i = 0; i < walls.size(); ++i) {
-      const Row2 row = WallRow(walls[i], pose);
+      const Row2 row = WallRow(walls[i], out.wall_direction[i], pose);
       out.wall_residual[i] = std::abs(row.residual.x());
       if (!out.wall_used[i]) continue;
-      const double m = row.residual.dot(walls[i].covariance.inverse() * row.residual);
+      const double m = row.residual.dot(out.wall_information[i] * row.residual);
       chi2 += m;
       rows += 2;
       if (m > worst) {
@@ -110,11 +127,12 @@ void SolveWeighted(const SolveInput& in, const SolverOptions& o, SolveOutput& ou
         worst_point = -1;
       }
     }
+    const double c = std::cos(pose.theta), s = std::sin(pose.theta);
     for (size_t i = 0; i < points.size(); ++i) {
-      const Row2 row = PointRow(points[i], pose);
+      const Row2 row = PointRow(points[i], pose, c, s);
       out.point_residual[i] = row.residual.norm();
       if (!out.point_used[i]) continue;
-      const double m = row.residual.dot(points[i].covariance.inverse() * row.residual);
+      const double m = row.residual.dot(out.point_information[i] * row.residual);
       chi2 += m;
       rows += 2;
       if (m > worst) {

@@ -31,9 +31,10 @@ struct PrefilterStats {
 // Range gate + polar-to-Cartesian (EQ 5). Clears `out` first.
 void RangeGate(const ScanView& scan, const BeamDirections& directions,
                const PrefilterOptions& options, ScanPoints& out, PrefilterStats& stats);
-// Drops points farther than max_neighbour_distance_m from both neighbours.
-void RejectUnsupported(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats);
-// Drops points closer than min_neighbour_distance_m to the last kept point.
-void Thin(const PrefilterOptions& options, ScanPoints& points, PrefilterStats& stats);
+// Drops points farther than max_neighbour_distance_m from both neighbours
+// (unsupported: a lone return in mid-air), then thins: drops points closer
+// than min_neighbour_distance_m to the last point kept. One pass for both.
+void RejectUnsupportedAndThin(const PrefilterOptions& options, ScanPoints& points,
+                              PrefilterStats& stats);
 
 }  // namespace structloc::localisation_core

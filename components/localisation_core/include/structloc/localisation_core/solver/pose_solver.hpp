@@ -76,6 +76,11 @@ struct SolveOutput {
   std::vector<unsigned char> wall_used;
   std::vector<double> point_residual;
   std::vector<unsigned char> point_used;
+  // Scratch of the weighted solver, the same for every iteration: each wall's
+  // cos/sin of its world angle, each measurement's information (inverse covariance).
+  std::vector<Eigen::Vector2d> wall_direction;
+  std::vector<Eigen::Matrix2d> wall_information;
+  std::vector<Eigen::Matrix2d> point_information;
   void Reserve(size_t walls, size_t points);
 };
 
