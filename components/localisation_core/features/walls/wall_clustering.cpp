@@ -39,15 +39,18 @@ namespace {
 // reference line: the gates widened by how far such a line may be from the
 // reference (triangle inequality in r and in the angle between lines).
 // Scan-ordered windows on one wall reuse the list, so that most windows test
-// one or two walls instead of all (the result is the same).
+// one or two walls instead of all (the result is the same). The slack is
+// twice the gates: a short window's (r, alpha) scatters by about a gate at
+// long range, and the list stays a list of the walls nearby.
 class GateCandidates {
  public:
   GateCandidates(const WallClusterOptions& o, std::vector<int>& list)
       : list_(list),
-        slack_r_(o.gate_r_m),
+        slack_r_(2.0 * o.gate_r_m),
         // Below pi/2 together with the gate: a window and its reference then
         // face every candidate from the same side, so that r's sign agrees.
-        slack_alpha_(std::min(o.gate_alpha_rad, 0.5 * (geometry::kHalfPi - o.gate_alpha_rad))),
+        slack_alpha_(
+            std::min(2.0 * o.gate_alpha_rad, 0.5 * (geometry::kHalfPi - o.gate_alpha_rad))),
         min_dot_(std::cos(std::min(o.gate_alpha_rad + slack_alpha_, geometry::kHalfPi)) - 1e-12),
         max_dr_(o.gate_r_m + slack_r_ + 1e-12),
         near_dot_(std::cos(slack_alpha_)) {}

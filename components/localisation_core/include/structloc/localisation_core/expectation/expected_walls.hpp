@@ -61,9 +61,10 @@ struct ExpectedWalls {
   void IndexExtents();
   // The extent of expected wall `e` nearest to `t` (along its world line):
   // the distance outside it (0 inside) and, through `wall`, that extent.
-  // Inline: the wall gate asks it for every window line.
+  // Inline: the wall gate asks it for every window line. Call IndexExtents
+  // first (and again after changing walls or extents).
   double DistanceOutside(int e, double t, const ExpectedExtent** wall = nullptr) const {
-    if (first_extent_.size() != walls.size() + 1) {
+    if (first_extent_.empty()) {
       throw std::logic_error("ExpectedWalls::DistanceOutside before IndexExtents");
     }
     double best = 1e300;
