@@ -15,7 +15,7 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
     for (auto& l : lines) {
       // Both ends on the group's line (a small angle over a long distance is
       // a large offset), and the same direction.
-      const Eigen::Vector2d n(std::cos(l.line.alpha), std::sin(l.line.alpha));
+      const Eigen::Vector2d n(l.c, l.s);
       if (std::abs(n.dot(w.a) - l.line.r) <= r_tolerance_m &&
           std::abs(n.dot(w.b) - l.line.r) <= r_tolerance_m &&
           std::abs(geometry::WrapAngle(l.line.alpha - w.line.alpha)) <= alpha_tolerance_rad) {
@@ -24,7 +24,10 @@ std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& wo
         break;
       }
     }
-    if (!grouped) lines.push_back({w.line, {static_cast<int>(i)}, w.id});
+    if (!grouped) {
+      lines.push_back(
+          {w.line, {static_cast<int>(i)}, w.id, std::cos(w.line.alpha), std::sin(w.line.alpha)});
+    }
   }
   return lines;
 }
@@ -47,7 +50,7 @@ void ComputeExpectedWalls(const world_model::WorldModel& world,
   for (const auto& vw : visibility.walls) {
     const int line_index = wall_line_of[static_cast<size_t>(vw.index)];
     const auto& model = lines[static_cast<size_t>(line_index)];
-    const double cw = std::cos(model.line.alpha), sw = std::sin(model.line.alpha);
+    const double cw = model.c, sw = model.s;
     const double t1 = -sw * vw.first.x() + cw * vw.first.y();
     const double t2 = -sw * vw.last.x() + cw * vw.last.y();
     const auto& wall = world.Walls()[static_cast<size_t>(vw.index)];

@@ -23,9 +23,18 @@ double MapOffsetVariance(const WallClusterOptions& o, const ExpectedExtent* wall
   return o.map_sigma_r_m * o.map_sigma_r_m + sa * sa;
 }
 
-// Along-line (world) coordinate of a sensor-frame point seen from `pose`.
-double AlongLine(const ExpectedWall& x, const geometry::Pose2D& pose, double px, double py) {
-  const double pc = std::cos(pose.theta), ps = std::sin(pose.theta);
+// The sensor pose with the cosine and sine of its heading.
+struct SensorPose {
+  explicit SensorPose(const geometry::Pose2D& p)
+      : pose(p), c(std::cos(p.theta)), s(std::sin(p.theta)) {}
+  const geometry::Pose2D& pose;
+  double c, s;
+};
+
+// Along-line (world) coordinate of a sensor-frame point seen from `sensor`.
+double AlongLine(const ExpectedWall& x, const SensorPose& sensor, double px, double py) {
+  const auto& pose = sensor.pose;
+  const double pc = sensor.c, ps = sensor.s;
   const double wx = pose.x + pc * px - ps * py;
   const double wy = pose.y + ps * px + pc * py;
   return -x.world_s * wx + x.world_c * wy;
@@ -142,33 +151,38 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
 
 namespace {
 
+// The map's error of expected wall `e` at a cluster's place, over (r, alpha).
+Eigen::Matrix2d MapCovarianceAt(const WallCluster& c, const ExpectedWalls& expected, int e,
+                                const SensorPose& sensor, const WallClusterOptions& o) {
+  const auto& x = expected.walls[static_cast<size_t>(e)];
+  const double t = AlongLine(x, sensor, c.centroid.x(), c.centroid.y());
+  const ExpectedExtent* wall = nullptr;
+  expected.DistanceOutside(e, t, &wall);
+  const double centre = wall != nullptr ? wall->wall_centre : t;
+  // The sensor's foot on the line: the offset error at the sensor's own
+  // along-line place is what r measures (thesis EQ 23 with an uncertain r_W, alpha_W).
+  const double t_sensor = -x.world_s * sensor.pose.x + x.world_c * sensor.pose.y;
+  const double lever = centre - t_sensor;
+  const double sa = MapAngleSigma(o, wall);
+  Eigen::Matrix2d m;
+  m << MapOffsetVariance(o, wall, lever), lever * sa * sa, lever * sa * sa, sa * sa;
+  return m;
+}
+
 // Squared Mahalanobis distance of a cluster from expected wall `e`, with the
-// map's error at the cluster's place; `map_cov` receives that error.
+// map's error at the cluster's place (`map_cov`).
 double ClusterDistance(const WallCluster& c, const ExpectedWalls& expected, int e,
-                       const geometry::Pose2D& pose, const Eigen::Matrix3d& cov,
-                       const WallClusterOptions& o, Eigen::Matrix2d* map_cov) {
+                       const Eigen::Matrix2d& map_cov, const Eigen::Matrix3d& cov) {
   const auto& x = expected.walls[static_cast<size_t>(e)];
   double r = c.refined_r, alpha = c.refined_alpha;
   if (std::cos(alpha) * x.c + std::sin(alpha) * x.s < 0.0) {
     r = -r;
     alpha += geometry::kPi;
   }
-  const double t = AlongLine(x, pose, c.centroid.x(), c.centroid.y());
-  const ExpectedExtent* wall = nullptr;
-  expected.DistanceOutside(e, t, &wall);
-  const double centre = wall != nullptr ? wall->wall_centre : t;
-  // The sensor's foot on the line: the offset error at the sensor's own
-  // along-line place is what r measures (thesis EQ 23 with an uncertain r_W, alpha_W).
-  const double t_sensor = -x.world_s * pose.x + x.world_c * pose.y;
-  const double lever = centre - t_sensor;
-  const double sa = MapAngleSigma(o, wall);
-  Eigen::Matrix2d m;
-  m << MapOffsetVariance(o, wall, lever), lever * sa * sa, lever * sa * sa, sa * sa;
   Eigen::Matrix<double, 2, 3> h;
   h << -x.world_c, -x.world_s, 0.0, 0.0, 0.0, -1.0;
-  const Eigen::Matrix2d s = h * cov * h.transpose() + c.covariance + m;
+  const Eigen::Matrix2d s = h * cov * h.transpose() + c.covariance + map_cov;
   const Eigen::Vector2d nu(r - x.r, geometry::WrapAngle(alpha - std::atan2(x.s, x.c)));
-  if (map_cov != nullptr) *map_cov = m;
   return nu.dot(s.ldlt().solve(nu));
 }
 
@@ -178,23 +192,27 @@ void GateWallClusters(const ExpectedWalls& expected, const geometry::Pose2D& pos
                       const Eigen::Matrix3d& cov, const WallClusterOptions& o,
                       std::vector<WallCluster>& clusters) {
   const double min_dot = std::cos(o.gate_alpha_rad);
+  const SensorPose sensor(pose);
+  const bool gate = o.gate_chi2 > 0.0;
   size_t kept = 0;
   for (size_t k = 0; k < clusters.size(); ++k) {
     WallCluster c = clusters[k];
-    Eigen::Matrix2d map_cov = Eigen::Matrix2d::Zero();
-    const double d2 = ClusterDistance(c, expected, c.expected_index, pose, cov, o, &map_cov);
-    bool keep = o.gate_chi2 <= 0.0 || d2 <= o.gate_chi2;
-    for (size_t f = 0; keep && o.gate_chi2 > 0.0 && f < expected.walls.size(); ++f) {
+    const Eigen::Matrix2d map_cov = MapCovarianceAt(c, expected, c.expected_index, sensor, o);
+    bool keep =
+        !gate || ClusterDistance(c, expected, c.expected_index, map_cov, cov) <= o.gate_chi2;
+    for (size_t f = 0; keep && gate && f < expected.walls.size(); ++f) {
       if (static_cast<int>(f) == c.expected_index) continue;
       const auto& x = expected.walls[f];
       const auto& mine = expected.walls[static_cast<size_t>(c.expected_index)];
       if (std::abs(x.c * mine.c + x.s * mine.s) < min_dot) continue;  // not parallel
-      const double t = AlongLine(x, pose, c.centroid.x(), c.centroid.y());
+      const double t = AlongLine(x, sensor, c.centroid.x(), c.centroid.y());
       if (o.extent_margin_m > 0.0 &&
           expected.DistanceOutside(static_cast<int>(f), t) > o.extent_margin_m) {
         continue;
       }
-      if (ClusterDistance(c, expected, static_cast<int>(f), pose, cov, o, nullptr) <= o.gate_chi2) {
+      const auto f_index = static_cast<int>(f);
+      const Eigen::Matrix2d f_map_cov = MapCovarianceAt(c, expected, f_index, sensor, o);
+      if (ClusterDistance(c, expected, f_index, f_map_cov, cov) <= o.gate_chi2) {
         keep = false;  // two walls explain it: ambiguous
       }
     }

@@ -21,6 +21,7 @@ struct WallLineModel {
   geometry::Line line;
   std::vector<int> walls;  // indices into WorldModel::Walls()
   int model_id = 0;
+  double c = 1.0, s = 0.0;  // cos and sin of line.alpha, computed once
 };
 std::vector<WallLineModel> GroupCollinearWalls(const world_model::WorldModel& world,
                                                double r_tolerance_m = 0.01,
