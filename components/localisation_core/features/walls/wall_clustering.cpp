@@ -40,10 +40,6 @@ double AlongLine(const ExpectedWall& x, const SensorPose& sensor, double px, dou
   return -x.world_s * wx + x.world_c * wy;
 }
 
-}  // namespace
-
-namespace {
-
 // The walls that may pass the (r, alpha) gates of any window line close to a
 // reference line: the gates widened by how far such a line may be from the
 // reference (triangle inequality in r and in the angle between lines).
