@@ -70,8 +70,9 @@ inline LineMoments Moments(const LineSums& s, double ox, double oy, double inv_n
   return m;
 }
 
-// Total least squares line from the moments. Without branches (selects only),
-// so that a loop over many windows vectorises.
+// Total least squares line from the moments: two square roots and one
+// division, and no branch (selects only) to mispredict from one sliding
+// window to the next.
 inline LineEstimate FitMoments(const LineMoments& m) {
   LineEstimate e;
   // EQ 20: alpha = 1/2 atan2(-2 Suv, Svv - Suu), via cos/sin of 2 alpha.
@@ -87,8 +88,6 @@ inline LineEstimate FitMoments(const LineMoments& m) {
   // normalised by its length sqrt(2 h (h + |b|)), with cos alpha >= 0.
   const double u = h + std::abs(b);
   const double k = 1.0 / std::sqrt(2.0 * h * u);
-  // (Every value is computed before it is selected: selects of computed
-  // values, not conditional arithmetic, are what vectorises.)
   const double abs_a = std::abs(a), signed_u = std::copysign(u, a);
   const bool b_positive = b >= 0.0;
   const double c0 = (b_positive ? u : abs_a) * k;
