@@ -229,7 +229,7 @@ void WallClusterWork::Reserve(size_t points, size_t expected) {
 
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
                        const ScanPoints& points, int window_points, const ExpectedWalls& expected,
-                       const WallClusterOptions& o, WallClusterWork& work,
+                       const WallClusterOptions& o, ClusterMeans means, WallClusterWork& work,
                        std::vector<WallCluster>& out) {
   out.clear();
   const size_t ne = expected.walls.size();
@@ -249,12 +249,14 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
       run_wall = e;
       run_windows = work.windows[static_cast<size_t>(e)];
     }
-    const auto& x = expected.walls[static_cast<size_t>(e)];
-    const auto& l = windows[i].line;
-    const double sign = (l.cos_alpha * x.c + l.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
-    run_windows.r += sign * l.r;
-    run_windows.c += sign * l.cos_alpha;
-    run_windows.s += sign * l.sin_alpha;
+    if (means == ClusterMeans::kCompute) {
+      const auto& x = expected.walls[static_cast<size_t>(e)];
+      const auto& l = windows[i].line;
+      const double sign = (l.cos_alpha * x.c + l.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;
+      run_windows.r += sign * l.r;
+      run_windows.c += sign * l.cos_alpha;
+      run_windows.s += sign * l.sin_alpha;
+    }
     ++run_windows.count;
     // Windows come in scan order, so the points of this window before
     // labelled_end already carry label e: label each point once per run.
@@ -291,8 +293,10 @@ void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector
     WallCluster cl;
     cl.expected_index = static_cast<int>(e);
     cl.members = n;
-    cl.mean_r = work.windows[e].r / n;
-    cl.mean_alpha = std::atan2(work.windows[e].s, work.windows[e].c);
+    if (means == ClusterMeans::kCompute) {
+      cl.mean_r = work.windows[e].r / n;
+      cl.mean_alpha = std::atan2(work.windows[e].s, work.windows[e].c);
+    }
     const LineEstimate fit = FitLine(work.sums[e], 0.0, 0.0);
     if (fit.degenerate) continue;
     const double sign = (fit.cos_alpha * x.c + fit.sin_alpha * x.s) < 0.0 ? -1.0 : 1.0;

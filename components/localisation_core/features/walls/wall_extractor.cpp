@@ -77,7 +77,8 @@ void WallExtractor::Extract(const ExtractionInput& in, Measurements& all,
                                options_, work_, assignment_);
   }
   BuildWallClusters(*in.windows, assignment_, *in.points, in.window_points, expected, options_,
-                    work_, clusters_);
+                    in.thesis_values ? ClusterMeans::kCompute : ClusterMeans::kSkip, work_,
+                    clusters_);
   GateWallClusters(expected, in.sensor_prior, in.sensor_prior_covariance, options_, clusters_);
   for (const auto& c : clusters_) {
     const auto& e = expected.walls[static_cast<size_t>(c.expected_index)];

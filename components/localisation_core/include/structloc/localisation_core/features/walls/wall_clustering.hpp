@@ -37,8 +37,8 @@ struct WallClusterOptions {
 struct WallCluster {
   int expected_index = 0;
   int members = 0;          // window lines in the cluster
-  double mean_r = 0.0;      // thesis value: mean of the members' r
-  double mean_alpha = 0.0;  // thesis value: circular mean of the members' alpha
+  double mean_r = 0.0;      // thesis value: mean of the members' r (ClusterMeans::kCompute)
+  double mean_alpha = 0.0;  // thesis value: circular mean of the members' alpha (the same)
   double refined_r = 0.0;   // line through the member points
   double refined_alpha = 0.0;
   int points = 0;  // member points behind the refined line
@@ -72,9 +72,14 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
                                 const WallClusterOptions& options, WallClusterWork& work,
                                 std::vector<int>& assignment);
 
+// Whether clusters carry the thesis' mean (r, alpha) of their window lines
+// beside the refined line: the thesis' solvers read it, the weighted solver
+// does not, and skipping it saves a pass over the window lines.
+enum class ClusterMeans { kSkip, kCompute };
+
 void BuildWallClusters(const std::vector<WindowLine>& windows, const std::vector<int>& assignment,
                        const ScanPoints& points, int window_points, const ExpectedWalls& expected,
-                       const WallClusterOptions& options, WallClusterWork& work,
+                       const WallClusterOptions& options, ClusterMeans means, WallClusterWork& work,
                        std::vector<WallCluster>& out);
 
 // Adds the map's error to each cluster's covariance and, with options.gate_chi2
