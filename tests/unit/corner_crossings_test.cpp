@@ -82,8 +82,9 @@ std::vector<WindowLine> RoomLikeWindows(std::mt19937& rng, double noise_rad) {
 TEST(CornerCrossings, EqualTheCrossingsOfEveryWindow) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 100; ++trial) {
-    const bool wraps = trial % 2 == 0;
-    const auto windows = RoomLikeWindows(rng, trial % 3 == 0 ? 0.3 : 0.02);
+    // Every next_windows with both kinds of scan and both noise levels.
+    const bool wraps = (trial / 6) % 2 == 0;
+    const auto windows = RoomLikeWindows(rng, (trial / 12) % 2 == 0 ? 0.3 : 0.02);
     // Expected corners where the crossings fall: every crossing counts.
     std::vector<ExpectedPoint> expected;
     for (double x = -6.0; x <= 6.0; x += 0.3) {

@@ -16,6 +16,9 @@ namespace {
 std::vector<int> AssignOverAllWalls(const std::vector<WindowLine>& windows,
                                     const ExpectedWalls& expected, const WallClusterOptions& o) {
   std::vector<int> out(windows.size(), -1);
+  const double min_dot = std::cos(o.gate_alpha_rad);
+  const double inv_r2 = 1.0 / (o.gate_r_m * o.gate_r_m);
+  const double inv_a2 = 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
   for (size_t i = 0; i < windows.size(); ++i) {
     if (!windows[i].valid) continue;
     const auto& l = windows[i].line;
@@ -25,9 +28,9 @@ std::vector<int> AssignOverAllWalls(const std::vector<WindowLine>& windows,
       const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
       const double dot = std::abs(signed_dot);
       const double dr = std::copysign(l.r, signed_dot) - x.r;
-      const double dr2 = dr * dr / (o.gate_r_m * o.gate_r_m);
-      const double d = dr2 + (1.0 - dot) * 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
-      if (dot >= std::cos(o.gate_alpha_rad) && dr2 <= 1.0 && d < best_d) {
+      const double dr2 = dr * dr * inv_r2;
+      const double d = dr2 + (1.0 - dot) * inv_a2;
+      if (dot >= min_dot && dr2 <= 1.0 && d < best_d) {
         out[i] = static_cast<int>(e);
         best_d = d;
       }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace structloc::localisation_core {
 
@@ -82,7 +84,14 @@ void ComputeExpectedWalls(const world_model::WorldModel& world,
 void ExpectedWalls::IndexExtents() {
   // A counting sort: stable, and without allocating once reserved.
   first_extent_.assign(walls.size() + 1, 0);
-  for (const auto& x : extents) ++first_extent_[static_cast<size_t>(x.expected_index) + 1];
+  for (const auto& x : extents) {
+    if (x.expected_index < 0 || static_cast<size_t>(x.expected_index) >= walls.size()) {
+      throw std::out_of_range("ExpectedWalls: an extent of expected wall " +
+                              std::to_string(x.expected_index) + ", of " +
+                              std::to_string(walls.size()));
+    }
+    ++first_extent_[static_cast<size_t>(x.expected_index) + 1];
+  }
   for (size_t e = 0; e < walls.size(); ++e) first_extent_[e + 1] += first_extent_[e];
   sorted_.resize(extents.size());
   next_.assign(first_extent_.begin(), first_extent_.end() - 1);

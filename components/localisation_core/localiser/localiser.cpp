@@ -343,10 +343,7 @@ void Localiser::SolveAndGate(const geometry::Pose2D& sensor_prior,
 void Localiser::CheckObservability() {
   // From the features alone: each eigen-direction of their information must be
   // pinned to within the configured standard deviation.
-  // Closed form (computeDirect): a 3 x 3 needs no iterations, and the
-  // limits compared with are far coarser than its rounding.
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(solve_.feature_information);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(solve_.feature_information);
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d v = eig.eigenvectors().col(k);
     const double limit = v.head<2>().norm() * options_.solver.max_feature_std_m +

@@ -43,7 +43,7 @@ void RangeGate(const ScanView& scan, const BeamDirections& directions,
   for (size_t i = 0; i < scan.count; ++i) {
     const double r = scan.ranges[i];
     const bool finite = std::isfinite(r);
-    const bool usable = finite & (r >= lo) & (r <= hi);
+    const bool usable = finite & (r >= 0.0) & (r >= lo) & (r <= hi);
     non_finite += !finite;
     negative += finite & (r < 0.0);
     out.x[kept] = r * directions.Cos(i);

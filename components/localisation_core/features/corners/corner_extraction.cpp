@@ -2,6 +2,7 @@
 #include "structloc/localisation_core/features/corners/corner_extraction.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace structloc::localisation_core {
@@ -78,11 +79,13 @@ void ExtractCorners(const std::vector<WindowLine>& windows, bool wraps,
   const size_t k = static_cast<size_t>(o.next_windows);
   // The next k usable windows: windows straddling the corner itself fail the
   // rms check, so the search looks up to one window length further.
-  const size_t reach = k + static_cast<size_t>(window_points);
-  // A window whose normal cannot turn by pi/2 - tolerance within reach meets
-  // none of them at a corner (the margin covers rounding in the bound).
+  // (Never past the window itself in a wrapping scan.)
+  const size_t reach = std::min(k + static_cast<size_t>(window_points), n);
+  // A window whose normal cannot turn within reach by the angle whose sine
+  // passes the test below meets none of them at a corner (the margins cover
+  // rounding in the sine and in the bound).
   BoundTurns(windows, wraps, reach, work.turn);
-  const double min_turn = geometry::kHalfPi - o.angle_tolerance_rad - 1e-9;
+  const double min_turn = std::asin(std::max(0.0, min_sin - 1e-15)) - 1e-9;
   const size_t last = work.turn.size() - 1;
   for (size_t i = 0; i < n; ++i) {
     if (!windows[i].valid) continue;

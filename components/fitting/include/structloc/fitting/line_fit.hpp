@@ -82,7 +82,8 @@ inline LineEstimate FitMoments(const LineMoments& m) {
   e.ym = m.ym;
   e.sse = std::max(0.0, 0.5 * (m.suu + m.svv - h));
   e.along_spread = 0.5 * (m.suu + m.svv + h);
-  e.degenerate = !(h > 1e-300);
+  // (Below 1e-140, 2 h (h + |b|) further down could underflow to 0.)
+  e.degenerate = !(h > 1e-140);
   // EQ 20's half angle without trigonometry: (cos alpha, sin alpha) is parallel
   // to (h + b, a) and to (a, h - b); the one without cancellation is taken,
   // normalised by its length sqrt(2 h (h + |b|)), with cos alpha >= 0.

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <stdexcept>
 #include <vector>
 
@@ -68,6 +69,8 @@ struct ExpectedWalls {
     if (first_extent_.empty()) {
       throw std::logic_error("ExpectedWalls::DistanceOutside before IndexExtents");
     }
+    assert(first_extent_.size() == walls.size() + 1 &&
+           static_cast<size_t>(first_extent_.back()) == extents.size());  // not stale
     double best = 1e300;
     const auto begin = extents.begin() + first_extent_[static_cast<size_t>(e)];
     const auto end = extents.begin() + first_extent_[static_cast<size_t>(e) + 1];

@@ -1,8 +1,8 @@
 // Step 3 (thesis 3.5.3, EQ 23-25): window lines join the cluster of the nearest
 // expected wall within the (r, alpha) gates; unmodelled obstacles form
-// clusters nobody uses. Each cluster yields the thesis' value (mean r,
-// circular-mean alpha) and, beyond the thesis, a refined line fitted through
-// all member points with its covariance from the point scatter.
+// clusters nobody uses. Each cluster yields, on request, the thesis' value
+// (mean r, circular-mean alpha) and, beyond the thesis, a refined line fitted
+// through all member points with its covariance from the point scatter.
 #pragma once
 
 #include <Eigen/Core>
