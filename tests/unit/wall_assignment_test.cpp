@@ -1,7 +1,7 @@
 // The window-to-wall assignment tests only the walls near a reference line
 // (GateCandidates in wall_clustering.cpp), for speed. These tests hold it to
 // the thesis' rule (3.5.3, EQ 23-25) applied to every expected wall: each
-// window joins the nearest wall within both gates, or none.
+// window joins the nearest wall within both gates (WallGate), or none.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,25 +12,18 @@
 namespace structloc::localisation_core {
 namespace {
 
-// The rule over all walls: the fixed gates only, ties to the lower index.
+// The rule over all walls: the fixed gates (WallGate) only, ties to the
+// lower index.
 std::vector<int> AssignOverAllWalls(const std::vector<WindowLine>& windows,
                                     const ExpectedWalls& expected, const WallClusterOptions& o) {
   std::vector<int> out(windows.size(), -1);
-  const double min_dot = std::cos(o.gate_alpha_rad);
-  const double inv_r2 = 1.0 / (o.gate_r_m * o.gate_r_m);
-  const double inv_a2 = 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
+  const WallGate gate(o);
   for (size_t i = 0; i < windows.size(); ++i) {
     if (!windows[i].valid) continue;
-    const auto& l = windows[i].line;
     double best_d = 3.0;
     for (size_t e = 0; e < expected.walls.size(); ++e) {
-      const auto& x = expected.walls[e];
-      const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
-      const double dot = std::abs(signed_dot);
-      const double dr = std::copysign(l.r, signed_dot) - x.r;
-      const double dr2 = dr * dr * inv_r2;
-      const double d = dr2 + (1.0 - dot) * inv_a2;
-      if (dot >= min_dot && dr2 <= 1.0 && d < best_d) {
+      double d;
+      if (gate.Nearer(OffsetFrom(windows[i].line, expected.walls[e]), best_d, &d)) {
         out[i] = static_cast<int>(e);
         best_d = d;
       }

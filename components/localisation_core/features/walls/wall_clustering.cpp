@@ -70,12 +70,8 @@ class GateCandidates {
     reference_ = l;
     list_.clear();
     for (size_t e = 0; e < expected.walls.size(); ++e) {
-      const auto& x = expected.walls[e];
-      const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
-      const double dr = std::copysign(l.r, signed_dot) - x.r;
-      if (std::abs(signed_dot) >= min_dot_ && std::abs(dr) <= max_dr_) {
-        list_.push_back(static_cast<int>(e));
-      }
+      const LineOffset off = OffsetFrom(l, expected.walls[e]);
+      if (off.dot >= min_dot_ && std::abs(off.dr) <= max_dr_) list_.push_back(static_cast<int>(e));
     }
     return list_;
   }
@@ -95,11 +91,9 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
                                 WallClusterWork& work, std::vector<int>& assignment) {
   assignment.assign(windows.size(), -1);
   if (expected.walls.empty()) return;
-  const double min_dot = std::cos(o.gate_alpha_rad);
-  const double inv_r2 = 1.0 / (o.gate_r_m * o.gate_r_m);
-  // 1 - cos(d) ~ d^2 / 2: normalised angular distance without atan2.
-  const double inv_a2 = 2.0 / (o.gate_alpha_rad * o.gate_alpha_rad);
-  const double pc = std::cos(pose.theta), ps = std::sin(pose.theta);
+  const WallGate gate(o);
+  const SensorPose sensor(pose);
+  const double pc = sensor.c, ps = sensor.s;
   const bool check_extent = o.extent_margin_m > 0.0;
   const bool mahalanobis = o.gate_chi2 > 0.0;
   const double floor2 = o.min_point_sigma_m * o.min_point_sigma_m;
@@ -115,15 +109,8 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
     for (const int candidate : candidates.For(l, expected)) {
       const auto e = static_cast<size_t>(candidate);
       const auto& x = expected.walls[e];
-      // A fit whose normal points the other way is flipped (sign of the dot
-      // product); the three cheap gates are one test, so that the branch is
-      // taken about once per window and predicted.
-      const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
-      const double dot = std::abs(signed_dot);
-      const double dr = std::copysign(l.r, signed_dot) - x.r;
-      const double dr2 = dr * dr * inv_r2;
-      const double d = dr2 + (1.0 - dot) * inv_a2;
-      if (!((dot >= min_dot) & (dr2 <= 1.0) & (d < best_d))) continue;
+      double d;
+      if (!gate.Nearer(OffsetFrom(l, x), best_d, &d)) continue;
       if (check_extent || mahalanobis) {
         const double t = -x.world_s * (pose.x + v.x()) + x.world_c * (pose.y + v.y());
         const ExpectedExtent* wall = nullptr;

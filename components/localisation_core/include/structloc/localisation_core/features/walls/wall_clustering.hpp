@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include "structloc/localisation_core/expectation/expected_walls.hpp"
@@ -44,6 +45,36 @@ struct WallCluster {
   int points = 0;  // member points behind the refined line
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // of (refined_r, refined_alpha)
   Eigen::Vector2d centroid{0, 0};                            // of the member points
+};
+
+// A window line against an expected wall (thesis EQ 23-25): the |cos| of the
+// angle between their normals and the difference in r, the window's normal
+// flipped to face the wall's way when it points the other.
+struct LineOffset {
+  double dot;
+  double dr;
+};
+inline LineOffset OffsetFrom(const LineEstimate& l, const ExpectedWall& x) {
+  const double signed_dot = l.cos_alpha * x.c + l.sin_alpha * x.s;
+  return {std::abs(signed_dot), std::copysign(l.r, signed_dot) - x.r};
+}
+
+// The thesis' fixed (r, alpha) gates as a normalised distance: each term is 1
+// at its gate's edge (1 - cos(d) ~ d^2 / 2: no atan2).
+struct WallGate {
+  explicit WallGate(const WallClusterOptions& o)
+      : min_dot(std::cos(o.gate_alpha_rad)),
+        inv_r2(1.0 / (o.gate_r_m * o.gate_r_m)),
+        inv_a2(2.0 / (o.gate_alpha_rad * o.gate_alpha_rad)) {}
+  // The distance of a line at `off`, and whether it is inside both gates and
+  // nearer than `best`: one test, so that the branch is taken about once per
+  // window and predicted.
+  bool Nearer(const LineOffset& off, double best, double* distance) const {
+    const double dr2 = off.dr * off.dr * inv_r2;
+    *distance = dr2 + (1.0 - off.dot) * inv_a2;
+    return (off.dot >= min_dot) & (dr2 <= 1.0) & (*distance < best);
+  }
+  double min_dot, inv_r2, inv_a2;
 };
 
 // Scratch space for AssignWindowsByExpectation and BuildWallClusters, reused
