@@ -2,6 +2,7 @@
 #include "structloc/localisation_core/features/cylinders/cylinder_extraction.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace structloc::localisation_core {
@@ -11,6 +12,8 @@ void CylinderWork::Reserve(size_t points, size_t expected) {
   ring.reserve(expected);
   point_label.reserve(points);
   members.reserve(points);
+  labelled.reserve(expected);
+  candidates.reserve(points);  // at most one window per point
 }
 
 namespace {
@@ -46,6 +49,60 @@ bool RefineCentre(const ScanPoints& points, const std::vector<int>& members, dou
 }
 }  // namespace
 
+void CandidateWindows(const std::vector<WindowLine>& windows,
+                      const std::vector<CandidateRing>& rings, std::vector<int>& candidates) {
+  candidates.clear();
+  constexpr size_t kBlock = 16;
+  for (size_t block = 0; block < windows.size(); block += kBlock) {
+    const size_t block_end = std::min(windows.size(), block + kBlock);
+    double min_x = windows[block].line.xm, max_x = min_x;
+    double min_y = windows[block].line.ym, max_y = min_y;
+    for (size_t i = block + 1; i < block_end; ++i) {
+      min_x = std::min(min_x, windows[i].line.xm);
+      max_x = std::max(max_x, windows[i].line.xm);
+      min_y = std::min(min_y, windows[i].line.ym);
+      max_y = std::max(max_y, windows[i].line.ym);
+    }
+    bool any_ring = false;
+    for (const auto& ring : rings) {
+      const double dx = std::max({0.0, min_x - ring.x, ring.x - max_x});
+      const double dy = std::max({0.0, min_y - ring.y, ring.y - max_y});
+      any_ring |= dx * dx + dy * dy <= ring.hi2;
+    }
+    if (!any_ring) continue;
+    for (size_t i = block; i < block_end; ++i) {
+      const auto& l = windows[i].line;
+      bool in_a_ring = false;
+      for (const auto& ring : rings) {
+        const double dx = l.xm - ring.x, dy = l.ym - ring.y;
+        const double d2 = dx * dx + dy * dy;
+        in_a_ring |= (d2 >= ring.lo2) & (d2 <= ring.hi2);
+      }
+      if (in_a_ring) candidates.push_back(static_cast<int>(i));
+    }
+  }
+}
+
+void CollectLabelled(const std::vector<int>& labels, const LabelSpan& span, int label,
+                     std::vector<int>& members) {
+  members.clear();
+  const size_t n = labels.size();
+  auto collect = [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      if (labels[k] == label) members.push_back(static_cast<int>(k));
+    }
+  };
+  if (span.begin >= span.end) return;  // nothing labelled
+  if (span.end - span.begin >= n) {
+    collect(0, n);
+  } else if (span.end <= n) {
+    collect(span.begin, span.end);
+  } else {  // wraps: the first points first, to keep scan order
+    collect(0, span.end - n);
+    collect(span.begin, n);
+  }
+}
+
 void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& points,
                       const std::vector<ExpectedPoint>& expected, const CylinderOptions& o,
                       int window_points, CylinderWork& work, std::vector<PointCluster>& out) {
@@ -54,6 +111,7 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
   if (ne == 0) return;
   work.sums.assign(ne, PointSums{});
   work.point_label.assign(points.Size(), -1);
+  work.labelled.assign(ne, LabelSpan{});
   const double gate2 = o.gate_m * o.gate_m;
   const size_t np = points.Size();
   // The ring around each expected surface a candidate's centroid lies in,
@@ -64,15 +122,9 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     const double hi = c.radius + o.candidate_gate_m;
     work.ring.push_back({c.sensor.x(), c.sensor.y(), lo * lo, hi * hi});
   }
-  for (const auto& w : windows) {
-    int near = -1;
-    for (size_t e = 0; e < ne; ++e) {
-      const auto& ring = work.ring[e];
-      const double dx = w.line.xm - ring.x, dy = w.line.ym - ring.y;
-      const double d2 = dx * dx + dy * dy;
-      near = (d2 >= ring.lo2) & (d2 <= ring.hi2) ? static_cast<int>(e) : near;
-    }
-    if (near < 0) continue;
+  CandidateWindows(windows, work.ring, work.candidates);
+  for (const int i : work.candidates) {
+    const auto& w = windows[static_cast<size_t>(i)];
     const CircleFit fit =
         FitCircle(points, static_cast<size_t>(w.first), static_cast<size_t>(window_points));
     if (!fit.ok || fit.quality < o.min_quality) continue;
@@ -82,6 +134,8 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
       continue;
     }
     work.sums[static_cast<size_t>(e)].Add(fit.xc, fit.yc);
+    work.labelled[static_cast<size_t>(e)].Add(static_cast<size_t>(w.first),
+                                              static_cast<size_t>(window_points));
     for (int j = 0; j < window_points; ++j) {
       int& label = work.point_label[(static_cast<size_t>(w.first) + static_cast<size_t>(j)) % np];
       label = (label == -1 || label == e) ? e : -2;
@@ -96,10 +150,7 @@ void ExtractCylinders(const std::vector<WindowLine>& windows, const ScanPoints& 
     PointCluster c = s.ToCluster(static_cast<int>(e), window_points, o.min_point_sigma_m);
     Eigen::Vector2d refined = c.mean;
     Eigen::Matrix2d cov;
-    work.members.clear();
-    for (size_t k = 0; k < np; ++k) {
-      if (work.point_label[k] == static_cast<int>(e)) work.members.push_back(static_cast<int>(k));
-    }
+    CollectLabelled(work.point_label, work.labelled[e], static_cast<int>(e), work.members);
     if (RefineCentre(points, work.members, expected[e].radius, floor2, refined, cov) &&
         (refined - c.mean).norm() < o.gate_m) {
       c.refined = refined;

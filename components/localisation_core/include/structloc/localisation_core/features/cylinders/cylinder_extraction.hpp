@@ -6,6 +6,9 @@
 // is refined by a geometric fit with the model radius over all member points.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "structloc/fitting/circle_fit.hpp"
@@ -34,16 +37,42 @@ inline CircleFit FitCircle(const ScanPoints& points, size_t first, size_t count)
   return fitting::FitCircle(points.x, points.y, first, count);
 }
 
+// The ring around an expected pillar's surface that a candidate window's
+// centroid lies in: its centre (sensor frame) and squared radii.
+struct CandidateRing {
+  double x, y, lo2, hi2;
+};
+
+// The windows (indices, in order) whose centroid lies in one of `rings`:
+// only windows near an expected pillar are fitted. Windows are taken in
+// blocks, and a block whose centroids' bounding box lies beyond every ring's
+// outer radius is skipped whole (each centroid is at least as far as the
+// box, also in floating point), so that most windows of a scan test no ring.
+void CandidateWindows(const std::vector<WindowLine>& windows,
+                      const std::vector<CandidateRing>& rings, std::vector<int>& candidates);
+
+// Where one pillar's windows labelled points: [begin, end), end past the
+// point count where the span wraps to the first points.
+struct LabelSpan {
+  size_t begin = std::numeric_limits<size_t>::max(), end = 0;
+  void Add(size_t first, size_t count) {
+    begin = std::min(begin, first);
+    end = std::max(end, first + count);
+  }
+};
+
+// The points labelled `label` (indices, in scan order), looked for only
+// within `span`.
+void CollectLabelled(const std::vector<int>& labels, const LabelSpan& span, int label,
+                     std::vector<int>& members);
+
 struct CylinderWork {
-  // Per expected pillar: its centre in the sensor frame and the squared radii
-  // of the ring a candidate window's centroid lies in.
-  struct Ring {
-    double x, y, lo2, hi2;
-  };
-  std::vector<Ring> ring;
+  std::vector<CandidateRing> ring;  // per expected pillar
+  std::vector<int> candidates;      // CandidateWindows
   std::vector<PointSums> sums;
   std::vector<int> point_label;
-  std::vector<int> members;  // one pillar's points, for its refinement
+  std::vector<LabelSpan> labelled;  // per expected pillar
+  std::vector<int> members;         // one pillar's points, for its refinement
   void Reserve(size_t points, size_t expected);
 };
 
