@@ -371,7 +371,9 @@ bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vect
   const double length = (to - from).norm();
   const int steps = static_cast<int>(length / (0.5 * res));
   if (steps < 2) return false;
-  const double spacing = length / steps;
+  // Samples per cell: the loop multiplies by it, as each next sample waits
+  // on this one's skip (a division there would lengthen every step).
+  const double samples_per_cell = steps / length * res;
   // In cells: the start, and the step from one sample to the next.
   const double fx = (from.x() - cells_.x0) / res, fy = (from.y() - cells_.y0) / res;
   const double dx = (to.x() - from.x()) / (res * steps), dy = (to.y() - from.y()) / (res * steps);
@@ -386,8 +388,8 @@ bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vect
     const double d = wall_distance_[static_cast<size_t>(static_cast<int>(y)) * cells_.width +
                                     static_cast<int>(x)];
     if (d == 0.0) return true;
-    const double clear_m = (d - kCellDiagonal) * res;
-    i += 1 + (clear_m > spacing ? static_cast<int>(clear_m / spacing) : 0);
+    const double clear_samples = (d - kCellDiagonal) * samples_per_cell;
+    i += 1 + (clear_samples > 1.0 ? static_cast<int>(clear_samples) : 0);
   }
   return false;
 }
