@@ -71,23 +71,41 @@ double SquaredDistance(const Eigen::Vector2d& p, const Segment& s) {
   return (s.a + t * e - p).squaredNorm();
 }
 
-// False only when the segment certainly misses the triangle (o, p, q):
-// separating axes are the triangle's edge normals and the segment's normal.
-bool MayCross(const Segment& s, const Eigen::Vector2d& o, const Eigen::Vector2d& p,
-              const Eigen::Vector2d& q) {
-  const Eigen::Vector2d corner[3] = {o, p, q};
+// The separating axes of the triangle (o, p, q) that MayCross tests a
+// segment against: each edge with the sign of the inside and its slack,
+// computed once for all the segments tested against one triangle.
+struct TriangleAxes {
+  TriangleAxes(const Eigen::Vector2d& o, const Eigen::Vector2d& p, const Eigen::Vector2d& q)
+      : corner{o, p, q} {
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d& u = corner[i];
+      edge[i] = corner[(i + 1) % 3] - u;
+      const double inside = Cross(edge[i], corner[(i + 2) % 3] - u);
+      flat[i] = inside == 0.0;  // a flat triangle: this axis separates nothing
+      sign[i] = inside > 0.0 ? 1.0 : -1.0;
+      slack[i] = kSelectionSlackM * edge[i].norm();
+    }
+  }
+  Eigen::Vector2d corner[3], edge[3];
+  double sign[3], slack[3];
+  bool flat[3];
+};
+
+// False only when the segment certainly misses the triangle: separating axes
+// are the triangle's edge normals and the segment's normal.
+bool MayCross(const Segment& s, const TriangleAxes& t) {
   for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector2d& u = corner[i];
-    const Eigen::Vector2d edge = corner[(i + 1) % 3] - u;
-    const double inside = Cross(edge, corner[(i + 2) % 3] - u);
-    if (inside == 0.0) continue;  // flat triangle: this axis separates nothing
-    const double sign = inside > 0.0 ? 1.0 : -1.0;
-    const double slack = kSelectionSlackM * edge.norm();
-    if (sign * Cross(edge, s.a - u) < -slack && sign * Cross(edge, s.b - u) < -slack) return false;
+    if (t.flat[i]) continue;
+    const Eigen::Vector2d& u = t.corner[i];
+    if (t.sign[i] * Cross(t.edge[i], s.a - u) < -t.slack[i] &&
+        t.sign[i] * Cross(t.edge[i], s.b - u) < -t.slack[i]) {
+      return false;
+    }
   }
   const Eigen::Vector2d e = s.b - s.a;
   const double slack = kSelectionSlackM * e.norm();
-  const double c0 = Cross(e, o - s.a), c1 = Cross(e, p - s.a), c2 = Cross(e, q - s.a);
+  const double c0 = Cross(e, t.corner[0] - s.a), c1 = Cross(e, t.corner[1] - s.a),
+               c2 = Cross(e, t.corner[2] - s.a);
   return !((c0 > slack && c1 > slack && c2 > slack) || (c0 < -slack && c1 < -slack && c2 < -slack));
 }
 
@@ -170,13 +188,14 @@ void SelectOccluders(const Scene& scene, const std::vector<int>& from, const Eig
   const double min_y = std::min({o.y(), p.y(), q.y()}) - kSelectionSlackM;
   const double max_x = std::max({o.x(), p.x(), q.x()}) + kSelectionSlackM;
   const double max_y = std::max({o.y(), p.y(), q.y()}) + kSelectionSlackM;
+  const TriangleAxes triangle(o, p, q);
   for (int s : from) {
     const Segment& g = scene.segments[static_cast<size_t>(s)];
     if (std::max(g.a.x(), g.b.x()) < min_x || std::min(g.a.x(), g.b.x()) > max_x ||
         std::max(g.a.y(), g.b.y()) < min_y || std::min(g.a.y(), g.b.y()) > max_y) {
       continue;
     }
-    if (MayCross(g, o, p, q)) out.push_back(s);
+    if (MayCross(g, triangle)) out.push_back(s);
   }
 }
 
