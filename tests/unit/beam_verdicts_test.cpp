@@ -1,17 +1,127 @@
 // The whole-scan check traces each beam through the map's wall cells,
-// skipping the samples the distance field shows clear (CrossesWall in
-// global_localiser.cpp). This test holds its verdicts to the geometry: a beam
-// to a far wall is blocked where a short wall stands in its way and clear
-// where it passes beside it, for the scene placed anywhere in the plane and
-// facing any of four ways, so that a skip that hops over a wall fails it.
+// skipping the samples the distance field shows clear (CrossesWall,
+// wall_crossing.hpp). These tests hold the tracing to testing every sample on
+// any distance field, and the localiser's verdicts to the geometry: a beam to
+// a far wall is blocked where a short wall stands in its way and clear where
+// it passes beside it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <vector>
 
 #include "structloc/localisation_core/global/global_localiser.hpp"
+#include "structloc/localisation_core/global/wall_crossing.hpp"
 
 namespace structloc::localisation_core {
 namespace {
+
+// The tracing without skips: every sample from `from` to `to`, in order.
+bool CrossesWallAtSomeSample(const WallDistanceField& f, const Eigen::Vector2d& from,
+                             const Eigen::Vector2d& to) {
+  const double res = f.resolution_m;
+  const int samples = static_cast<int>((to - from).norm() / (0.5 * res));
+  for (int i = 1; i < samples; ++i) {
+    const double x = (from.x() - f.x0) / res + (to.x() - from.x()) / (res * samples) * i;
+    const double y = (from.y() - f.y0) / res + (to.y() - from.y()) / (res * samples) * i;
+    if (!(x >= 0.0 && y >= 0.0 && x < f.width && y < f.height)) return false;
+    if ((*f.cells)[static_cast<size_t>(static_cast<int>(y)) * f.width + static_cast<int>(x)] == 0)
+      return true;
+  }
+  return false;
+}
+
+// A field of scattered wall cells and wall runs at any angle, each cell
+// holding its floored distance to the nearest wall cell (exact, by testing
+// every wall cell).
+std::vector<uint8_t> RandomWallField(int width, int height, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<int> walls;
+  const double density = 0.002 + 0.02 * unit(rng);
+  for (int i = 0; i < width * height; ++i) {
+    if (unit(rng) < density) walls.push_back(i);
+  }
+  for (int run = 0; run < 3; ++run) {
+    const double x = unit(rng) * width, y = unit(rng) * height, a = unit(rng) * 2.0 * geometry::kPi;
+    for (double t = 0.0; t < 30.0; t += 0.25) {
+      const int c = static_cast<int>(std::floor(x + t * std::cos(a)));
+      const int r = static_cast<int>(std::floor(y + t * std::sin(a)));
+      if (c >= 0 && r >= 0 && c < width && r < height) walls.push_back(r * width + c);
+    }
+  }
+  std::vector<uint8_t> cells(static_cast<size_t>(width) * height, 255);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      double nearest = 1e9;
+      for (const int w : walls) {
+        nearest = std::min(nearest, std::hypot(c - w % width, r - w / width));
+      }
+      cells[static_cast<size_t>(r) * width + c] =
+          static_cast<uint8_t>(std::min(255.0, std::floor(nearest)));
+    }
+  }
+  return cells;
+}
+
+TEST(BeamVerdicts, TheSkippingTraceIsTestingEverySample) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  size_t beams = 0, blocked = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int width = 20 + static_cast<int>(rng() % 80), height = 20 + static_cast<int>(rng() % 80);
+    const std::vector<uint8_t> cells = RandomWallField(width, height, rng);
+    const double res = std::vector<double>{0.025, 0.03, 0.05, 0.07, 0.1}[rng() % 5];
+    const WallDistanceField field{
+        &cells, width, height, (unit(rng) - 0.5) * 200.0, (unit(rng) - 0.5) * 200.0, res};
+    std::vector<int> wall_cells;
+    for (int i = 0; i < width * height; ++i) {
+      if (cells[static_cast<size_t>(i)] == 0) wall_cells.push_back(i);
+    }
+    // Beams from inside the grid: to anywhere near it (some leaving it), or
+    // ending in a wall cell or just past it, where a skip too long hops the
+    // last samples.
+    for (int b = 0; b < 3000; ++b) {
+      const Eigen::Vector2d from(field.x0 + unit(rng) * width * res,
+                                 field.y0 + unit(rng) * height * res);
+      Eigen::Vector2d to(field.x0 + (1.4 * unit(rng) - 0.2) * width * res,
+                         field.y0 + (1.4 * unit(rng) - 0.2) * height * res);
+      if (b % 2 == 0 && !wall_cells.empty()) {
+        const int w = wall_cells[rng() % wall_cells.size()];
+        const Eigen::Vector2d in_wall(field.x0 + (w % width + unit(rng)) * res,
+                                      field.y0 + (w / width + unit(rng)) * res);
+        to = from + (in_wall - from) * (1.0 + unit(rng) * res / (in_wall - from).norm());
+      }
+      const bool every = CrossesWallAtSomeSample(field, from, to);
+      ASSERT_EQ(CrossesWall(field, from, to), every)
+          << "trial " << trial << ", beam " << b << " from (" << from.transpose() << ") to ("
+          << to.transpose() << ")";
+      ++beams;
+      blocked += every;
+    }
+  }
+  EXPECT_GT(blocked, beams / 10);
+  EXPECT_LT(blocked, beams - beams / 10);
+}
+
+// One of the rare beams (a few in ten million at random) on which a skip
+// that keeps a margin of one cell instead of the cell's diagonal hops the
+// last sample: it ends just inside a lone wall cell, near its corner.
+TEST(BeamVerdicts, ABeamEndingJustInsideALoneWallCellIsBlocked) {
+  constexpr int kSide = 40, kWall = 20;
+  std::vector<uint8_t> cells(kSide * kSide);
+  for (int r = 0; r < kSide; ++r) {
+    for (int c = 0; c < kSide; ++c) {
+      cells[static_cast<size_t>(r * kSide + c)] =
+          static_cast<uint8_t>(std::floor(std::hypot(c - kWall, r - kWall)));
+    }
+  }
+  const WallDistanceField field{&cells, kSide, kSide, 0.0, 0.0, 1.0};
+  const Eigen::Vector2d from(36.631114114977223, 32.4445649658185);
+  const Eigen::Vector2d to(20.479420330076341, 20.674316439085107);
+  ASSERT_TRUE(CrossesWallAtSomeSample(field, from, to));
+  EXPECT_TRUE(CrossesWall(field, from, to));
+}
 
 TEST(BeamVerdicts, ABeamIsBlockedExactlyWhereAShortWallStandsInItsWay) {
   std::mt19937 rng(3);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "structloc/localisation_core/global/wall_crossing.hpp"
 #include "structloc/world_model/outline_points.hpp"
 
 namespace structloc::localisation_core {
@@ -362,36 +363,10 @@ double GlobalLocaliser::TurnedScore(const std::vector<float>& gain,
   return sum / static_cast<double>(turned.size());
 }
 
-// The samples every half cell from `from` to `to` (ends excluded), as many
-// as fit, each tested for lying in a wall cell; the distance field says how
-// many of the next samples are certainly clear, and those are skipped (the
-// result is that of testing every sample).
 bool GlobalLocaliser::CrossesWall(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
-  const double res = options_.grid_resolution_m;
-  const double length = (to - from).norm();
-  const int steps = static_cast<int>(length / (0.5 * res));
-  if (steps < 2) return false;
-  // Samples per cell: the loop multiplies by it, as each next sample waits
-  // on this one's skip (a division there would lengthen every step).
-  const double samples_per_cell = steps / length * res;
-  // In cells: the start, and the step from one sample to the next.
-  const double fx = (from.x() - cells_.x0) / res, fy = (from.y() - cells_.y0) / res;
-  const double dx = (to.x() - from.x()) / (res * steps), dy = (to.y() - from.y()) / (res * steps);
-  // A wall cell's points lie at least (d - sqrt 2) cells from any point of a
-  // cell whose centre is d cells from the wall cell's centre (with a margin
-  // for the field's rounding).
-  constexpr double kCellDiagonal = 1.4142135623730951 + 1e-3;
-  const double width = cells_.width, height = cells_.height;
-  for (int i = 1; i < steps;) {
-    const double x = fx + dx * i, y = fy + dy * i;
-    if (!(x >= 0.0 && y >= 0.0 && x < width && y < height)) return false;
-    const double d = wall_distance_[static_cast<size_t>(static_cast<int>(y)) * cells_.width +
-                                    static_cast<int>(x)];
-    if (d == 0.0) return true;
-    const double clear_samples = (d - kCellDiagonal) * samples_per_cell;
-    i += 1 + (clear_samples > 1.0 ? static_cast<int>(clear_samples) : 0);
-  }
-  return false;
+  const WallDistanceField field{&wall_distance_, cells_.width, cells_.height,
+                                cells_.x0,       cells_.y0,    options_.grid_resolution_m};
+  return localisation_core::CrossesWall(field, from, to);
 }
 
 double GlobalLocaliser::RankGain(const Eigen::Vector2d& origin, const Eigen::Vector2d& q) const {
