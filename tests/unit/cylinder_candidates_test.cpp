@@ -67,11 +67,11 @@ TEST(CylinderCandidates, AreTheWindowsInsideSomeRing) {
       const double lo = std::max(0.0, r - g), hi = r + g;
       rings.push_back({x, y, lo * lo, hi * hi});
     }
-    std::vector<int> fast;
-    CandidateWindows(windows, rings, fast);
-    const auto all = CandidatesOverEveryWindow(windows, rings);
-    ASSERT_EQ(fast, all) << "trial " << trial;
-    candidates_seen += all.size();
+    std::vector<int> blockwise;
+    CandidateWindows(windows, rings, blockwise);
+    const auto over_every_window = CandidatesOverEveryWindow(windows, rings);
+    ASSERT_EQ(blockwise, over_every_window) << "trial " << trial;
+    candidates_seen += over_every_window.size();
   }
   EXPECT_GT(candidates_seen, 1000u) << "the trials must put windows inside rings";
 }
@@ -115,14 +115,14 @@ TEST(CylinderMembers, AreEveryPointWithTheLabelInScanOrder) {
       }
     }
     for (size_t e = 0; e < pillars; ++e) {
-      std::vector<int> all;
+      std::vector<int> every_labelled;
       for (size_t k = 0; k < points; ++k) {
-        if (labels[k] == static_cast<int>(e)) all.push_back(static_cast<int>(k));
+        if (labels[k] == static_cast<int>(e)) every_labelled.push_back(static_cast<int>(k));
       }
-      std::vector<int> fast{-7};  // cleared first
-      CollectLabelled(labels, spans[e], static_cast<int>(e), fast);
-      ASSERT_EQ(fast, all) << "trial " << trial << ", pillar " << e;
-      members_seen += all.size();
+      std::vector<int> within_span{-7};  // cleared first
+      CollectLabelled(labels, spans[e], static_cast<int>(e), within_span);
+      ASSERT_EQ(within_span, every_labelled) << "trial " << trial << ", pillar " << e;
+      members_seen += every_labelled.size();
       wrapped_spans += spans[e].end > points && spans[e].end - spans[e].begin < points;
     }
   }

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace structloc::localisation_core {
@@ -93,6 +94,7 @@ void CollectLabelled(const std::vector<int>& labels, const LabelSpan& span, int 
     }
   };
   if (span.begin >= span.end) return;  // nothing labelled
+  assert(span.begin < n);              // windows start at points
   if (span.end - span.begin >= n) {
     collect(0, n);
   } else if (span.end <= n) {

@@ -52,7 +52,8 @@ void CandidateWindows(const std::vector<WindowLine>& windows,
                       const std::vector<CandidateRing>& rings, std::vector<int>& candidates);
 
 // Where one pillar's windows labelled points: [begin, end), end past the
-// point count where the span wraps to the first points.
+// point count where the span wraps to the first points. Each window added
+// starts at a point (first < the point count).
 struct LabelSpan {
   size_t begin = std::numeric_limits<size_t>::max(), end = 0;
   void Add(size_t first, size_t count) {
@@ -62,7 +63,7 @@ struct LabelSpan {
 };
 
 // The points labelled `label` (indices, in scan order), looked for only
-// within `span`.
+// within `span` (of windows starting at points of `labels`).
 void CollectLabelled(const std::vector<int>& labels, const LabelSpan& span, int label,
                      std::vector<int>& members);
 
