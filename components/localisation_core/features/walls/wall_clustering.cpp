@@ -134,13 +134,18 @@ void AssignWindowsByExpectation(const std::vector<WindowLine>& windows,
 
 namespace {
 
-// The map's error of expected wall `e` at a cluster's place, over (r, alpha).
-Eigen::Matrix2d MapCovarianceAt(const WallCluster& c, const ExpectedWalls& expected, int e,
-                                const SensorPose& sensor, const WallClusterOptions& o) {
+// The map's error of expected wall `e` at a cluster's place, over (r, alpha),
+// and how far that place lies outside the wall's visible extents.
+struct MapErrorAt {
+  Eigen::Matrix2d covariance;
+  double outside_m;
+};
+MapErrorAt MapErrorOf(const WallCluster& c, const ExpectedWalls& expected, int e,
+                      const SensorPose& sensor, const WallClusterOptions& o) {
   const auto& x = expected.walls[static_cast<size_t>(e)];
   const double t = AlongLine(x, sensor, c.centroid.x(), c.centroid.y());
   const ExpectedExtent* wall = nullptr;
-  expected.DistanceOutside(e, t, &wall);
+  const double outside = expected.DistanceOutside(e, t, &wall);
   const double centre = wall != nullptr ? wall->wall_centre : t;
   // The sensor's foot on the line: the offset error at the sensor's own
   // along-line place is what r measures (thesis EQ 23 with an uncertain r_W, alpha_W).
@@ -149,7 +154,7 @@ Eigen::Matrix2d MapCovarianceAt(const WallCluster& c, const ExpectedWalls& expec
   const double sa = MapAngleSigma(o, wall);
   Eigen::Matrix2d m;
   m << MapOffsetVariance(o, wall, lever), lever * sa * sa, lever * sa * sa, sa * sa;
-  return m;
+  return {m, outside};
 }
 
 // Squared Mahalanobis distance of a cluster from expected wall `e`, with the
@@ -180,28 +185,24 @@ void GateWallClusters(const ExpectedWalls& expected, const geometry::Pose2D& pos
   size_t kept = 0;
   for (size_t k = 0; k < clusters.size(); ++k) {
     WallCluster c = clusters[k];
-    const Eigen::Matrix2d map_cov = MapCovarianceAt(c, expected, c.expected_index, sensor, o);
+    const auto& mine = expected.walls[static_cast<size_t>(c.expected_index)];
+    const Eigen::Matrix2d map_cov = MapErrorOf(c, expected, c.expected_index, sensor, o).covariance;
     bool keep =
         !gate || ClusterDistance(c, expected, c.expected_index, map_cov, cov) <= o.gate_chi2;
     for (size_t f = 0; keep && gate && f < expected.walls.size(); ++f) {
       if (static_cast<int>(f) == c.expected_index) continue;
       const auto& x = expected.walls[f];
-      const auto& mine = expected.walls[static_cast<size_t>(c.expected_index)];
       if (std::abs(x.c * mine.c + x.s * mine.s) < min_dot) continue;  // not parallel
-      const double t = AlongLine(x, sensor, c.centroid.x(), c.centroid.y());
-      if (o.extent_margin_m > 0.0 &&
-          expected.DistanceOutside(static_cast<int>(f), t) > o.extent_margin_m) {
-        continue;
-      }
       const auto f_index = static_cast<int>(f);
-      const Eigen::Matrix2d f_map_cov = MapCovarianceAt(c, expected, f_index, sensor, o);
-      if (ClusterDistance(c, expected, f_index, f_map_cov, cov) <= o.gate_chi2) {
+      const MapErrorAt f_error = MapErrorOf(c, expected, f_index, sensor, o);
+      if (o.extent_margin_m > 0.0 && f_error.outside_m > o.extent_margin_m) continue;
+      if (ClusterDistance(c, expected, f_index, f_error.covariance, cov) <= o.gate_chi2) {
         keep = false;  // two walls explain it: ambiguous
       }
     }
     if (!keep) continue;
     // The map's error, counted once over the scans that share it (map_error_memory.hpp).
-    c.covariance += expected.walls[static_cast<size_t>(c.expected_index)].map_error_scale * map_cov;
+    c.covariance += mine.map_error_scale * map_cov;
     clusters[kept++] = c;
   }
   clusters.resize(kept);
