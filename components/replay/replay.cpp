@@ -347,8 +347,7 @@ class Replayer {
     if (view.count > 0 && view.angle_increment != 0.0) {
       directions_.Update(view);
       localisation_core::PrefilterStats stats;
-      RangeGate(view, directions_, params_.prefilter, points_, stats);
-      RejectUnsupportedAndThin(params_.prefilter, points_, stats);
+      Prefilter(view, directions_, params_.prefilter, nullptr, points_, stats);
       FitWindowLines(points_, params_.line_fit, windows_);
     }
     times_us_.push_back(

@@ -47,8 +47,7 @@ struct Prepared {
     sensor_prior = geometry::Compose(input.odometry_pose, office.options.sensor_mount);
     directions.Update(scan.View());
     localisation_core::PrefilterStats stats;
-    RangeGate(scan.View(), directions, office.options.prefilter, points, stats);
-    RejectUnsupportedAndThin(office.options.prefilter, points, stats);
+    Prefilter(scan.View(), directions, office.options.prefilter, nullptr, points, stats);
     FitWindowLines(points, office.options.line_fit, windows);
     const auto lines = localisation_core::GroupCollinearWalls(office.world);
     std::vector<int> line_of(office.world.Walls().size());
@@ -84,8 +83,7 @@ void BM_Prefilter(benchmark::State& state) {
   points.Reserve(4096);
   for (auto _ : state) {
     localisation_core::PrefilterStats stats;
-    RangeGate(p.scan.View(), p.directions, p.office.options.prefilter, points, stats);
-    RejectUnsupportedAndThin(p.office.options.prefilter, points, stats);
+    Prefilter(p.scan.View(), p.directions, p.office.options.prefilter, nullptr, points, stats);
     benchmark::DoNotOptimize(points.x.data());
   }
 }

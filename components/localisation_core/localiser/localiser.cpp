@@ -250,9 +250,7 @@ const LocalisationResult& Localiser::Update(const UpdateInput& input) {
 
   // 1. Prefilter (+ de-skew before the neighbourhood tests).
   directions_.Update(scan);
-  RangeGate(scan, directions_, options_.prefilter, points_, result_.prefilter);
-  if (input.motion != nullptr) Deskew(*input.motion, points_);
-  RejectUnsupportedAndThin(options_.prefilter, points_, result_.prefilter);
+  Prefilter(scan, directions_, options_.prefilter, input.motion, points_, result_.prefilter);
   const auto t1 = Clock::now();
   // 2. Sliding line fits.
   FitWindowLines(points_, options_.line_fit, windows_);

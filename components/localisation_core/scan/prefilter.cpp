@@ -1,6 +1,8 @@
 // Prefilter steps (see header) and beam direction tables.
 #include "structloc/localisation_core/scan/prefilter.hpp"
 
+#include "structloc/localisation_core/scan/deskew.hpp"
+
 namespace structloc::localisation_core {
 
 void BeamDirections::Update(const ScanView& scan) {
@@ -97,6 +99,14 @@ void RejectUnsupportedAndThin(const PrefilterOptions& options, ScanPoints& point
   stats.thinned += n - w - unsupported;
   points.Truncate(w);
   stats.kept = w;
+}
+
+void Prefilter(const ScanView& scan, const BeamDirections& directions,
+               const PrefilterOptions& options, const BeamMotion* motion, ScanPoints& out,
+               PrefilterStats& stats) {
+  RangeGate(scan, directions, options, out, stats);
+  if (motion != nullptr) Deskew(*motion, out);
+  RejectUnsupportedAndThin(options, out, stats);
 }
 
 }  // namespace structloc::localisation_core

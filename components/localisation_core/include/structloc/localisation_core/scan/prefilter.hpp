@@ -37,4 +37,12 @@ void RangeGate(const ScanView& scan, const BeamDirections& directions,
 void RejectUnsupportedAndThin(const PrefilterOptions& options, ScanPoints& points,
                               PrefilterStats& stats);
 
+struct BeamMotion;  // deskew.hpp
+// The whole step as the localiser runs it: RangeGate, the points de-skewed by
+// `motion` (nullptr: not) before the neighbourhood tests, then
+// RejectUnsupportedAndThin. Clears `out` first.
+void Prefilter(const ScanView& scan, const BeamDirections& directions,
+               const PrefilterOptions& options, const BeamMotion* motion, ScanPoints& out,
+               PrefilterStats& stats);
+
 }  // namespace structloc::localisation_core
