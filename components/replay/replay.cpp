@@ -20,6 +20,7 @@
 #include "structloc/localisation_core/tracking/tracking_session.hpp"
 #include "structloc/log_formats/recording_writers.hpp"
 #include "structloc/rendering/map_canvas.hpp"
+#include "structloc/replay/trajectory_alignment.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 
 namespace structloc::replay {
@@ -384,6 +385,10 @@ class Replayer {
     SummariseStageTimes();
     if (!o_.truth_path.empty()) {
       report_.estimate_error = CompareTrajectories(report_.estimate, truth_);
+      if (const auto motion = AlignTrajectory(report_.estimate, truth_)) {
+        report_.aligned_estimate_error =
+            CompareTrajectories(Moved(report_.estimate, *motion), truth_);
+      }
       report_.odometry_error = CompareTrajectories(odometry_only_, truth_);
     }
     if (plot_) Plot(truth_);
@@ -661,6 +666,9 @@ std::string FormatReport(const ReplayReport& r) {
         << e.heading_rmse_rad * 180.0 / geometry::kPi << " deg (" << e.matched << " poses)\n";
   };
   if (r.estimate_error) error("estimate vs truth", *r.estimate_error);
+  if (r.aligned_estimate_error) {
+    error("estimate vs truth after one rigid alignment", *r.aligned_estimate_error);
+  }
   if (r.odometry_error) error("odometry only vs truth", *r.odometry_error);
   return out.str();
 }

@@ -100,6 +100,10 @@ struct ReplayReport {
   std::string parameters;         // the file used and why (given, or chosen from the scans)
   geometry::Pose2D sensor_mount;  // derived from the log when it has laser and robot poses
   std::optional<TrajectoryError> estimate_error;
+  // The same after one rigid motion of the whole estimate onto the truth
+  // (trajectory_alignment.hpp): what remains when a map has a frame of its
+  // own, such as one `structloc slam` built.
+  std::optional<TrajectoryError> aligned_estimate_error;
   std::optional<TrajectoryError> odometry_error;
   std::vector<log_formats::StampedPose> estimate;
   std::vector<GlobalAttempt> global_attempts;  // the searches; empty when an initial pose was given

@@ -1,0 +1,50 @@
+// Rigid alignment of a trajectory onto ground truth (see header).
+#include "structloc/replay/trajectory_alignment.hpp"
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace structloc::replay {
+
+std::optional<geometry::Pose2D> AlignTrajectory(
+    const std::vector<log_formats::StampedPose>& estimate,
+    const std::vector<log_formats::StampedPose>& truth, double tolerance_s) {
+  std::vector<Eigen::Vector2d> p, q;  // matched positions: estimate, truth
+  for (const auto& e : estimate) {
+    const auto* t = log_formats::Nearest(truth, e.stamp, tolerance_s);
+    if (t == nullptr) continue;
+    p.push_back(e.pose.Translation());
+    q.push_back(t->pose.Translation());
+  }
+  if (p.size() < 2) return std::nullopt;
+  Eigen::Vector2d mp = Eigen::Vector2d::Zero(), mq = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < p.size(); ++i) {
+    mp += p[i];
+    mq += q[i];
+  }
+  mp /= static_cast<double>(p.size());
+  mq /= static_cast<double>(q.size());
+  // The rotation maximising sum q_i . R p_i (centred): its angle is that of
+  // (sum of dot products, sum of cross products).
+  double dot = 0.0, cross = 0.0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector2d a = p[i] - mp, b = q[i] - mq;
+    dot += a.dot(b);
+    cross += a.x() * b.y() - a.y() * b.x();
+  }
+  if (dot == 0.0 && cross == 0.0) return std::nullopt;
+  const double theta = std::atan2(cross, dot);
+  const double c = std::cos(theta), s = std::sin(theta);
+  return geometry::Pose2D{mq.x() - (c * mp.x() - s * mp.y()), mq.y() - (s * mp.x() + c * mp.y()),
+                          theta};
+}
+
+std::vector<log_formats::StampedPose> Moved(const std::vector<log_formats::StampedPose>& trajectory,
+                                            const geometry::Pose2D& motion) {
+  std::vector<log_formats::StampedPose> out;
+  out.reserve(trajectory.size());
+  for (const auto& p : trajectory) out.push_back({p.stamp, geometry::Compose(motion, p.pose)});
+  return out;
+}
+
+}  // namespace structloc::replay
