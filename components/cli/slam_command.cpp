@@ -1,12 +1,15 @@
 // "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
-// [--plot P.png] [--relations R] [--params MAP_BUILD.xml] [--scans F:L]": the
+// [--plot P.png] [--relations R] [--truth T.tum] [--params MAP_BUILD.xml]
+// [--scans F:L]": the
 // robot's path from its raw odometry and scans (slam_core::Slam: keyframes
 // matched, loops closed, the pose graph optimised with Ceres), then, with
 // --out or --plot, the wall map built on those poses as "structloc map build"
 // builds one and checked against the same scans as "structloc map check"
 // checks one. With --relations, the path is judged by Kuemmerle et al.'s
-// relation metric beside raw odometry. Ctrl-C stops adding scans: the path
-// and map of the scans added so far are written.
+// relation metric beside raw odometry; with --truth, against ground truth as
+// it is and after one rigid alignment (the path's frame is the first scan's
+// odometry's, not the truth's). Ctrl-C stops adding scans: the path and map
+// of the scans added so far are written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -22,6 +25,8 @@
 #include "structloc/process/shutdown_signal.hpp"
 #include "structloc/rendering/map_canvas.hpp"
 #include "structloc/replay/relation_error.hpp"
+#include "structloc/replay/trajectory_alignment.hpp"
+#include "structloc/replay/trajectory_error.hpp"
 #include "structloc/slam_core/slam.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "subcommands.hpp"
@@ -38,6 +43,25 @@ void PrintRelations(const char* what, const replay::RelationError& e) {
   std::printf(")\n");
 }
 
+// `what` against the truth as it is and after one rigid alignment.
+void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPose>& path,
+                      const std::vector<log_formats::StampedPose>& truth) {
+  const auto raw = replay::CompareTrajectories(path, truth);
+  if (raw.matched == 0) {
+    std::printf("  %-9s n/a (no pose matches a truth stamp)\n", what);
+    return;
+  }
+  std::printf("  %-9s RMSE %.1f mm, max %.1f mm, heading RMSE %.2f deg (%zu poses)", what,
+              1e3 * raw.position_rmse_m, 1e3 * raw.position_max_m, kDeg * raw.heading_rmse_rad,
+              raw.matched);
+  if (const auto motion = replay::AlignTrajectory(path, truth)) {
+    const auto e = replay::CompareTrajectories(replay::Moved(path, *motion), truth);
+    std::printf("; aligned: RMSE %.1f mm, max %.1f mm, heading RMSE %.2f deg",
+                1e3 * e.position_rmse_m, 1e3 * e.position_max_m, kDeg * e.heading_rmse_rad);
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int SlamCommand(const Invocation& inv) {
@@ -50,6 +74,9 @@ int SlamCommand(const Invocation& inv) {
        "limits also choose the readings SLAM matches"},
       {"relations", true,
        "judge the path by this relations file (Kuemmerle et al. 2009), beside raw odometry"},
+      {"truth", true,
+       "judge the path against these ground-truth poses (TUM, matched by stamp), as it is and "
+       "after one rigid alignment, beside raw odometry"},
       {"plot", true,
        "PNG of the map built on the path over the readings, each wall coloured by the check "
        "(as structloc map check draws it)"},
@@ -72,6 +99,11 @@ int SlamCommand(const Invocation& inv) {
     if (cli.Has("relations")) {
       relations = log_formats::ReadRelations(cli.Required("relations"));
       inputs.push_back(cli.Required("relations"));
+    }
+    std::vector<log_formats::StampedPose> truth;
+    if (cli.Has("truth")) {
+      truth = log_formats::ReadTum(cli.Required("truth"));
+      inputs.push_back(cli.Required("truth"));
     }
     log_formats::TumWriter poses_out(poses_path, inputs);
     inputs.push_back(poses_path);
@@ -131,6 +163,11 @@ int SlamCommand(const Invocation& inv) {
       std::printf("relation errors (Kuemmerle et al. 2009):\n");
       PrintRelations("slam", replay::CompareRelations(path, relations));
       PrintRelations("odometry", replay::CompareRelations(odometry, relations));
+    }
+    if (!truth.empty()) {
+      std::printf("position against the truth:\n");
+      PrintTruthErrors("slam", path, truth);
+      PrintTruthErrors("odometry", odometry, truth);
     }
     if (world_out || plot) {
       for (size_t i = 0; i < log.scans.size(); ++i) log.scans[i].laser_pose = laser_path[i].pose;
