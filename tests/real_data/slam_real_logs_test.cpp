@@ -1,11 +1,12 @@
-// SLAM on the raw MIT CSAIL log in ../shared/data (label shared_data), judged
-// by Kuemmerle et al. 2009's relations. The metric first: raw odometry gives
-// the figure the benchmark's users quote for it (1.68 +- 5.29 m, 5.1 +- 8.2
-// deg), so the metric is theirs. Then structloc slam's path must beat raw
-// odometry tenfold in translation and twofold in rotation: a regression
-// guard, well short of the particle-filter class (0.05 m, 1 deg) the SLAM
-// issue asks for, which is not met yet. Stopped by Ctrl-C part of the way,
-// `structloc slam` writes the path and map of the scans it had.
+// SLAM on real recordings in ../shared/data (label shared_data). The raw MIT
+// CSAIL log, judged by Kuemmerle et al. 2009's relations. The metric first:
+// raw odometry gives the figure the benchmark's users quote for it (1.68 +-
+// 5.29 m, 5.1 +- 8.2 deg), so the metric is theirs. Then structloc slam's path
+// must beat raw odometry tenfold in translation and twofold in rotation: a
+// regression guard, well short of the particle-filter class (0.05 m, 1 deg)
+// the SLAM issue asks for, which is not met yet. Stopped by Ctrl-C part of the
+// way, `structloc slam` writes the path and map of the scans it had. Intel
+// with re-synthesised odometry, judged by localising on the map slam built.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -14,11 +15,14 @@
 #include <filesystem>
 #include <string>
 
+#include "cli_runner.hpp"
 #include "structloc/log_formats/relations_reader.hpp"
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/map_building/posed_scans.hpp"
 #include "structloc/process/child_process.hpp"
 #include "structloc/replay/relation_error.hpp"
+#include "structloc/replay/trajectory_alignment.hpp"
+#include "structloc/replay/trajectory_error.hpp"
 #include "structloc/slam_core/slam.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
@@ -98,6 +102,61 @@ TEST(SlamOnRealLogs, CtrlCPartOfTheWayWritesThePathAndMapSoFar) {
   EXPECT_GE(path.size(), 1000u);
   EXPECT_LT(path.size(), 1988u);
   EXPECT_TRUE(std::filesystem::exists(world));
+}
+
+// Intel with odometry re-synthesised with the real-recording errors (as
+// tests/evaluation/slam_recordings.sh makes it): slam maps the building from
+// the raw log, and the same log is localised on that map. Both are judged
+// against the corrected poses after one rigid alignment (the map has the
+// frame of the first odometry): the path beats odometry tenfold, and the
+// localisation is never lost and stays within the real-recording bar on the
+// largest error (200 mm). The bar on the RMSE (50 mm) is not met yet (62 mm
+// on 2026-11-29) and not asserted.
+TEST(SlamOnRealLogs, IntelMapsItselfAndLocalisesOnItsMap) {
+  const testing::TempDir temp;
+  const std::string log = temp / "intel.raw.log", truth_path = temp / "intel.truth.tum",
+                    path_out = temp / "path.tum", world = temp / "world.xml",
+                    localised = temp / "localised.tum";
+  const auto synthesised = testing::RunCli(
+      {"synthesise-odometry", "--log", testing::SourcePath("../shared/data/intel-corrected.log.gz"),
+       "--out", log, "--truth", truth_path, "--scale-error", "0.015", "--heading-drift", "0.3",
+       "--noise-xy", "0.005", "--noise-theta", "0.1", "--restamp", "0.5"});
+  ASSERT_EQ(synthesised.exit_code, 0) << synthesised.output;
+  const auto slam = testing::RunCli(
+      {"slam", "--log", log, "--poses-out", path_out, "--out", world, "--truth", truth_path});
+  ASSERT_EQ(slam.exit_code, 0) << slam.output;
+  const auto truth = log_formats::ReadTum(truth_path);
+  ASSERT_FALSE(truth.empty());
+  const auto& start = truth.front().pose;
+  const auto replay = testing::RunCli(
+      {"replay", "--map", world, "--log", log, "--truth", truth_path, "--params",
+       testing::SourcePath("maps/params/sick_lms2xx.xml"), "--initial-pose",
+       std::to_string(start.x) + " " + std::to_string(start.y) + " " + std::to_string(start.theta),
+       "--out", localised});
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("lost: 0 scans"), std::string::npos) << replay.output;
+
+  auto aligned = [&truth](const std::vector<log_formats::StampedPose>& estimate) {
+    const auto motion = replay::AlignTrajectory(estimate, truth);
+    EXPECT_TRUE(motion);
+    return replay::CompareTrajectories(motion ? replay::Moved(estimate, *motion) : estimate, truth);
+  };
+  std::vector<log_formats::StampedPose> odometry;
+  for (const auto& s : map_building::ReadPosedScans(log, {}).scans) {
+    odometry.push_back({s.stamp, *s.robot_pose});
+  }
+  const auto path = aligned(log_formats::ReadTum(path_out));
+  const auto raw = aligned(odometry);
+  const auto on_map = aligned(log_formats::ReadTum(localised));
+  std::printf(
+      "Intel: SLAM path %.1f mm RMSE (odometry %.1f mm), localised on its map %.1f mm RMSE, "
+      "%.1f mm max, all after one rigid alignment\n",
+      1e3 * path.position_rmse_m, 1e3 * raw.position_rmse_m, 1e3 * on_map.position_rmse_m,
+      1e3 * on_map.position_max_m);
+  EXPECT_EQ(path.matched, truth.size());
+  EXPECT_LT(path.position_rmse_m, raw.position_rmse_m / 10.0);
+  EXPECT_EQ(on_map.matched, truth.size());
+  EXPECT_LE(on_map.position_max_m, 0.2);
 }
 
 }  // namespace
