@@ -83,7 +83,7 @@ std::string Unblanked(const std::string& text) {
 // dxflib reads the file (it allocates and zeroes for a count as soon as it
 // reads it, then frees at the entity's end: a thousand entities announcing a
 // million each would zero 32 GB), and lines dxflib would split. Group codes
-// and values alternate line by line; a group 0 starts an entity.
+// and values alternate line by line; a group 0 or 9 starts an object.
 void CheckAnnouncedCounts(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string code_line, value_line, code_text, value;
@@ -98,13 +98,18 @@ void CheckAnnouncedCounts(const std::string& path) {
   for (size_t line = 1; std::getline(in, code_line) && std::getline(in, value_line); line += 2) {
     check_length(code_line, line);
     check_length(value_line, line + 1);
-    // As dxflib reads a group code: a line that is no number (even an empty
-    // one) is code 0, and starts an entity.
+    // As dxflib reads a group code: strtol's long cut to an int (its toInt),
+    // so that 4294967386 is 90; a line that is no number (even an empty one)
+    // is code 0.
     code_text = AsDxflibReadsIt(code_line, code_text);
-    const long code = std::strtol(code_text.c_str(), nullptr, 10);
+    const int code = static_cast<int>(std::strtol(code_text.c_str(), nullptr, 10));
     value = AsDxflibReadsIt(value_line, value);
     if (code < 0) continue;  // dxflib judges the rest
-    if (code == 0) {
+    // dxflib starts an object at a group 9 as at a group 0: a header
+    // variable's name, but "9 / LWPOLYLINE" starts a polyline (found by the
+    // fuzzer: a count past the guard, whose allocation overflowed inside
+    // dxflib and freed its vertex buffer twice).
+    if (code == 0 || code == 9) {
       kind = Unblanked(value);
       continue;
     }
@@ -136,7 +141,15 @@ class DrawingCollector : public DL_CreationAdapter {
   size_t Entities() const { return entities_; }
 
   void processCodeValuePair(unsigned int code, const std::string& value) override {
-    if (code == 0) {
+    if (code == 9) {
+      // dxflib ends the object before at a group 9 as at a group 0 (see
+      // CheckAnnouncedCounts) and calls back for it: it is finished here too.
+      FinishRawEntity();
+      expect_section_name_ = false;
+      raw_kind_ = value;
+      raw_layer_ = "0";
+      raw_paper_space_ = false;
+    } else if (code == 0) {
       FinishRawEntity();
       expect_section_name_ = value == "SECTION";
       saw_section_ = saw_section_ || expect_section_name_;

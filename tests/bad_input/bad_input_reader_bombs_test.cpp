@@ -222,6 +222,34 @@ TEST(ReaderBombs, DxfWhosePolylineNameHidesANul) {
            "announces 400000101 items"});
 }
 
+// dxflib starts an object at a group 9 as at a group 0 (found by the fuzzer:
+// the count passed the guard, dxflib's allocation for it overflowed, threw,
+// and its vertex buffer was freed twice).
+TEST(ReaderBombs, DxfWhosePolylineIsStartedByAVariableGroup) {
+  const TempDir dir;
+  const std::string path =
+      dir.Write("variable.dxf",
+                "0\nSECTION\n2\nENTITIES\n9\nLWPOLYLINE\n8\nWALLS\n90\n2\n10\n0\n20\n0\n90\n"
+                "400000101007\n0\nENDSEC\n0\nEOF\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "announces 400000101007 items"});
+}
+
+// dxflib cuts a group code to an int: 4294967296 is a group 0.
+TEST(ReaderBombs, DxfWhosePolylineIsStartedByAGroupCodeThatWrapsToZero) {
+  const TempDir dir;
+  const std::string path = dir.Write(
+      "wrapped.dxf",
+      "0\nSECTION\n2\nENTITIES\n4294967296\nLWPOLYLINE\n8\nWALLS\n90\n2\n10\n0\n20\n0\n90\n"
+      "400000101007\n0\nENDSEC\n0\nEOF\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "announces 400000101007 items"});
+}
+
 TEST(ReaderBombs, DxfOfAThousandPolylinesAnnouncingAMillionVerticesEach) {
   const TempDir dir;
   std::string text = "0\nSECTION\n2\nENTITIES\n";
