@@ -250,6 +250,21 @@ TEST(ReaderBombs, DxfWhosePolylineIsStartedByAGroupCodeThatWrapsToZero) {
            "announces 400000101007 items"});
 }
 
+// A last group code with no value line: dxflib pairs it with the value
+// before it, here a count no check saw (a double free inside dxflib). dxflib
+// reads a copy of what was checked, which ends with the last whole pair.
+TEST(ReaderBombs, DxfWhoseLastGroupCodeHasNoValue) {
+  const TempDir dir;
+  const std::string path =
+      dir.Write("stale.dxf",
+                "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nWALLS\n90\n2\n10\n0\n20\n0\n8\n"
+                "400000101007\n90\n");
+  Explode({{path},
+           {"map", "import", "--dxf", path, "--layers", "WALLS", "--out", dir / "o.xml"},
+           2,
+           "cut short"});
+}
+
 TEST(ReaderBombs, DxfOfAThousandPolylinesAnnouncingAMillionVerticesEach) {
   const TempDir dir;
   std::string text = "0\nSECTION\n2\nENTITIES\n";
