@@ -32,9 +32,8 @@ const Subcommand kSubcommands[] = {
      "from DDS into a CARMEN log"},
     {"slam", structloc::cli::SlamCommand,
      "--log RAW.log --poses-out POSES.tum [--out WORLD.xml] [--plot P.png] [--relations R] "
-     "[--truth T.tum] [--params P.xml] [--scans F:L]  the robot's path (and its wall map, checked) "
-     "from raw "
-     "odometry and scans; Ctrl-C keeps what is done"},
+     "[--truth T.tum] [--params P.xml] [--scans F:L]  the robot's path (and its wall map, "
+     "checked) from raw odometry and scans; Ctrl-C keeps what is done"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,
