@@ -19,17 +19,9 @@
 # Usage: tests/evaluation/real_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: real_evaluation, build, ../shared/data)
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-out="${1:-real_evaluation}"
-structloc="${2:-$root/build}/bin/structloc"
-data="${3:-$root/../shared/data}"
-params="$root/maps/params/sick_lms2xx.xml"
-mkdir -p "$out"
-
-# The first pose of a TUM file as "X Y THETA".
-first_pose() {
-  awk '!/^#/ { printf "%s %s %.9f\n", $2, $3, 2 * atan2($7, $8); exit }' "$1"
-}
+# shellcheck source=tests/evaluation/recordings_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/recordings_common.sh"
+recordings_setup real_evaluation "$@"
 
 # row NAME PART ODOMETRY MAP_KIND MAP LOG TRUTH
 row() {

@@ -18,17 +18,9 @@
 # Usage: tests/evaluation/slam_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: slam_evaluation, build, ../shared/data)
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-out="${1:-slam_evaluation}"
-structloc="${2:-$root/build}/bin/structloc"
-data="${3:-$root/../shared/data}"
-params="$root/maps/params/sick_lms2xx.xml"
-mkdir -p "$out"
-
-# The first pose of a TUM file as "X Y THETA".
-first_pose() {
-  awk '!/^#/ { printf "%s %s %.9f\n", $2, $3, 2 * atan2($7, $8); exit }' "$1"
-}
+# shellcheck source=tests/evaluation/recordings_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/recordings_common.sh"
+recordings_setup slam_evaluation "$@"
 
 echo "MIT CSAIL, raw odometry:"
 "$structloc" slam --log "$data/mit-csail.clf.gz" --relations "$data/mit-csail.relations" \

@@ -1,0 +1,20 @@
+# shellcheck shell=bash
+# Sourced by the evaluations on the real recordings of ../shared/data
+# (real_recordings.sh, slam_recordings.sh): their arguments and a helper.
+#   recordings_setup DEFAULT_OUT_DIR [OUT_DIR] [BUILD_DIR] [DATA_DIR]
+# sets root (the repository), out (made if missing), structloc (the CLI),
+# data and params (the SICK LMS 2xx preset the recordings are localised with).
+# shellcheck disable=SC2034  # the caller uses them
+recordings_setup() {
+  root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+  out="${2:-$1}"
+  structloc="${3:-$root/build}/bin/structloc"
+  data="${4:-$root/../shared/data}"
+  params="$root/maps/params/sick_lms2xx.xml"
+  mkdir -p "$out"
+}
+
+# The first pose of a TUM file as "X Y THETA".
+first_pose() {
+  awk '!/^#/ { printf "%s %s %.9f\n", $2, $3, 2 * atan2($7, $8); exit }' "$1"
+}
