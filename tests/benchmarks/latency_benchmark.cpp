@@ -5,7 +5,8 @@
 // -> pose-received latency (median, p99, max) in the steady state, from the
 // first second on (the first scan waits for the search that confirms the start
 // pose, some 90 ms once), and for the whole run beside it; where it goes (the
-// localiser's own update, from rt/structloc/status, and the rest: transport,
+// localiser's own update, from rt/structloc/status, with its steps' medians
+// to set beside the same scans replayed offline, and the rest: transport,
 // thread wake-ups, conversions), and the component's CPU use (% of one core,
 // from /proc); with CSV, also each scan's stamp, latency and update time
 // (to see when the slow ones come). Before and after the run it measures how
@@ -21,6 +22,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -101,6 +103,8 @@ int main(int argc, char** argv) {
   std::map<double, Clock::time_point> sent;
   std::map<double, double> latency_at;      // by scan stamp
   std::map<double, double> update_ms;       // the localiser's update, by scan stamp
+  // Its steps, us: prefilter, line fits, the feature kinds together, solve.
+  std::map<double, std::array<double, 4>> steps_us;
   std::map<std::string, int> lost_reasons;  // of the statuses that said lost
   const auto pose_subscription =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
@@ -117,7 +121,12 @@ int main(int argc, char** argv) {
       node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
           dds_common::topics::kStatus, [&](const structloc_msgs::msg::LocalisationStatus& m) {
             std::lock_guard<std::mutex> lock(mutex);
-            update_ms[dds_common::FromRosTime(m.header().stamp())] = 1e-3 * m.timings().total_us();
+            const double stamp = dds_common::FromRosTime(m.header().stamp());
+            update_ms[stamp] = 1e-3 * m.timings().total_us();
+            double features = 0.0;
+            for (const auto& kind : m.timings().features()) features += kind.extract_us();
+            steps_us[stamp] = {m.timings().prefilter_us(), m.timings().line_fit_us(), features,
+                               m.timings().solve_us()};
             if (m.lost()) ++lost_reasons[m.lost_reason()];
           });
   const auto& p = scenario.initial_pose;
@@ -180,6 +189,7 @@ int main(int argc, char** argv) {
     csv << "stamp_s,latency_ms,update_ms\n" << std::fixed;
   }
   std::vector<double> whole, steady, update, rest;
+  std::array<std::vector<double>, 4> steps;
   for (const auto& [stamp, ms] : latency_at) {
     const auto u = update_ms.find(stamp);
     if (csv.is_open())
@@ -191,6 +201,8 @@ int main(int argc, char** argv) {
     if (u == update_ms.end()) continue;
     update.push_back(u->second);
     rest.push_back(ms - u->second);
+    const auto& t = steps_us.at(stamp);
+    for (size_t k = 0; k < t.size(); ++k) steps[k].push_back(t[k]);
   }
   std::printf("%.0f Hz, 1081-beam scans, %.0f s: %zu scans sent, %zu poses received\n", rate, wall,
               sent.size(), whole.size());
@@ -206,6 +218,17 @@ int main(int argc, char** argv) {
                         std::to_string(steady.size()) + " poses)");
   quantiles(whole, "  the whole run, start-up included");
   quantiles(update, "  of the steady state, the localiser's update");
+  // The update's steps, to compare with the same scans replayed offline
+  // (structloc replay --timings): what a cold cache costs each.
+  auto median = [](std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  std::printf(
+      "    its steps' medians: prefilter %.1f us, line fits %.1f us, features %.1f us, solve %.1f "
+      "us\n",
+      median(steps[0]), median(steps[1]), median(steps[2]), median(steps[3]));
   quantiles(rest, "  of the steady state, transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
   std::printf("statuses received: %zu", update_ms.size());
