@@ -59,7 +59,7 @@ for name in freiburg_079 intel; do
   for odometry in perfect perturbed; do
     errors=()
     [ "$odometry" = perturbed ] &&
-      errors=(--scale-error 0.015 --heading-drift 0.3 --noise-xy 0.005 --noise-theta 0.1)
+      errors=("${odometry_errors[@]}")
     for part in all "$test_part"; do
       tag="$name.$odometry.${part/:/-}"
       scans=()

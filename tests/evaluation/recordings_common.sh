@@ -3,7 +3,10 @@
 # (real_recordings.sh, slam_recordings.sh): their arguments and a helper.
 #   recordings_setup DEFAULT_OUT_DIR [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 # sets root (the repository), out (made if missing), structloc (the CLI),
-# data and params (the SICK LMS 2xx preset the recordings are localised with).
+# data, params (the SICK LMS 2xx preset the recordings are localised with)
+# and odometry_errors (synthesise-odometry's options for the real-recording
+# table's errors: 1.5 % scale error, 0.3 deg/m heading drift, 5 mm and
+# 0.1 deg noise per sqrt(m)).
 # shellcheck disable=SC2034  # the caller uses them
 recordings_setup() {
   root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -11,6 +14,7 @@ recordings_setup() {
   structloc="${3:-$root/build}/bin/structloc"
   data="${4:-$root/../shared/data}"
   params="$root/maps/params/sick_lms2xx.xml"
+  odometry_errors=(--scale-error 0.015 --heading-drift 0.3 --noise-xy 0.005 --noise-theta 0.1)
   mkdir -p "$out"
 }
 

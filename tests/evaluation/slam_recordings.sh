@@ -34,8 +34,7 @@ for name in freiburg_079 intel; do
   log="$out/$name.raw.log"
   truth="$out/$name.truth.tum"
   "$structloc" synthesise-odometry --log "$data/${name//_/-}-corrected.log.gz" --out "$log" \
-    --truth "$truth" --scale-error 0.015 --heading-drift 0.3 --noise-xy 0.005 --noise-theta 0.1 \
-    "${restamp[@]}" >/dev/null
+    --truth "$truth" "${odometry_errors[@]}" "${restamp[@]}" >/dev/null
   slam=$("$structloc" slam --log "$log" --truth "$truth" --poses-out "$out/$name.slam.tum" \
     --out "$out/$name.slam.xml" --plot "$out/$name.slam.png")
   path=$(sed -n 's/^  slam *RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*aligned: RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2 | \3 \/ \4/p' <<<"$slam")
