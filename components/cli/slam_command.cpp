@@ -4,11 +4,11 @@
 // (slam_core::Slam: keyframes matched, loops closed, the pose graph
 // optimised with Ceres), then, with --out or --plot, the wall map built on
 // those poses as "structloc map build" builds one and checked against the
-// same scans as "structloc map check" checks one. With --relations, the path is judged by Kuemmerle et al.'s
-// relation metric beside raw odometry; with --truth, against ground truth as
-// it is and after one rigid alignment (the path's frame is the first scan's
-// odometry's, not the truth's). Ctrl-C stops adding scans: the path and map
-// of the scans added so far are written.
+// same scans as "structloc map check" checks one. With --relations, the
+// path is judged by Kuemmerle et al.'s relation metric beside raw odometry;
+// with --truth, against ground truth as it is and after one rigid alignment
+// (the path's frame is the first scan's odometry's, not the truth's). Ctrl-C
+// stops adding scans: the path and map of the scans added so far are written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>

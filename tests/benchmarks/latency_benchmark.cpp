@@ -101,8 +101,8 @@ int main(int argc, char** argv) {
       node.CreateWriter<nav_msgs::msg::OdometryPubSubType>(dds_common::topics::kOdom)};
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
-  std::map<double, double> latency_at;      // by scan stamp
-  std::map<double, double> update_ms;       // the localiser's update, by scan stamp
+  std::map<double, double> latency_at;  // by scan stamp
+  std::map<double, double> update_ms;   // the localiser's update, by scan stamp
   // Its steps, us: prefilter, line fits, the feature kinds together, solve.
   std::map<double, std::array<double, 4>> steps_us;
   std::map<std::string, int> lost_reasons;  // of the statuses that said lost
