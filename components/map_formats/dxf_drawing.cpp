@@ -53,23 +53,19 @@ class DrawingCollector : public DL_CreationAdapter {
   size_t Entities() const { return entities_; }
 
   void processCodeValuePair(unsigned int code, const std::string& value) override {
-    if (code == 9) {
+    if (code == 0 || code == 9) {
       // dxflib ends the object before at a group 9 as at a group 0 (see
       // dxf_checked_copy.cpp) and calls back for it: it is finished here too.
       FinishRawEntity();
-      expect_section_name_ = false;
-      raw_kind_ = value;
-      raw_layer_ = "0";
-      raw_paper_space_ = false;
-    } else if (code == 0) {
-      FinishRawEntity();
-      expect_section_name_ = value == "SECTION";
+      // Sections and the file's end are marked by a group 0 only.
+      const auto marks = [&](const char* name) { return code == 0 && value == name; };
+      expect_section_name_ = marks("SECTION");
       saw_section_ = saw_section_ || expect_section_name_;
-      if (value == "ENDSEC") {
+      if (marks("ENDSEC")) {
         entities_ended_ = entities_ended_ || section_ == "ENTITIES";
         section_.clear();
       }
-      saw_eof_ = saw_eof_ || value == "EOF";
+      saw_eof_ = saw_eof_ || marks("EOF");
       raw_kind_ = value;
       raw_layer_ = "0";
       raw_paper_space_ = false;
