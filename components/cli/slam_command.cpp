@@ -25,7 +25,6 @@
 #include "structloc/rendering/map_canvas.hpp"
 #include "structloc/replay/relation_error.hpp"
 #include "structloc/replay/trajectory_alignment.hpp"
-#include "structloc/replay/trajectory_error.hpp"
 #include "structloc/slam_core/slam.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "subcommands.hpp"
@@ -53,10 +52,9 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
   std::printf("  %-9s RMSE %.1f mm, max %.1f mm, heading RMSE %.2f deg (%zu poses)", what,
               1e3 * raw.position_rmse_m, 1e3 * raw.position_max_m, kDeg * raw.heading_rmse_rad,
               raw.matched);
-  if (const auto motion = replay::AlignTrajectory(path, truth)) {
-    const auto e = replay::CompareTrajectories(replay::Moved(path, *motion), truth);
+  if (const auto e = replay::CompareAligned(path, truth)) {
     std::printf("; aligned: RMSE %.1f mm, max %.1f mm, heading RMSE %.2f deg",
-                1e3 * e.position_rmse_m, 1e3 * e.position_max_m, kDeg * e.heading_rmse_rad);
+                1e3 * e->position_rmse_m, 1e3 * e->position_max_m, kDeg * e->heading_rmse_rad);
   }
   std::printf("\n");
 }

@@ -385,10 +385,7 @@ class Replayer {
     SummariseStageTimes();
     if (!o_.truth_path.empty()) {
       report_.estimate_error = CompareTrajectories(report_.estimate, truth_);
-      if (const auto motion = AlignTrajectory(report_.estimate, truth_)) {
-        report_.aligned_estimate_error =
-            CompareTrajectories(Moved(report_.estimate, *motion), truth_);
-      }
+      report_.aligned_estimate_error = CompareAligned(report_.estimate, truth_);
       report_.odometry_error = CompareTrajectories(odometry_only_, truth_);
     }
     if (plot_) Plot(truth_);

@@ -39,6 +39,14 @@ std::optional<geometry::Pose2D> AlignTrajectory(
                           theta};
 }
 
+std::optional<TrajectoryError> CompareAligned(const std::vector<log_formats::StampedPose>& estimate,
+                                              const std::vector<log_formats::StampedPose>& truth,
+                                              double tolerance_s) {
+  const auto motion = AlignTrajectory(estimate, truth, tolerance_s);
+  if (!motion) return std::nullopt;
+  return CompareTrajectories(Moved(estimate, *motion), truth, tolerance_s);
+}
+
 std::vector<log_formats::StampedPose> Moved(const std::vector<log_formats::StampedPose>& trajectory,
                                             const geometry::Pose2D& motion) {
   std::vector<log_formats::StampedPose> out;

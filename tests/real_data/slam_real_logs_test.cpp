@@ -22,7 +22,6 @@
 #include "structloc/process/child_process.hpp"
 #include "structloc/replay/relation_error.hpp"
 #include "structloc/replay/trajectory_alignment.hpp"
-#include "structloc/replay/trajectory_error.hpp"
 #include "structloc/slam_core/slam.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
@@ -137,9 +136,9 @@ TEST(SlamOnRealLogs, IntelMapsItselfAndLocalisesOnItsMap) {
   EXPECT_NE(replay.output.find("lost: 0 scans"), std::string::npos) << replay.output;
 
   auto aligned = [&truth](const std::vector<log_formats::StampedPose>& estimate) {
-    const auto motion = replay::AlignTrajectory(estimate, truth);
-    EXPECT_TRUE(motion);
-    return replay::CompareTrajectories(motion ? replay::Moved(estimate, *motion) : estimate, truth);
+    const auto e = replay::CompareAligned(estimate, truth);
+    EXPECT_TRUE(e);
+    return e.value_or(replay::TrajectoryError{});
   };
   std::vector<log_formats::StampedPose> odometry;
   for (const auto& s : map_building::ReadPosedScans(log, {}).scans) {

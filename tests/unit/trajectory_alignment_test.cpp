@@ -43,6 +43,9 @@ TEST(TrajectoryAlignment, APathInAFrameOfItsOwnIsBroughtBackExactly) {
     EXPECT_EQ(after.matched, truth.size());
     EXPECT_LT(after.position_rmse_m, 1e-9) << turn;
     EXPECT_LT(after.heading_rmse_rad, 1e-9) << turn;
+    const auto compared = replay::CompareAligned(path, truth);
+    ASSERT_TRUE(compared) << turn;
+    EXPECT_LT(compared->position_rmse_m, 1e-9) << turn;
   }
 }
 
@@ -77,6 +80,7 @@ TEST(TrajectoryAlignment, TooFewMatchedPosesGiveNoAlignment) {
   const auto truth = Tour();
   EXPECT_FALSE(replay::AlignTrajectory({}, truth));
   EXPECT_FALSE(replay::AlignTrajectory({truth[3]}, truth));
+  EXPECT_FALSE(replay::CompareAligned({truth[3]}, truth));
   // Stamps the truth does not have (beyond the tolerance) do not match.
   auto late = truth;
   for (auto& p : late) p.stamp += 0.05;

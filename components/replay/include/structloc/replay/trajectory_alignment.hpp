@@ -10,6 +10,7 @@
 
 #include "structloc/geometry/pose2d.hpp"
 #include "structloc/log_formats/tum_reader.hpp"
+#include "structloc/replay/trajectory_error.hpp"
 
 namespace structloc::replay {
 
@@ -20,6 +21,12 @@ namespace structloc::replay {
 std::optional<geometry::Pose2D> AlignTrajectory(
     const std::vector<log_formats::StampedPose>& estimate,
     const std::vector<log_formats::StampedPose>& truth, double tolerance_s = 0.02);
+
+// The errors of `estimate` against `truth` after AlignTrajectory's motion;
+// none when there is no alignment.
+std::optional<TrajectoryError> CompareAligned(const std::vector<log_formats::StampedPose>& estimate,
+                                              const std::vector<log_formats::StampedPose>& truth,
+                                              double tolerance_s = 0.02);
 
 // Every pose of `trajectory` with `motion` composed on it (motion * pose).
 std::vector<log_formats::StampedPose> Moved(const std::vector<log_formats::StampedPose>& trajectory,
