@@ -102,9 +102,13 @@ int main(int argc, char** argv) {
   std::mutex mutex;
   std::map<double, Clock::time_point> sent;
   std::map<double, double> latency_at;  // by scan stamp
-  std::map<double, double> update_ms;   // the localiser's update, by scan stamp
-  // Its steps, us: prefilter, line fits, the feature kinds together, solve.
-  std::map<double, std::array<double, 4>> steps_us;
+  // The localiser's update by scan stamp: in all, ms, and its steps, us
+  // (prefilter, line fits, the feature kinds together, solve).
+  struct UpdateTimes {
+    double total_ms = 0.0;
+    std::array<double, 4> steps_us{};
+  };
+  std::map<double, UpdateTimes> update_at;
   std::map<std::string, int> lost_reasons;  // of the statuses that said lost
   const auto pose_subscription =
       node.Subscribe<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
@@ -121,12 +125,11 @@ int main(int argc, char** argv) {
       node.Subscribe<structloc_msgs::msg::LocalisationStatusPubSubType>(
           dds_common::topics::kStatus, [&](const structloc_msgs::msg::LocalisationStatus& m) {
             std::lock_guard<std::mutex> lock(mutex);
-            const double stamp = dds_common::FromRosTime(m.header().stamp());
-            update_ms[stamp] = 1e-3 * m.timings().total_us();
+            const auto& t = m.timings();
             double features = 0.0;
-            for (const auto& kind : m.timings().features()) features += kind.extract_us();
-            steps_us[stamp] = {m.timings().prefilter_us(), m.timings().line_fit_us(), features,
-                               m.timings().solve_us()};
+            for (const auto& kind : t.features()) features += kind.extract_us();
+            update_at[dds_common::FromRosTime(m.header().stamp())] = {
+                1e-3 * t.total_us(), {t.prefilter_us(), t.line_fit_us(), features, t.solve_us()}};
             if (m.lost()) ++lost_reasons[m.lost_reason()];
           });
   const auto& p = scenario.initial_pose;
@@ -191,18 +194,17 @@ int main(int argc, char** argv) {
   std::vector<double> whole, steady, update, rest;
   std::array<std::vector<double>, 4> steps;
   for (const auto& [stamp, ms] : latency_at) {
-    const auto u = update_ms.find(stamp);
+    const auto u = update_at.find(stamp);
     if (csv.is_open())
-      csv << stamp - kStampOffsetS << "," << ms << "," << (u == update_ms.end() ? -1.0 : u->second)
-          << "\n";
+      csv << stamp - kStampOffsetS << "," << ms << ","
+          << (u == update_at.end() ? -1.0 : u->second.total_ms) << "\n";
     whole.push_back(ms);
     if (stamp - kStampOffsetS < kStartUpS) continue;
     steady.push_back(ms);
-    if (u == update_ms.end()) continue;
-    update.push_back(u->second);
-    rest.push_back(ms - u->second);
-    const auto& t = steps_us.at(stamp);
-    for (size_t k = 0; k < t.size(); ++k) steps[k].push_back(t[k]);
+    if (u == update_at.end()) continue;
+    update.push_back(u->second.total_ms);
+    rest.push_back(ms - u->second.total_ms);
+    for (size_t k = 0; k < steps.size(); ++k) steps[k].push_back(u->second.steps_us[k]);
   }
   std::printf("%.0f Hz, 1081-beam scans, %.0f s: %zu scans sent, %zu poses received\n", rate, wall,
               sent.size(), whole.size());
@@ -219,7 +221,7 @@ int main(int argc, char** argv) {
   quantiles(whole, "  the whole run, start-up included");
   quantiles(update, "  of the steady state, the localiser's update");
   // The update's steps, to compare with the same scans replayed offline
-  // (structloc replay --timings): what a cold cache costs each.
+  // (structloc replay --timings).
   auto median = [](std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -231,7 +233,7 @@ int main(int argc, char** argv) {
       median(steps[0]), median(steps[1]), median(steps[2]), median(steps[3]));
   quantiles(rest, "  of the steady state, transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
-  std::printf("statuses received: %zu", update_ms.size());
+  std::printf("statuses received: %zu", update_at.size());
   for (const auto& [reason, count] : lost_reasons) {
     std::printf(", %d lost (%s)", count, reason.c_str());
   }
