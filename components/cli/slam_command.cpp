@@ -1,6 +1,6 @@
 // "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
 // [--plot P.png] [--relations R] [--truth T.tum] [--params MAP_BUILD.xml]
-// [--scans F:L]": the robot's path from its raw odometry and scans
+// [--slam-params SLAM.xml] [--scans F:L]": the robot's path from its raw odometry and scans
 // (slam_core::Slam: keyframes matched, loops closed, the pose graph
 // optimised with Ceres), then, with --out or --plot, the wall map built on
 // those poses as "structloc map build" builds one and checked against the
@@ -69,6 +69,9 @@ int SlamCommand(const Invocation& inv) {
       {"params", true,
        "map-build options (<map_build_params>, see structloc params --map-build); their range "
        "limits also choose the readings SLAM matches"},
+      {"slam-params", true,
+       "SLAM options (<slam_params>, see structloc params --slam): keyframes, matching, loop "
+       "closure, pose graph"},
       {"relations", true,
        "judge the path by this relations file (Kuemmerle et al. 2009), beside raw odometry"},
       {"truth", true,
@@ -90,8 +93,13 @@ int SlamCommand(const Invocation& inv) {
     const std::string params_path = cli.GetOr("params", "");
     const auto build = params_path.empty() ? map_building::MapBuildOptions{}
                                            : map_building::LoadMapBuildOptions(params_path);
+    const std::string slam_params_path = cli.GetOr("slam-params", "");
+    const auto slam_options = slam_params_path.empty()
+                                  ? slam_core::SlamOptions{}
+                                  : slam_core::LoadSlamOptions(slam_params_path);
     std::vector<std::string> inputs{log_path};
     if (!params_path.empty()) inputs.push_back(params_path);
+    if (!slam_params_path.empty()) inputs.push_back(slam_params_path);
     std::vector<log_formats::Relation> relations;
     if (cli.Has("relations")) {
       relations = log_formats::ReadRelations(cli.Required("relations"));
@@ -125,7 +133,7 @@ int SlamCommand(const Invocation& inv) {
     }
     const geometry::Pose2D unmount = geometry::Inverse(mount);
     // SLAM in the laser's frame: its odometric pose and its own readings.
-    slam_core::Slam slam;
+    slam_core::Slam slam(slam_options);
     for (size_t i = 0; i < log.scans.size(); ++i) {
       if (shutdown.WaitFor(std::chrono::milliseconds(0))) {
         std::printf("  stopped (Ctrl-C) after %zu of %zu scans: the path and map so far\n", i,

@@ -82,9 +82,11 @@ void Slam::AddKeyframe(const SlamScan& scan) {
   } else {
     ++stats_.odometry_edges;
     edge.measured = step;
-    const double sxy = std::max(0.01, options_.odometry_sigma_per_m * travel);
-    const double st =
-        std::max(0.005, options_.odometry_sigma_per_rad * std::abs(step.theta) + 0.02 * travel);
+    const double sxy =
+        std::max(options_.odometry_min_sigma_xy_m, options_.odometry_sigma_per_m * travel);
+    const double st = std::max(options_.odometry_min_sigma_theta_rad,
+                               options_.odometry_sigma_per_rad * std::abs(step.theta) +
+                                   options_.odometry_sigma_theta_per_m * travel);
     edge.information =
         Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (st * st)).asDiagonal();
   }

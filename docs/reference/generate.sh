@@ -29,7 +29,7 @@ block() {  # a command's output in a text block
   echo "Every key of every XML file structloc reads, with its default, unit, valid"
   echo "values and meaning, as \`structloc params\` prints them. Unknown and missing"
   echo "keys are errors; \`structloc params --check FILE.xml\` checks a file."
-  for kind in localiser robot scenario map-build; do
+  for kind in localiser robot scenario map-build slam; do
     echo
     echo "## \`structloc params --$kind\`"
     echo

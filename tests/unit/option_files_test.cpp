@@ -330,13 +330,14 @@ TEST(ParamsCommand, ListsRobotAndScenarioKeysAndChecksEitherKindOfFile) {
   bad = testing::RunCli({"params", "--check", SourcePath("qos/structloc_qos.xml")});
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("expected <localisation_params>, <robot>, <scenario>, "
-                            "<map_build_params> or <world>"),
+                            "<map_build_params>, <slam_params> or <world>"),
             std::string::npos)
       << bad.output;
 }
 
-// Every XML file shipped under maps/ (worlds, localiser, robot, scenario and
-// map-build files, in any subfolder) loads with the code that reads its kind.
+// Every XML file shipped under maps/ (worlds, localiser, robot, scenario,
+// map-build and SLAM files, in any subfolder) loads with the code that reads
+// its kind.
 TEST(ShippedFiles, EveryXmlFileUnderMapsLoads) {
   size_t checked = 0;
   for (const auto& e : std::filesystem::recursive_directory_iterator(SourcePath("maps"))) {

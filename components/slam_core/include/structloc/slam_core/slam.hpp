@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <memory>
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include "structloc/log_formats/tum_reader.hpp"
@@ -31,10 +33,14 @@ struct SlamOptions {
   double min_match_share = 0.5;
   double max_match_correction_m = 0.3;
   double max_match_correction_share = 0.5;
-  // Odometry's standard deviation per metre and per radian travelled (the
-  // edge where no match pins the step).
+  // Odometry's standard deviation (the edge where no match pins the step):
+  // position per metre driven, heading per radian turned plus per metre
+  // driven, never below the floors.
   double odometry_sigma_per_m = 0.1;
   double odometry_sigma_per_rad = 0.1;
+  double odometry_sigma_theta_per_m = 0.02;
+  double odometry_min_sigma_xy_m = 0.01;
+  double odometry_min_sigma_theta_rad = 0.005;
   // Loop closure: keyframes at least this many before the new one ...
   int loop_min_separation = 30;
   // ... whose estimate is within this radius of the new one's, widened by
@@ -54,7 +60,19 @@ struct SlamOptions {
   // ICP from the graph's guess, pairing from farther away than a step's.
   ScanMatchOptions loop_match{30, 2.0, 0.15, 0.25, 0.03, 10.0, 0.01, 0.003};
   PoseGraphOptions graph;
+
+  // Throws std::invalid_argument naming the section and key of a value out of
+  // range.
+  void Validate() const;
 };
+
+// A <slam_params> file (`structloc params --slam` lists its keys); throws
+// config::ConfigError naming the file, line and key.
+SlamOptions LoadSlamOptions(const std::string& path);
+// Every key with its default, unit, valid values and meaning.
+void PrintSlamOptions(std::ostream& out);
+// The file at `path` whole: every key with the value it takes.
+void WriteExpandedSlamOptions(const std::string& path, std::ostream& out);
 
 // One scan: the robot's odometric pose and the readings in the robot frame.
 struct SlamScan {

@@ -1,0 +1,157 @@
+// The SLAM options declared once (key, range, unit, description; the struct
+// members hold the defaults) for a <slam_params> file, so that a building or a
+// laser unlike the recordings the defaults were chosen on can be mapped
+// without a rebuild.
+#include <stdexcept>
+
+#include "structloc/config/option_table.hpp"
+#include "structloc/slam_core/slam.hpp"
+
+namespace structloc::slam_core {
+namespace {
+
+using config::Range;
+using O = SlamOptions;
+using Table = config::OptionTable<O>;
+
+Table KeyframesSection() {
+  Table t("keyframes", "the scans that enter the pose graph");
+  t.Number("distance_m", &O::keyframe_distance_m, Range::Positive(), "m",
+           "a keyframe after this much travel since the last ...");
+  t.Number("angle_rad", &O::keyframe_angle_rad, Range::Positive(), "rad", "... or this much turn");
+  return t;
+}
+
+Table StepsSection() {
+  Table t("steps", "each keyframe matched against the keyframes just before it");
+  t.Number("submap_keyframes", &O::submap_keyframes, Range::Closed(1, 1000), "",
+           "the keyframes a new one is matched against");
+  t.Number("min_match_share", &O::min_match_share, Range::Closed(0, 1), "",
+           "a match is taken when it explains this share of the scan ...");
+  t.Number("max_match_correction_m", &O::max_match_correction_m, Range::NonNegative(), "m",
+           "... and moves odometry's step by at most this ...");
+  t.Number("max_match_correction_share", &O::max_match_correction_share, Range::NonNegative(), "",
+           "... plus this share of the step's length");
+  t.Number("odometry_sigma_per_m", &O::odometry_sigma_per_m, Range::Positive(), "m/m",
+           "odometry's noise per metre driven, where no match is taken");
+  t.Number("odometry_sigma_per_rad", &O::odometry_sigma_per_rad, Range::NonNegative(), "",
+           "... its heading's per radian turned ...");
+  t.Number("odometry_sigma_theta_per_m", &O::odometry_sigma_theta_per_m, Range::NonNegative(),
+           "rad/m", "... and per metre driven");
+  t.Number("odometry_min_sigma_xy_m", &O::odometry_min_sigma_xy_m, Range::Positive(), "m",
+           "odometry's position noise on a step is never taken as smaller");
+  t.Number("odometry_min_sigma_theta_rad", &O::odometry_min_sigma_theta_rad, Range::Positive(),
+           "rad", "... nor its heading noise");
+  return t;
+}
+
+// The point-to-line ICP's options, as section `name` of the part `part` finds.
+template <class Part>
+Table MatchSection(const char* name, const char* description, Part part) {
+  using M = ScanMatchOptions;
+  config::OptionTable<M> t(name, description);
+  t.Number("iterations", &M::iterations, Range::Closed(1, 1000), "", "ICP iterations at most");
+  t.Number("first_pair_distance_m", &M::first_pair_distance_m, Range::Positive(), "m",
+           "points pair with reference points this far at first ...");
+  t.Number("last_pair_distance_m", &M::last_pair_distance_m, Range::Positive(), "m",
+           "... shrinking to this over the first half of the iterations; a scan's share "
+           "explained counts its points this close to a surface");
+  t.Number("normal_radius_m", &M::normal_radius_m, Range::Positive(), "m",
+           "the reference points within this radius give a point's surface direction");
+  t.Number("point_sigma_m", &M::point_sigma_m, Range::Positive(), "m",
+           "a point's noise across its surface (range noise, wall roughness); the Huber loss "
+           "starts at twice this");
+  t.Number("correlated_points", &M::correlated_points, Range::Closed(1, 1e6), "",
+           "the covariance counts one point in this many (neighbours see the same stretch "
+           "of wall)");
+  t.Number("min_sigma_xy_m", &M::min_sigma_xy_m, Range::Positive(), "m",
+           "the covariance never claims a position better than this ...");
+  t.Number("min_sigma_theta_rad", &M::min_sigma_theta_rad, Range::Positive(), "rad",
+           "... nor a heading");
+  return Table::Of(t, part);
+}
+
+Table LoopsSection() {
+  Table t("loops", "loops closed by matching a new keyframe against places seen long ago");
+  t.Number("min_separation_keyframes", &O::loop_min_separation, Range::Closed(1, 1000000), "",
+           "only keyframes at least this many before the new one are tried");
+  t.Number("radius_m", &O::loop_radius_m, Range::Positive(), "m",
+           "... whose estimate lies within this radius of the new one's ...");
+  t.Number("radius_per_m", &O::loop_radius_per_m, Range::NonNegative(), "m/m",
+           "... widened by this share of the odometric distance counted since a loop last "
+           "closed (every scan's distance from its keyframe) ...");
+  t.Number("max_radius_m", &O::loop_max_radius_m, Range::Positive(), "m", "... to at most this");
+  t.Number("candidates", &O::loop_candidates, Range::Closed(1, 1000), "",
+           "the nearest this many are tried per keyframe");
+  t.Number("submap_keyframes", &O::loop_submap_keyframes, Range::Closed(0, 1000), "",
+           "a candidate's reference: it and this many keyframes each side of it");
+  t.Number("min_share", &O::loop_min_share, Range::Closed(0, 1), "",
+           "a loop closes when the match explains this share of the scan ...");
+  t.Number("max_rms_m", &O::loop_max_rms_m, Range::Positive(), "m",
+           "... with the explained points' distances at most this RMS");
+  return t;
+}
+
+Table GraphSection() {
+  using G = PoseGraphOptions;
+  Table t("graph", "the pose graph (Ceres Solver)");
+  t.Number("robust_scale_sigmas", &O::graph, &G::robust_scale_sigmas, Range::Positive(), "",
+           "loop closures go through a Cauchy loss of this scale, in their own standard "
+           "deviations");
+  t.Number("max_iterations", &O::graph, &G::max_iterations, Range::Closed(1, 100000), "",
+           "solver iterations per optimisation at most");
+  return t;
+}
+
+config::OptionFile<O> SlamOptionFile() {
+  const auto step = [](auto& o) -> auto& {
+    return o.match;
+  };
+  const auto loop = [](auto& o) -> auto& {
+    return o.loop_match;
+  };
+  return config::OptionFile<O>(
+      "slam_params",
+      {KeyframesSection(), StepsSection(),
+       MatchSection("step_match", "the ICP of a keyframe against the keyframes before it", step),
+       LoopsSection(),
+       MatchSection("loop_match", "the ICP of a keyframe against a place seen long ago", loop),
+       GraphSection()});
+}
+
+}  // namespace
+
+void SlamOptions::Validate() const {
+  SlamOptionFile().Validate(*this);
+  for (const auto* m : {&match, &loop_match}) {
+    if (!(m->first_pair_distance_m >= m->last_pair_distance_m))
+      throw std::invalid_argument(std::string(m == &match ? "step_match" : "loop_match") +
+                                  ": first_pair_distance_m must be >= last_pair_distance_m");
+  }
+  if (!(loop_max_radius_m >= loop_radius_m))
+    throw std::invalid_argument("loops: max_radius_m must be >= radius_m");
+}
+
+SlamOptions LoadSlamOptions(const std::string& path) {
+  const auto file = config::XmlFile::Load(path);
+  const auto options = SlamOptionFile().Load(file);
+  try {
+    options.Validate();
+  } catch (const std::invalid_argument& e) {
+    file.Fail(file.Root(), e.what());
+  }
+  return options;
+}
+
+void PrintSlamOptions(std::ostream& out) {
+  SlamOptionFile().Print(out, SlamOptions{});
+}
+
+void WriteExpandedSlamOptions(const std::string& path, std::ostream& out) {
+  const auto options = LoadSlamOptions(path);
+  out << "<slam_params>\n";
+  SlamOptionFile().WriteSections(out, options);
+  out << "</slam_params>\n";
+}
+
+}  // namespace structloc::slam_core
