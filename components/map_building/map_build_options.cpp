@@ -127,14 +127,7 @@ void MapBuildOptions::Validate() const {
 }
 
 MapBuildOptions LoadMapBuildOptions(const std::string& path) {
-  const auto file = config::XmlFile::Load(path);
-  const auto options = MapBuildOptionFile().Load(file);
-  try {
-    options.Validate();
-  } catch (const std::invalid_argument& e) {
-    file.Fail(file.Root(), e.what());
-  }
-  return options;
+  return MapBuildOptionFile().LoadValidated(path);
 }
 
 void PrintMapBuildOptions(std::ostream& out) {
@@ -142,10 +135,7 @@ void PrintMapBuildOptions(std::ostream& out) {
 }
 
 void WriteExpandedMapBuildOptions(const std::string& path, std::ostream& out) {
-  const auto options = LoadMapBuildOptions(path);
-  out << "<map_build_params>\n";
-  MapBuildOptionFile().WriteSections(out, options);
-  out << "</map_build_params>\n";
+  MapBuildOptionFile().WriteExpanded(path, out);
 }
 
 }  // namespace structloc::map_building

@@ -133,14 +133,7 @@ void SlamOptions::Validate() const {
 }
 
 SlamOptions LoadSlamOptions(const std::string& path) {
-  const auto file = config::XmlFile::Load(path);
-  const auto options = SlamOptionFile().Load(file);
-  try {
-    options.Validate();
-  } catch (const std::invalid_argument& e) {
-    file.Fail(file.Root(), e.what());
-  }
-  return options;
+  return SlamOptionFile().LoadValidated(path);
 }
 
 void PrintSlamOptions(std::ostream& out) {
@@ -148,10 +141,7 @@ void PrintSlamOptions(std::ostream& out) {
 }
 
 void WriteExpandedSlamOptions(const std::string& path, std::ostream& out) {
-  const auto options = LoadSlamOptions(path);
-  out << "<slam_params>\n";
-  SlamOptionFile().WriteSections(out, options);
-  out << "</slam_params>\n";
+  SlamOptionFile().WriteExpanded(path, out);
 }
 
 }  // namespace structloc::slam_core

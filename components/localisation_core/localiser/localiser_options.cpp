@@ -135,14 +135,7 @@ void LocaliserOptions::Validate() const {
 }
 
 LocaliserOptions LoadLocaliserOptions(const std::string& path) {
-  const auto file = config::XmlFile::Load(path);
-  const auto o = LocaliserOptionFile().Load(file);
-  try {
-    o.Validate();
-  } catch (const std::invalid_argument& e) {
-    file.Fail(file.Root(), e.what());
-  }
-  return o;
+  return LocaliserOptionFile().LoadValidated(path);
 }
 
 }  // namespace structloc::localisation_core

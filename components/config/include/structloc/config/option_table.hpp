@@ -375,6 +375,29 @@ class OptionFile {
     for (const auto& t : sections_) t.Validate(options);
   }
 
+  // Loads the file at `path` and checks the options as a whole (S::Validate,
+  // which throws std::invalid_argument for values that contradict each
+  // other): ConfigError naming the file for either.
+  S LoadValidated(const std::string& path) const {
+    const auto file = XmlFile::Load(path);
+    S options = Load(file);
+    try {
+      options.Validate();
+    } catch (const std::invalid_argument& e) {
+      file.Fail(file.Root(), e.what());
+    }
+    return options;
+  }
+
+  // The file at `path` whole: its root with every section and key as it
+  // loads them (its own or its base's).
+  void WriteExpanded(const std::string& path, std::ostream& out) const {
+    const S options = LoadValidated(path);
+    out << "<" << root_ << ">\n";
+    WriteSections(out, options);
+    out << "</" << root_ << ">\n";
+  }
+
   void Print(std::ostream& out, const S& defaults) const {
     bool optional = false;
     for (const auto& t : sections_) optional = optional || t.HasOptionalKeys();
