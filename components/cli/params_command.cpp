@@ -2,9 +2,9 @@
 // [--check FILE]": lists every option of the localiser parameter files, the
 // robot files, the scenario files, the map builder's and SLAM's files (key,
 // default, unit, valid values, meaning) from the one place each is declared
-// (all when none is chosen), or checks that a file of any of these kinds, or a world map, loads
-// (the kind from its root element), or prints a parameter file with every key
-// it takes from its base (--expand).
+// (all when none is chosen), or checks that a file of any of these kinds, or
+// a world map, loads (the kind from its root element), or prints a parameter
+// file with every key it takes from its base (--expand).
 #include <iostream>
 
 #include "structloc/config/command_line.hpp"

@@ -1,7 +1,7 @@
 // "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
 // [--plot P.png] [--relations R] [--truth T.tum] [--params MAP_BUILD.xml]
-// [--slam-params SLAM.xml] [--scans F:L]": the robot's path from its raw odometry and scans
-// (slam_core::Slam: keyframes matched, loops closed, the pose graph
+// [--slam-params SLAM.xml] [--scans F:L]": the robot's path from its raw
+// odometry and scans (slam_core::Slam: keyframes matched, loops closed, the pose graph
 // optimised with Ceres), then, with --out or --plot, the wall map built on
 // those poses as "structloc map build" builds one and checked against the
 // same scans as "structloc map check" checks one. With --relations, the

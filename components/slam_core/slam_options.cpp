@@ -24,7 +24,7 @@ Table KeyframesSection() {
 
 Table StepsSection() {
   Table t("steps", "each keyframe matched against the keyframes just before it");
-  t.Number("submap_keyframes", &O::submap_keyframes, Range::Closed(1, 1000), "",
+  t.Number("submap_keyframes", &O::submap_keyframes, Range::Closed(1, 100), "",
            "the keyframes a new one is matched against");
   t.Number("min_match_share", &O::min_match_share, Range::Closed(0, 1), "",
            "a match is taken when it explains this share of the scan ...");
@@ -56,8 +56,9 @@ Table MatchSection(const char* name, const char* description, Part part) {
   t.Number("last_pair_distance_m", &M::last_pair_distance_m, Range::Positive(), "m",
            "... shrinking to this over the first half of the iterations; a scan's share "
            "explained counts its points this close to a surface");
-  t.Number("normal_radius_m", &M::normal_radius_m, Range::Positive(), "m",
-           "the reference points within this radius give a point's surface direction");
+  t.Number("normal_radius_m", &M::normal_radius_m, Range::Closed(0.02, 5), "m",
+           "the reference points within this radius give a point's surface direction (also "
+           "the cell of their index: first_pair_distance_m at most 20 of them)");
   t.Number("point_sigma_m", &M::point_sigma_m, Range::Positive(), "m",
            "a point's noise across its surface (range noise, wall roughness); the Huber loss "
            "starts at twice this");
@@ -81,9 +82,9 @@ Table LoopsSection() {
            "... widened by this share of the odometric distance counted since a loop last "
            "closed (every scan's distance from its keyframe) ...");
   t.Number("max_radius_m", &O::loop_max_radius_m, Range::Positive(), "m", "... to at most this");
-  t.Number("candidates", &O::loop_candidates, Range::Closed(1, 1000), "",
+  t.Number("candidates", &O::loop_candidates, Range::Closed(1, 100), "",
            "the nearest this many are tried per keyframe");
-  t.Number("submap_keyframes", &O::loop_submap_keyframes, Range::Closed(0, 1000), "",
+  t.Number("submap_keyframes", &O::loop_submap_keyframes, Range::Closed(0, 100), "",
            "a candidate's reference: it and this many keyframes each side of it");
   t.Number("min_share", &O::loop_min_share, Range::Closed(0, 1), "",
            "a loop closes when the match explains this share of the scan ...");
@@ -124,9 +125,14 @@ config::OptionFile<O> SlamOptionFile() {
 void SlamOptions::Validate() const {
   SlamOptionFile().Validate(*this);
   for (const auto* m : {&match, &loop_match}) {
+    const std::string section = m == &match ? "step_match" : "loop_match";
     if (!(m->first_pair_distance_m >= m->last_pair_distance_m))
-      throw std::invalid_argument(std::string(m == &match ? "step_match" : "loop_match") +
+      throw std::invalid_argument(section +
                                   ": first_pair_distance_m must be >= last_pair_distance_m");
+    // Each pairing looks through (2 first / normal_radius + 1)^2 cells.
+    if (!(m->first_pair_distance_m <= 20 * m->normal_radius_m))
+      throw std::invalid_argument(section +
+                                  ": first_pair_distance_m must be at most 20 normal_radius_m");
   }
   if (!(loop_max_radius_m >= loop_radius_m))
     throw std::invalid_argument("loops: max_radius_m must be >= radius_m");
