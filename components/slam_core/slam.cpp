@@ -14,7 +14,9 @@ Eigen::Matrix3d Information(const Eigen::Matrix3d& covariance) {
 
 }  // namespace
 
-Slam::Slam(const SlamOptions& options) : options_(options) {}
+Slam::Slam(const SlamOptions& options) : options_(options) {
+  options_.Validate();
+}
 
 void Slam::Add(const SlamScan& scan) {
   ++stats_.scans;

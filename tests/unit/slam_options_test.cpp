@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -103,6 +104,18 @@ TEST(SlamOptions, ABadFileIsRefusedNamingItsLineSectionAndKey) {
     const std::string error = LoadError(path);
     EXPECT_NE(error.find(path + ":"), std::string::npos) << c.words << ": " << error;
     EXPECT_NE(error.find(c.words), std::string::npos) << error;
+  }
+}
+
+TEST(SlamOptions, ASlamBuiltWithOptionsOutOfRangeIsRefusedByName) {
+  SlamOptions options;
+  options.loop_match.normal_radius_m = 0.0;
+  try {
+    Slam slam(options);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("loop_match: normal_radius_m"), std::string::npos)
+        << e.what();
   }
 }
 

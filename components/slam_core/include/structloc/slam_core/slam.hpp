@@ -92,6 +92,7 @@ struct SlamStats {
 
 class Slam {
  public:
+  // Throws std::invalid_argument for options out of range (SlamOptions::Validate).
   explicit Slam(const SlamOptions& options = {});
   void Add(const SlamScan& scan);
   // The final optimisation.
