@@ -22,3 +22,14 @@ recordings_setup() {
 first_pose() {
   awk '!/^#/ { printf "%s %s %.9f\n", $2, $3, 2 * atan2($7, $8); exit }' "$1"
 }
+
+# Freiburg 079 or Intel (NAME freiburg_079 or intel) as a raw log with the
+# odometry errors above (Intel re-stamped at 0.5 m/s), written to
+# $out/NAME.raw.log with the corrected poses as truth in $out/NAME.truth.tum.
+synthesise_raw_log() {
+  local restamp=()
+  [ "$1" = intel ] && restamp=(--restamp 0.5)
+  "$structloc" synthesise-odometry --log "$data/${1//_/-}-corrected.log.gz" \
+    --out "$out/$1.raw.log" --truth "$out/$1.truth.tum" "${odometry_errors[@]}" \
+    "${restamp[@]}" >/dev/null
+}

@@ -29,12 +29,9 @@ echo
 echo "| recording | SLAM path RMSE / max mm | aligned RMSE / max mm | localisation on its map: RMSE / max mm | aligned RMSE / max mm | longest lost s | slam s |"
 echo "|---|---|---|---|---|---|---|"
 for name in freiburg_079 intel; do
-  restamp=()
-  [ "$name" = intel ] && restamp=(--restamp 0.5)
+  synthesise_raw_log "$name"
   log="$out/$name.raw.log"
   truth="$out/$name.truth.tum"
-  "$structloc" synthesise-odometry --log "$data/${name//_/-}-corrected.log.gz" --out "$log" \
-    --truth "$truth" "${odometry_errors[@]}" "${restamp[@]}" >/dev/null
   slam=$("$structloc" slam --log "$log" --truth "$truth" --poses-out "$out/$name.slam.tum" \
     --out "$out/$name.slam.xml" --plot "$out/$name.slam.png")
   path=$(sed -n 's/^  slam *RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*aligned: RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2 | \3 \/ \4/p' <<<"$slam")
