@@ -3,6 +3,8 @@
 // laser unlike the recordings the defaults were chosen on can be mapped
 // without a rebuild.
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "structloc/config/option_table.hpp"
 #include "structloc/slam_core/slam.hpp"
@@ -124,14 +126,13 @@ config::OptionFile<O> SlamOptionFile() {
 
 void SlamOptions::Validate() const {
   SlamOptionFile().Validate(*this);
-  for (const auto* m : {&match, &loop_match}) {
-    const std::string section = m == &match ? "step_match" : "loop_match";
+  for (const auto& [section, m] : {std::pair{"step_match", &match}, {"loop_match", &loop_match}}) {
     if (!(m->first_pair_distance_m >= m->last_pair_distance_m))
-      throw std::invalid_argument(section +
+      throw std::invalid_argument(std::string(section) +
                                   ": first_pair_distance_m must be >= last_pair_distance_m");
     // Each pairing looks through (2 first / normal_radius + 1)^2 cells.
     if (!(m->first_pair_distance_m <= 20 * m->normal_radius_m))
-      throw std::invalid_argument(section +
+      throw std::invalid_argument(std::string(section) +
                                   ": first_pair_distance_m must be at most 20 normal_radius_m");
   }
   if (!(loop_max_radius_m >= loop_radius_m))
