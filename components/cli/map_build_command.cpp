@@ -116,8 +116,9 @@ int MapBuildCommand(const Invocation& inv) {
               << result.short_after_joining << " walls shorter than " << options.walls.min_length_m
               << " m dropped; " << world.Corners().size() << " corners derived), "
               << world.Cylinders().size() << " pillars (" << result.pillar_report.sightings
-              << " arc sightings, " << result.pillar_report.too_few_scans
-              << " seen too rarely)\n  wrote " << out_path << "\n";
+              << " arc sightings, " << result.pillar_report.too_few_scans << " seen too rarely, "
+              << result.pillar_report.seen_through << " seen through: people who moved)\n  wrote "
+              << out_path << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
     if (plot) std::cout << "  picture: " << plot_path << "\n";
     return 0;

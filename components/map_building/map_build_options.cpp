@@ -107,6 +107,11 @@ Table PillarsSection() {
            "sightings whose centres are closer are one pillar");
   t.Number("min_scans", &O::pillars, &P::min_scans, Range::Closed(1, 1000000), "",
            "pillars seen from fewer scans are dropped");
+  t.Flag("drop_seen_through", &O::pillars, &P::drop_seen_through,
+         "drop pillars more scans saw through than sighted (a person's trail)");
+  t.Number("see_through_margin_m", &O::pillars, &P::see_through_margin_m, Range::NonNegative(), "m",
+           "a scan saw through a pillar when its readings within half the radius of the "
+           "centre's bearing all lie this far beyond the far side");
   return t;
 }
 

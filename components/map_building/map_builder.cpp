@@ -22,7 +22,7 @@ MapBuildResult BuildMap(const std::vector<PosedScan>& scans, const MapBuildOptio
   }
   MapBuildResult result;
   result.walls = walls.Walls(result.wall_report);
-  result.pillars = pillars.Pillars(result.pillar_report);
+  result.pillars = pillars.Pillars(scans, result.pillar_report);
   // Short straight runs on a wide pillar's arc are its chords, not walls.
   const auto on_pillar = [&result, &options](const FittedWall& wall) {
     for (const auto& p : result.pillars) {

@@ -6,6 +6,7 @@
 
 #include "structloc/fitting/circle_fit.hpp"
 #include "structloc/fitting/line_fit.hpp"
+#include "structloc/map_building/seen_through.hpp"
 
 namespace structloc::map_building {
 namespace {
@@ -66,7 +67,8 @@ void PillarAccumulator::Add(uint32_t scan, const geometry::Pose2D& laser_pose,
   }
 }
 
-std::vector<world_model::Cylinder> PillarAccumulator::Pillars(PillarReport& report) const {
+std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<PosedScan>& posed,
+                                                              PillarReport& report) const {
   report = {};
   report.sightings = sightings_.size();
   std::vector<bool> used(sightings_.size(), false);
@@ -99,6 +101,11 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(PillarReport& repo
     world_model::Cylinder c;
     c.centre = centre;
     c.radius = radii[radii.size() / 2];
+    if (options_.drop_seen_through && ScansSeeingThrough(c, posed, options_.see_through_margin_m) >
+                                          static_cast<size_t>(distinct)) {
+      ++report.seen_through;
+      continue;
+    }
     pillars.push_back(c);
   }
   report.pillars = pillars.size();

@@ -4,6 +4,8 @@
 // from it is compared with the floor it was cast from.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
 #include <random>
 #include <sstream>
 
@@ -39,8 +41,10 @@ std::vector<Pose2D> TourPoses() {
   return poses;
 }
 
-// A corrected log of 361-beam 180 deg scans with Gaussian range noise.
-std::string WriteTourLog(const testing::TempDir& dir, const world_model::Scene& scene,
+// A corrected log of 361-beam 180 deg scans with Gaussian range noise, scan
+// i cast in scene_of(i).
+std::string WriteTourLog(const testing::TempDir& dir,
+                         const std::function<world_model::Scene(size_t)>& scene_of,
                          double noise_sigma_m) {
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, noise_sigma_m);
@@ -48,7 +52,10 @@ std::string WriteTourLog(const testing::TempDir& dir, const world_model::Scene& 
   log_formats::CarmenWriter log(path);
   log_formats::CarmenLaser laser{-kPi / 2, kPi, kPi / 360.0, 30.0, 0.01};
   double t = 0.0;
-  for (const auto& pose : TourPoses()) {
+  const auto poses = TourPoses();
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const Pose2D& pose = poses[k];
+    const world_model::Scene scene = scene_of(k);
     std::vector<float> ranges;
     for (int i = 0; i < 361; ++i) {
       const double a = pose.theta + laser.start_angle + i * laser.angular_resolution;
@@ -59,6 +66,12 @@ std::string WriteTourLog(const testing::TempDir& dir, const world_model::Scene& 
   }
   log.Close();
   return path;
+}
+
+std::string WriteTourLog(const testing::TempDir& dir, const world_model::Scene& scene,
+                         double noise_sigma_m) {
+  return WriteTourLog(
+      dir, [&scene](size_t) { return scene; }, noise_sigma_m);
 }
 
 // Distance from p to the infinite line of a wall.
@@ -126,6 +139,31 @@ TEST_F(OfficeTour, PillarsSeenFromManyScansAreFoundWithTheirRadius) {
   }
   EXPECT_GE(matched, 2u);
   EXPECT_EQ(result.pillars.size(), matched) << "a pillar where the floor has none";
+}
+
+// A person standing in the corridor while the tour passes eastwards, gone
+// when it comes back: sighted as a round arc by a dozen scans, seen through
+// by the scans before they came and after they left.
+TEST_F(OfficeTour, APersonWhoStoodAndLeftIsNoPillar) {
+  const world_model::Circle person{{8.0, 7.0}, 0.25};
+  const auto with_person = [&](size_t k) {
+    world_model::Scene s = scene;
+    if (k >= 20 && k < 32) s.circles.push_back(person);
+    return s;
+  };
+  const auto log = ReadPosedScans(WriteTourLog(dir, with_person, 0.005), {});
+  const auto near_person = [&](const std::vector<world_model::Cylinder>& pillars) {
+    return std::count_if(pillars.begin(), pillars.end(),
+                         [&](const auto& p) { return (p.centre - person.centre).norm() < 0.1; });
+  };
+  MapBuildOptions keep_all;
+  keep_all.pillars.drop_seen_through = false;
+  const auto everything = BuildMap(log.scans, keep_all);
+  ASSERT_EQ(near_person(everything.pillars), 1) << "the person is sighted as a pillar";
+  const auto result = BuildMap(log.scans, MapBuildOptions{});
+  EXPECT_EQ(near_person(result.pillars), 0);
+  EXPECT_EQ(result.pillar_report.seen_through, 1u);
+  EXPECT_EQ(result.pillars.size(), everything.pillars.size() - 1) << "a true pillar was dropped";
 }
 
 TEST_F(OfficeTour, CheckAgreesWithTheTrueFloorAndFindsAMovedWall) {

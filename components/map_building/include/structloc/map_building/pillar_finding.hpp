@@ -2,13 +2,18 @@
 // straight but lie on a circular arc bulging towards the laser (the thesis'
 // circle fit, 3.5.6, EQ 38, on the run) are pillar sightings; sightings from
 // enough scans whose centres agree are one pillar, its centre the mean and its
-// radius the median of theirs. DDS-free.
+// radius the median of theirs. A person walking by is sighted as such an arc
+// scan after scan, a few centimetres on each time; where the sightings of a
+// few scans agree, the scans taken before the person came or after they left
+// look through that place: a pillar more scans saw through than sighted is
+// dropped. DDS-free.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
+#include "structloc/map_building/posed_scans.hpp"
 #include "structloc/world_model/world_model.hpp"
 
 namespace structloc::map_building {
@@ -24,12 +29,17 @@ struct PillarOptions {
   double max_point_gap_m = 0.1;   // consecutive points farther apart end an arc
   double merge_distance_m = 0.1;  // sightings whose centres are closer are one pillar
   int min_scans = 5;              // pillars seen from fewer scans are dropped
+  // A scan saw through a pillar when all its readings within half the
+  // pillar's radius of its centre's bearing lie this far beyond its far side.
+  double see_through_margin_m = 0.1;
+  bool drop_seen_through = true;  // drop pillars more scans saw through than sighted
 };
 
 struct PillarReport {
   size_t sightings = 0;
   size_t pillars = 0;
   size_t too_few_scans = 0;
+  size_t seen_through = 0;  // more scans saw through them than sighted them
 };
 
 class PillarAccumulator {
@@ -38,7 +48,9 @@ class PillarAccumulator {
   // Looks for arcs in one scan (points in the laser frame, beam order).
   void Add(uint32_t scan, const geometry::Pose2D& laser_pose,
            const std::vector<Eigen::Vector2d>& points);
-  std::vector<world_model::Cylinder> Pillars(PillarReport& report) const;
+  // The pillars; `scans` (those added) say which were seen through.
+  std::vector<world_model::Cylinder> Pillars(const std::vector<PosedScan>& scans,
+                                             PillarReport& report) const;
 
  private:
   struct Sighting {
