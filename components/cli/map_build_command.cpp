@@ -117,8 +117,9 @@ int MapBuildCommand(const Invocation& inv) {
               << " m dropped; " << world.Corners().size() << " corners derived), "
               << world.Cylinders().size() << " pillars (" << result.pillar_report.sightings
               << " arc sightings, " << result.pillar_report.too_few_scans << " seen too rarely, "
-              << result.pillar_report.seen_through << " seen through: people who moved)\n  wrote "
-              << out_path << "\n";
+              << result.pillar_report.seen_through << " seen through: people who moved, "
+              << result.pillar_report.merged << " built twice and merged)\n  wrote " << out_path
+              << "\n";
     if (!cli.Has("quiet")) PrintSupport(result);
     if (plot) std::cout << "  picture: " << plot_path << "\n";
     return 0;

@@ -46,6 +46,33 @@ bool ArcCircle(const std::vector<Eigen::Vector2d>& run, const PillarOptions& opt
   return centre.norm() > mean.norm();
 }
 
+// Two standing pillars cannot overlap: discs that do are one pillar built
+// twice (where passes of the path disagree by centimetres, its sightings
+// fall into two groups), merged weighted by their scans. Returns how many
+// were merged away.
+size_t MergeOverlapping(std::vector<world_model::Cylinder>& pillars, std::vector<double>& weights) {
+  size_t merged = 0;
+  for (size_t i = 0; i < pillars.size(); ++i) {
+    for (size_t j = i + 1; j < pillars.size();) {
+      auto& a = pillars[i];
+      const auto& b = pillars[j];
+      if ((b.centre - a.centre).norm() >= a.radius + b.radius) {
+        ++j;
+        continue;
+      }
+      const double w = weights[i] + weights[j];
+      a.centre = (weights[i] * a.centre + weights[j] * b.centre) / w;
+      a.radius = (weights[i] * a.radius + weights[j] * b.radius) / w;
+      weights[i] = w;
+      pillars.erase(pillars.begin() + static_cast<long>(j));
+      weights.erase(weights.begin() + static_cast<long>(j));
+      ++merged;
+      j = i + 1;  // the grown disc may overlap one passed over
+    }
+  }
+  return merged;
+}
+
 }  // namespace
 
 void PillarAccumulator::Add(uint32_t scan, const geometry::Pose2D& laser_pose,
@@ -73,6 +100,7 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
   report.sightings = sightings_.size();
   std::vector<bool> used(sightings_.size(), false);
   std::vector<world_model::Cylinder> pillars;
+  std::vector<double> scan_counts;  // of each pillar's sightings
   for (size_t i = 0; i < sightings_.size(); ++i) {
     if (used[i]) continue;
     std::vector<size_t> group{i};
@@ -107,7 +135,9 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
       continue;
     }
     pillars.push_back(c);
+    scan_counts.push_back(static_cast<double>(distinct));
   }
+  report.merged = MergeOverlapping(pillars, scan_counts);
   report.pillars = pillars.size();
   return pillars;
 }

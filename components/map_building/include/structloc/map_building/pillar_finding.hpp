@@ -6,7 +6,8 @@
 // scan after scan, a few centimetres on each time; where the sightings of a
 // few scans agree, the scans taken before the person came or after they left
 // look through that place: a pillar more scans saw through than sighted is
-// dropped. DDS-free.
+// dropped. Pillars that overlap are one built twice, and are merged.
+// DDS-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,6 +41,7 @@ struct PillarReport {
   size_t pillars = 0;
   size_t too_few_scans = 0;
   size_t seen_through = 0;  // more scans saw through them than sighted them
+  size_t merged = 0;        // overlapping another (one pillar built twice), merged into it
 };
 
 class PillarAccumulator {
