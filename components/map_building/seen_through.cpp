@@ -16,10 +16,9 @@ bool SawThrough(const Eigen::Vector2d& centre, double radius, const PosedScan& s
   const double bearing = std::atan2(centre.y(), centre.x());
   const double beyond = d + radius + margin_m;
   size_t in_cone = 0;
-  for (size_t i = 0; i < scan.points.size(); ++i) {
-    const Eigen::Vector2d& p = scan.points[i];
+  for (const auto& p : scan.points) {
     if (std::abs(geometry::WrapAngle(std::atan2(p.y(), p.x()) - bearing)) > half_cone) continue;
-    if (scan.ranges[i] <= beyond) return false;
+    if (p.squaredNorm() <= beyond * beyond) return false;
     ++in_cone;
   }
   return in_cone > 0;

@@ -14,9 +14,7 @@
 // that reads without a malformed line.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <csignal>
-#include <filesystem>
 #include <fstream>
 #include <string>
 
