@@ -101,6 +101,7 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
   std::vector<bool> used(sightings_.size(), false);
   std::vector<world_model::Cylinder> pillars;
   std::vector<double> scan_counts;  // of each pillar's sightings
+  const SeeThroughCheck see_through(posed);
   for (size_t i = 0; i < sightings_.size(); ++i) {
     if (used[i]) continue;
     std::vector<size_t> group{i};
@@ -129,8 +130,9 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
     world_model::Cylinder c;
     c.centre = centre;
     c.radius = radii[radii.size() / 2];
-    if (options_.drop_seen_through && ScansSeeingThrough(c, posed, options_.see_through_margin_m) >
-                                          static_cast<size_t>(distinct)) {
+    if (options_.drop_seen_through &&
+        see_through.ScansSeeingThrough(c, options_.see_through_margin_m) >
+            static_cast<size_t>(distinct)) {
       ++report.seen_through;
       continue;
     }

@@ -1,37 +1,85 @@
-// Scans that looked through a pillar's place (see header).
+// Scans that looked through a pillar's place (see header). Most scans'
+// points sweep in bearing, so the few in a pillar's narrow cone are found by
+// bisection; scans that do not are walked whole.
 #include "structloc/map_building/seen_through.hpp"
 
+#include <algorithm>
 #include <cmath>
-
-#include "structloc/geometry/pose2d.hpp"
 
 namespace structloc::map_building {
 namespace {
 
-bool SawThrough(const Eigen::Vector2d& centre, double radius, const PosedScan& scan,
-                double margin_m) {
-  const double d = centre.norm();
-  if (d <= radius) return false;
-  const double half_cone = std::asin(0.5 * radius / d);
-  const double bearing = std::atan2(centre.y(), centre.x());
-  const double beyond = d + radius + margin_m;
-  size_t in_cone = 0;
-  for (const auto& p : scan.points) {
-    if (std::abs(geometry::WrapAngle(std::atan2(p.y(), p.x()) - bearing)) > half_cone) continue;
-    if (p.squaredNorm() <= beyond * beyond) return false;
+double Bearing(const Eigen::Vector2d& p) {
+  return std::atan2(p.y(), p.x());
+}
+
+// Whether every point of `points` with a bearing in [lo, hi] (lo <= hi,
+// within [-pi, pi]) lies beyond `beyond` metres; counts them in `in_cone`.
+bool AllBeyond(const std::vector<Eigen::Vector2d>& points, bool sweeps, double lo, double hi,
+               double beyond, size_t& in_cone) {
+  size_t first = 0, last = points.size();
+  if (sweeps) {
+    first = static_cast<size_t>(
+        std::partition_point(points.begin(), points.end(),
+                             [lo](const Eigen::Vector2d& p) { return Bearing(p) < lo; }) -
+        points.begin());
+    last = static_cast<size_t>(
+        std::partition_point(points.begin() + static_cast<long>(first), points.end(),
+                             [hi](const Eigen::Vector2d& p) { return Bearing(p) <= hi; }) -
+        points.begin());
+  }
+  for (size_t i = first; i < last; ++i) {
+    const double b = Bearing(points[i]);
+    if (b < lo || b > hi) continue;
+    if (points[i].squaredNorm() <= beyond * beyond) return false;
     ++in_cone;
   }
-  return in_cone > 0;
+  return true;
 }
 
 }  // namespace
 
-size_t ScansSeeingThrough(const world_model::Cylinder& pillar, const std::vector<PosedScan>& scans,
-                          double margin_m) {
-  size_t through = 0;
+SeeThroughCheck::SeeThroughCheck(const std::vector<PosedScan>& scans) {
+  scans_.reserve(scans.size());
   for (const auto& scan : scans) {
-    const Eigen::Vector2d centre = geometry::Inverse(scan.laser_pose).Apply(pillar.centre);
-    if (SawThrough(centre, pillar.radius, scan, margin_m)) ++through;
+    Scan s{&scan, geometry::Inverse(scan.laser_pose), 0.0, true};
+    double previous = -geometry::kPi - 1.0;
+    for (const auto& p : scan.points) {
+      s.farthest_m = std::max(s.farthest_m, p.norm());
+      const double b = Bearing(p);
+      s.sweeps = s.sweeps && b >= previous;
+      previous = b;
+    }
+    scans_.push_back(s);
+  }
+}
+
+size_t SeeThroughCheck::ScansSeeingThrough(const world_model::Cylinder& pillar,
+                                           double margin_m) const {
+  size_t through = 0;
+  for (const auto& s : scans_) {
+    const Eigen::Vector2d centre = s.from_map.Apply(pillar.centre);
+    const double d = centre.norm();
+    const double beyond = d + pillar.radius + margin_m;
+    if (d <= pillar.radius || s.farthest_m <= beyond) continue;
+    const double half_cone = std::asin(0.5 * pillar.radius / d);
+    const double bearing = Bearing(centre);
+    const double lo = bearing - half_cone, hi = bearing + half_cone;
+    const auto& points = s.scan->points;
+    size_t in_cone = 0;
+    bool all_beyond;
+    if (lo < -geometry::kPi) {
+      all_beyond =
+          AllBeyond(points, s.sweeps, lo + 2 * geometry::kPi, geometry::kPi, beyond, in_cone) &&
+          AllBeyond(points, s.sweeps, -geometry::kPi, hi, beyond, in_cone);
+    } else if (hi > geometry::kPi) {
+      all_beyond =
+          AllBeyond(points, s.sweeps, lo, geometry::kPi, beyond, in_cone) &&
+          AllBeyond(points, s.sweeps, -geometry::kPi, hi - 2 * geometry::kPi, beyond, in_cone);
+    } else {
+      all_beyond = AllBeyond(points, s.sweeps, lo, hi, beyond, in_cone);
+    }
+    if (all_beyond && in_cone > 0) ++through;
   }
   return through;
 }
