@@ -15,6 +15,7 @@
 #include "structloc/map_building/map_builder.hpp"
 #include "structloc/map_building/map_check.hpp"
 #include "structloc/map_building/scan_pose_fit.hpp"
+#include "structloc/map_building/seen_through.hpp"
 #include "structloc/world_model/ray_cast.hpp"
 #include "structloc/world_model/world_model_xml.hpp"
 #include "temp_dir.hpp"
@@ -164,6 +165,50 @@ TEST_F(OfficeTour, APersonWhoStoodAndLeftIsNoPillar) {
   EXPECT_EQ(near_person(result.pillars), 0);
   EXPECT_EQ(result.pillar_report.seen_through, 1u);
   EXPECT_EQ(result.pillars.size(), everything.pillars.size() - 1) << "a true pillar was dropped";
+}
+
+// A round room of 5 m radius seen from its centre, the beams in sweep order
+// or reversed, over a half or the whole turn: a pillar at 2 m is seen
+// through in whichever direction (behind the laser too, where the bearings
+// wrap), one beyond the wall is not, nor one where no beam looked, nor one
+// with something in front of it just across the wrap.
+TEST(SeeThroughCheck, BeamsPastAPlaceSeeThroughItWhateverTheirOrder) {
+  const auto room = [](double first, double last, bool reversed) {
+    PosedScan scan;
+    scan.laser_pose = {1.0, -2.0, 0.3};
+    for (int i = 0; i <= 720; ++i) {
+      const double a = first + (last - first) * (reversed ? 720 - i : i) / 720.0;
+      scan.points.push_back(5.0 * Eigen::Vector2d(std::cos(a), std::sin(a)));
+      scan.ranges.push_back(5.0);
+    }
+    return scan;
+  };
+  const auto pillar_at = [](const PosedScan& scan, double bearing, double distance) {
+    world_model::Cylinder c;
+    c.centre =
+        scan.laser_pose.Apply(distance * Eigen::Vector2d(std::cos(bearing), std::sin(bearing)));
+    c.radius = 0.2;
+    return c;
+  };
+  for (const bool reversed : {false, true}) {
+    const std::vector<PosedScan> half{room(-kPi / 2, kPi / 2, reversed)};
+    const SeeThroughCheck check(half);
+    EXPECT_EQ(check.ScansSeeingThrough(pillar_at(half[0], 0.4, 2.0), 0.1), 1u);
+    EXPECT_EQ(check.ScansSeeingThrough(pillar_at(half[0], 0.4, 6.0), 0.1), 0u);
+    EXPECT_EQ(check.ScansSeeingThrough(pillar_at(half[0], kPi, 2.0), 0.1), 0u) << "behind";
+    const std::vector<PosedScan> whole{room(-kPi, kPi, reversed)};
+    const SeeThroughCheck all_round(whole);
+    EXPECT_EQ(all_round.ScansSeeingThrough(pillar_at(whole[0], kPi, 2.0), 0.1), 1u);
+    EXPECT_EQ(all_round.ScansSeeingThrough(pillar_at(whole[0], kPi, 4.8), 0.1), 0u)
+        << "its far side within the margin of the wall";
+    // Something at 1 m just across the wrap, within the cone: not seen through.
+    std::vector<PosedScan> blocked = whole;
+    for (auto& p : blocked[0].points) {
+      if (std::abs(std::atan2(p.y(), p.x()) + kPi - 0.02) < 0.01) p *= 0.2;
+    }
+    const SeeThroughCheck across(blocked);
+    EXPECT_EQ(across.ScansSeeingThrough(pillar_at(blocked[0], kPi - 0.01, 2.0), 0.1), 0u);
+  }
 }
 
 TEST_F(OfficeTour, CheckAgreesWithTheTrueFloorAndFindsAMovedWall) {
