@@ -179,9 +179,11 @@ int SlamCommand(const Invocation& inv) {
       const auto result = map_building::BuildMap(log.scans, build);
       const auto world =
           map_building::MakeWorld(Stem(log_path, "slam"), result.walls, result.pillars);
-      std::printf("  %zu walls and %zu pillars built on the path%s%s\n", result.walls.size(),
-                  world.Cylinders().size(), world_out ? " in " : "",
-                  world_out ? cli.Required("out").c_str() : "");
+      std::printf(
+          "  %zu walls and %zu pillars built on the path%s%s (%zu more pillars seen through and "
+          "dropped: people who moved)\n",
+          result.walls.size(), world.Cylinders().size(), world_out ? " in " : "",
+          world_out ? cli.Required("out").c_str() : "", result.pillar_report.seen_through);
       if (world_out) {
         world_model::WriteWorldModel(world,
                                      {"Built by `structloc slam` from " + FileName(log_path) +
