@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "structloc/fitting/circle_fit.hpp"
 #include "structloc/fitting/line_fit.hpp"
@@ -100,8 +101,12 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
   report.sightings = sightings_.size();
   std::vector<bool> used(sightings_.size(), false);
   std::vector<world_model::Cylinder> pillars;
-  std::vector<double> scan_counts;  // of each pillar's sightings
-  const SeeThroughCheck see_through(posed);
+  std::vector<double> scan_counts;             // of each pillar's sightings
+  std::optional<SeeThroughCheck> see_through;  // built when a pillar is first checked
+  const auto seen_through_more_often = [&](const world_model::Cylinder& c, size_t sighted) {
+    if (!see_through) see_through.emplace(posed);
+    return see_through->ScansSeeingThrough(c, options_.see_through_margin_m) > sighted;
+  };
   for (size_t i = 0; i < sightings_.size(); ++i) {
     if (used[i]) continue;
     std::vector<size_t> group{i};
@@ -130,9 +135,7 @@ std::vector<world_model::Cylinder> PillarAccumulator::Pillars(const std::vector<
     world_model::Cylinder c;
     c.centre = centre;
     c.radius = radii[radii.size() / 2];
-    if (options_.drop_seen_through &&
-        see_through.ScansSeeingThrough(c, options_.see_through_margin_m) >
-            static_cast<size_t>(distinct)) {
+    if (options_.drop_seen_through && seen_through_more_often(c, static_cast<size_t>(distinct))) {
       ++report.seen_through;
       continue;
     }

@@ -63,22 +63,17 @@ size_t SeeThroughCheck::ScansSeeingThrough(const world_model::Cylinder& pillar,
     const double beyond = d + pillar.radius + margin_m;
     if (d <= pillar.radius || s.farthest_m <= beyond) continue;
     const double half_cone = std::asin(0.5 * pillar.radius / d);
-    const double bearing = Bearing(centre);
-    const double lo = bearing - half_cone, hi = bearing + half_cone;
-    const auto& points = s.scan->points;
+    // The cone from lo to hi, in two parts where it crosses the bearings' wrap.
+    const double lo = geometry::WrapAngle(Bearing(centre) - half_cone);
+    const double hi = lo + 2 * half_cone;
     size_t in_cone = 0;
-    bool all_beyond;
-    if (lo < -geometry::kPi) {
-      all_beyond =
-          AllBeyond(points, s.sweeps, lo + 2 * geometry::kPi, geometry::kPi, beyond, in_cone) &&
-          AllBeyond(points, s.sweeps, -geometry::kPi, hi, beyond, in_cone);
-    } else if (hi > geometry::kPi) {
-      all_beyond =
-          AllBeyond(points, s.sweeps, lo, geometry::kPi, beyond, in_cone) &&
-          AllBeyond(points, s.sweeps, -geometry::kPi, hi - 2 * geometry::kPi, beyond, in_cone);
-    } else {
-      all_beyond = AllBeyond(points, s.sweeps, lo, hi, beyond, in_cone);
-    }
+    const auto all_beyond_in = [&](double from, double to) {
+      return AllBeyond(s.scan->points, s.sweeps, from, to, beyond, in_cone);
+    };
+    const bool all_beyond = hi <= geometry::kPi
+                                ? all_beyond_in(lo, hi)
+                                : all_beyond_in(lo, geometry::kPi) &&
+                                      all_beyond_in(-geometry::kPi, hi - 2 * geometry::kPi);
     if (all_beyond && in_cone > 0) ++through;
   }
   return through;
