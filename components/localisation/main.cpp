@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
        "it stands, or publish " +
            structloc::dds_common::topics::kInitialPose.name + " with a stamp)"},
       {"state-file", true, "where the pose is saved and resumed from (default: none)"},
+      {"max-cpu-wake-latency-us", true,
+       "while it runs, hold every CPU of the machine to wake within this many us, 0..1000000 "
+       "(Linux PM QoS, /dev/cpu_dma_latency; needs write access to it; 0: idle CPUs poll): "
+       "a scan's pose comes sooner, the CPUs never sleep deeply (default: not limited)"},
       {"max-walls", true,
        "refuse maps with more walls than this (default " +
            std::to_string(structloc::world_model::WorldLimits::kDefaultMaxWalls) + ")"}};
@@ -57,6 +61,10 @@ int main(int argc, char** argv) {
         loc::LocalisationComponentOptions options;
         options.frames = structloc::dds_common::FrameIdsFrom(cli);
         options.state_file = cli.GetOr("state-file", "");
+        if (cli.Has("max-cpu-wake-latency-us")) {
+          options.max_cpu_wake_latency_us =
+              static_cast<int>(cli.IntegerIn("max-cpu-wake-latency-us", 0, 0, 1000000));
+        }
         const std::string given_params = cli.Has("params") ? cli.PathOr("params", "") : "";
         // The saved pose is written over and over: never over a file read.
         if (!options.state_file.empty()) {

@@ -1,4 +1,4 @@
-// structloc_latency_benchmark [SECONDS] [RATE_HZ] [CSV] [lost]: latency and
+// structloc_latency_benchmark [SECONDS] [RATE_HZ] [CSV] [lost|echo|""] [WAKE_US]: latency and
 // load of the localisation component over DDS on one host. It starts the real component,
 // publishes the office scenario's 1081-beam scans (default 40 Hz) and
 // odometry in real time from the simulation core, and prints scan-published
@@ -18,6 +18,8 @@
 // With "echo", a process of this benchmark's own stands in for the component
 // and answers each scan with a pose at once from its listener: the floor the
 // transport alone sets on this host (two DDS hops, the same QoS, no work).
+// With WAKE_US, the component runs with --max-cpu-wake-latency-us WAKE_US
+// (the echo peer holds the same limit): the latency with the CPUs held awake.
 // Figures only: it asserts nothing.
 #include <unistd.h>
 
@@ -26,6 +28,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -40,6 +43,7 @@
 #include "structloc/dds_common/node.hpp"
 #include "structloc/dds_common/ros_conversions.hpp"
 #include "structloc/process/child_process.hpp"
+#include "structloc/process/cpu_wake_latency.hpp"
 #include "structloc/process/shutdown_signal.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "test_domains.hpp"
@@ -54,9 +58,13 @@ namespace {
 
 // The "echo" mode's peer: a pose with the scan's stamp for every scan, written
 // from the listener; odometry is heard and dropped. Runs until SIGTERM.
-int EchoPeer(int domain, const std::string& qos_file) {
+int EchoPeer(int domain, const std::string& qos_file, const char* wake_us) {
   namespace dds_common = structloc::dds_common;
   structloc::process::ShutdownSignal stop;
+  std::unique_ptr<structloc::process::CpuWakeLatencyLimit> wake_limit;
+  if (*wake_us != '\0') {
+    wake_limit = std::make_unique<structloc::process::CpuWakeLatencyLimit>(std::atoi(wake_us));
+  }
   dds_common::Node node({"latency_echo", domain, qos_file, "structloc_localhost", "", {}});
   auto pose = node.CreateWriter<geometry_msgs::msg::PoseWithCovarianceStampedPubSubType>(
       dds_common::topics::kPose);
@@ -77,8 +85,8 @@ int EchoPeer(int domain, const std::string& qos_file) {
 
 int main(int argc, char** argv) {
   namespace dds_common = structloc::dds_common;
-  if (argc == 4 && std::string(argv[1]) == "echo-peer")
-    return EchoPeer(std::atoi(argv[2]), argv[3]);
+  if (argc == 5 && std::string(argv[1]) == "echo-peer")
+    return EchoPeer(std::atoi(argv[2]), argv[3], argv[4]);
   namespace simulation_core = structloc::simulation_core;
   namespace simulator = structloc::simulator;
   namespace process = structloc::process;
@@ -138,6 +146,8 @@ int main(int argc, char** argv) {
                                    "--initial-pose", structloc::testing::PoseArgument(p)};
   const bool lost = argc > 4 && std::string(argv[4]) == "lost";
   const bool echo = argc > 4 && std::string(argv[4]) == "echo";
+  const std::string wake_us = argc > 5 ? argv[5] : "";
+  if (!wake_us.empty()) args.insert(args.end(), {"--max-cpu-wake-latency-us", wake_us});
   const std::string half_map =
       "/tmp/structloc_latency_half_map_" + std::to_string(getpid()) + ".xml";
   if (lost) {
@@ -159,8 +169,9 @@ int main(int argc, char** argv) {
   }
   process::ChildProcess loc(
       echo ? "/proc/self/exe" : std::string(STRUCTLOC_BIN_DIR) + "/structloc_localisation",
-      echo ? std::vector<std::string>{"echo-peer", std::to_string(domain), options.qos_file}
-           : args);
+      echo
+          ? std::vector<std::string>{"echo-peer", std::to_string(domain), options.qos_file, wake_us}
+          : args);
   while (writers.scans.MatchedReaders() == 0 || writers.odom.MatchedReaders() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

@@ -54,6 +54,7 @@ inline constexpr int kFleetDomainsMost = 30;
 inline constexpr int kLatencyBenchmark = 90;
 inline constexpr int kSoakBenchmark = 86;
 inline constexpr int kRecordCli = 91;
+inline constexpr int kCpuWakeLatency = 92;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kQosProfiles,
@@ -86,7 +87,8 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kFleetBenchmark,
                                     kLatencyBenchmark,
                                     kSoakBenchmark,
-                                    kRecordCli};
+                                    kRecordCli,
+                                    kCpuWakeLatency};
 
 constexpr bool AllDistinctAndSafe() {
   for (size_t i = 0; i < kAll.size(); ++i) {

@@ -30,6 +30,7 @@
 #include "structloc/localisation_core/start_up/start_up_policy.hpp"
 #include "structloc/localisation_core/tracking/session_inbox.hpp"
 #include "structloc/localisation_core/tracking/tracking_session.hpp"
+#include "structloc/process/cpu_wake_latency.hpp"
 #include "structloc_msgs/msg/LocalisationStatusPubSubTypes.h"
 #include "structloc_msgs/msg/ScanFeaturesPubSubTypes.h"
 #include "tf2_msgs/msg/TFMessagePubSubTypes.h"
@@ -40,6 +41,9 @@ struct LocalisationComponentOptions {
   std::string state_file;                        // saved pose ("" = none)
   std::optional<geometry::Pose2D> initial_pose;  // from the command line
   dds_common::FrameIds frames;                   // stamped into every output
+  // While it runs, no CPU of the machine takes longer than this to wake
+  // (process::CpuWakeLatencyLimit; none = the platform's power management).
+  std::optional<int> max_cpu_wake_latency_us;
 };
 
 class LocalisationComponent : public dds_common::Component {
@@ -59,6 +63,8 @@ class LocalisationComponent : public dds_common::Component {
   void Worker();
   void PublishDiagnostics(double now);
   void Log(const std::string& sentence);
+  // Asks for options_.max_cpu_wake_latency_us; refused, it warns and runs on.
+  void HoldCpuWakeLatency();
   // Runs a search the start-up policy asked for on a thread of its own (the
   // worker keeps taking scans and odometry meanwhile).
   void Launch(std::optional<localisation_core::StartUpSearch> search);
@@ -101,6 +107,8 @@ class LocalisationComponent : public dds_common::Component {
   double last_diagnostics_s_ = 0.0;
   std::string last_logged_state_;          // the diagnostics headline last printed
   std::unique_ptr<PoseSaver> pose_saver_;  // with a state file
+  std::unique_ptr<process::CpuWakeLatencyLimit> wake_limit_;  // when asked for and granted
+  std::string wake_limit_state_;                              // for the diagnostics
   std::thread worker_;
   // Last: destroyed first, so no sample reaches the members above then.
   dds_common::Subscription scan_subscription_;
