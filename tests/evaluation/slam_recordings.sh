@@ -12,8 +12,11 @@
 #             slam built, against the corrected poses (the real-recording bars:
 #             RMSE <= 50 mm, max <= 200 mm).
 # The corrected poses are GMapping's, not ground truth: on these logs they
-# are themselves off by centimetres. Outputs (paths, maps, pictures) go to
-# OUT_DIR.
+# are themselves off by centimetres. Last, how well the corrected poses and
+# the SLAM path each fit the raw scans step by step, with no reference
+# (structloc_path_scan_fit: scans 1-1.5 m apart, the mean distance of one's
+# points from the other's surfaces, and the scale of the path's steps the
+# scans prefer). Outputs (paths, maps, pictures) go to OUT_DIR.
 #
 # Usage: tests/evaluation/slam_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: slam_evaluation, build, ../shared/data)
@@ -43,4 +46,13 @@ for name in freiburg_079 intel; do
   aligned=$(sed -n 's/^estimate vs truth after one rigid alignment: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2/p' <<<"$report")
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
   printf '| %s | %s | %s | %s | %s | %s |\n' "$name" "$path" "$as_is" "$aligned" "$lost" "$seconds"
+done
+echo
+echo "Steps against the raw scans (structloc_path_scan_fit):"
+fit="$(dirname "$structloc")/../tests/structloc_path_scan_fit"
+for name in freiburg_079 intel; do
+  for path in truth slam; do
+    printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
+    "$fit" "$out/$name.raw.log" "$out/$name.$path.tum"
+  done
 done

@@ -1,0 +1,155 @@
+// How well a path's steps fit the raw scans of its log, with no reference
+// path: for scan pairs a given distance apart along the path, the later
+// scan is put into the earlier one's frame by the path's relative pose and
+// each of its points measured against the line through the earlier scan's
+// nearest point and that point's neighbour. Printed: the mean distance
+// (capped at 0.1 m, so that what one scan sees and the other does not counts
+// alike), and the scale of the path's relative translations the scans fit
+// best (the path's rotations kept). A path whose steps are longer than the
+// scans say prefers a scale below 1. Used to ask whether a reference path
+// (the recordings' corrected poses) or an estimate (a SLAM path) agrees
+// better with the scans (issue 41).
+//   structloc_path_scan_fit LOG PATH.tum [MIN_M=1.0] [MAX_M=1.5]
+// PATH.tum holds robot poses at the log's laser stamps (as `structloc slam
+// --poses-out`, `structloc replay --out` and `synthesise-odometry --truth-out`
+// write them); the log's laser lines give the laser's mounting.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "structloc/log_formats/tum_reader.hpp"
+#include "structloc/map_building/posed_scans.hpp"
+
+namespace {
+
+using structloc::geometry::Pose2D;
+using Points = std::vector<Eigen::Vector2d>;
+
+constexpr double kCapM = 0.1;         // a point farther than this from the other scan counts this
+constexpr double kNeighbourM = 0.15;  // a neighbour farther than this is another surface
+
+// The earlier scan's points hashed on a 5 cm grid.
+class PointGrid {
+ public:
+  explicit PointGrid(const Points& points) : points_(points) {
+    for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+      cells_[Key(Cell(points[i].x()), Cell(points[i].y()))].push_back(i);
+    }
+  }
+  // Distance from q to the line through its nearest point and that point's
+  // neighbour in beam order (to the point itself without one), at most kCapM.
+  double Distance(const Eigen::Vector2d& q) const {
+    const int cx = Cell(q.x()), cy = Cell(q.y());
+    double best = kCapM;
+    int nearest = -1;
+    for (int dx = -2; dx <= 2; ++dx) {
+      for (int dy = -2; dy <= 2; ++dy) {
+        const auto it = cells_.find(Key(cx + dx, cy + dy));
+        if (it == cells_.end()) continue;
+        for (const int i : it->second) {
+          const double d = (points_[i] - q).norm();
+          if (d < best) best = d, nearest = i;
+        }
+      }
+    }
+    if (nearest < 0) return kCapM;
+    for (const int j : {nearest + 1, nearest - 1}) {
+      if (j < 0 || j >= static_cast<int>(points_.size())) continue;
+      const Eigen::Vector2d along = points_[j] - points_[nearest];
+      if (along.norm() > kNeighbourM || along.norm() == 0.0) continue;
+      const Eigen::Vector2d normal(-along.y(), along.x());
+      return std::abs(normal.normalized().dot(q - points_[nearest]));
+    }
+    return best;
+  }
+
+ private:
+  static constexpr double kCellM = 0.05;
+  static int Cell(double v) { return static_cast<int>(std::floor(v / kCellM)); }
+  static long long Key(int x, int y) { return static_cast<long long>(x) * 1000003LL + y; }
+  const Points& points_;
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace geometry = structloc::geometry;
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: structloc_path_scan_fit LOG PATH.tum [MIN_M=1.0] [MAX_M=1.5]\n");
+    return 2;
+  }
+  try {
+    const double min_m = argc > 3 ? std::atof(argv[3]) : 1.0;
+    const double max_m = argc > 4 ? std::atof(argv[4]) : 1.5;
+    const auto log = structloc::map_building::ReadPosedScans(argv[1], {});
+    const auto path = structloc::log_formats::ReadTum(argv[2]);
+    Pose2D mount;
+    for (const auto& s : log.scans) {
+      if (s.robot_pose) {
+        mount = geometry::Between(*s.robot_pose, s.laser_pose);
+        break;
+      }
+    }
+    // The laser's pose on the path at each scan, where the path has one.
+    std::vector<std::optional<Pose2D>> laser(log.scans.size());
+    for (size_t i = 0; i < log.scans.size(); ++i) {
+      if (const auto* p = structloc::log_formats::Nearest(path, log.scans[i].stamp, 1e-3)) {
+        laser[i] = geometry::Compose(p->pose, mount);
+      }
+    }
+    constexpr int kScales = 17;  // 0.98 .. 1.02
+    auto scale_of = [](int k) { return 0.98 + 0.0025 * k; };
+    std::vector<double> mean_at(kScales, 0.0);
+    size_t pairs = 0;
+    for (size_t i = 0; i < log.scans.size(); i += 3) {
+      if (!laser[i] || log.scans[i].points.empty()) continue;
+      size_t j = i + 1;
+      auto apart = [&](size_t k) {
+        return (laser[k]->Translation() - laser[i]->Translation()).norm();
+      };
+      while (j < log.scans.size() && (!laser[j] || apart(j) < min_m)) ++j;
+      if (j >= log.scans.size() || apart(j) > max_m || log.scans[j].points.empty()) continue;
+      const Pose2D step = geometry::Between(*laser[i], *laser[j]);
+      const PointGrid earlier(log.scans[i].points);
+      for (int k = 0; k < kScales; ++k) {
+        const Pose2D scaled{step.x * scale_of(k), step.y * scale_of(k), step.theta};
+        double sum = 0.0;
+        for (const auto& q : log.scans[j].points) sum += earlier.Distance(scaled.Apply(q));
+        mean_at[k] += sum / static_cast<double>(log.scans[j].points.size());
+      }
+      ++pairs;
+    }
+    if (pairs == 0)
+      throw std::runtime_error("no scan pairs " + std::to_string(min_m) + "-" +
+                               std::to_string(max_m) + " m apart on the path");
+    int best = 0;
+    for (int k = 1; k < kScales; ++k) {
+      if (mean_at[k] < mean_at[best]) best = k;
+    }
+    // The minimum refined by a parabola through it and its neighbours.
+    double preferred = scale_of(best);
+    if (best > 0 && best < kScales - 1) {
+      const double a = mean_at[best - 1], b = mean_at[best], c = mean_at[best + 1];
+      const double curvature = a - 2.0 * b + c;
+      if (curvature > 0.0) preferred += 0.0025 * 0.5 * (a - c) / curvature;
+    }
+    const int unscaled = 8;
+    std::printf(
+        "%zu scan pairs %.1f-%.1f m apart: points off the earlier scan by %.2f mm on average "
+        "(capped at %.0f mm); the scans fit the path's translations best scaled by %.4f "
+        "(%.2f mm)%s\n",
+        pairs, min_m, max_m, 1e3 * mean_at[unscaled] / static_cast<double>(pairs), 1e3 * kCapM,
+        preferred, 1e3 * mean_at[best] / static_cast<double>(pairs),
+        best == 0 || best == kScales - 1 ? " (at the end of the range tried: 0.98-1.02)" : "");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "structloc_path_scan_fit: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
