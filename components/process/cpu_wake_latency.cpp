@@ -36,6 +36,16 @@ CpuWakeLatencyLimit::CpuWakeLatencyLimit(int max_us, const std::string& device) 
   }
 }
 
+std::optional<int> CpuWakeLatencyLimit::InForceUs(const std::string& device) {
+  const int fd = ::open(device.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  std::int32_t value = 0;
+  const bool read_all = ::read(fd, &value, sizeof value) == static_cast<ssize_t>(sizeof value);
+  ::close(fd);
+  if (!read_all) return std::nullopt;
+  return value;
+}
+
 CpuWakeLatencyLimit::~CpuWakeLatencyLimit() {
   ::close(fd_);  // the kernel drops the limit with its last open file
 }

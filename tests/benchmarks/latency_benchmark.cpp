@@ -20,6 +20,8 @@
 // transport alone sets on this host (two DDS hops, the same QoS, no work).
 // With WAKE_US, the component runs with --max-cpu-wake-latency-us WAKE_US
 // (the echo peer holds the same limit): the latency with the CPUs held awake.
+// It prints the limit the kernel held during the run (a limit asked for may be
+// refused; another process may hold one).
 // Figures only: it asserts nothing.
 #include <unistd.h>
 
@@ -176,6 +178,8 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // What the figures were measured under: a limit asked for may be refused.
+  const auto wake_limit = process::CpuWakeLatencyLimit::InForceUs();
   simulation_core::Simulation sim(scenario);
   const auto start = Clock::now();
   const double cpu_start = structloc::testing::CpuSeconds(loc.Pid());
@@ -244,6 +248,14 @@ int main(int argc, char** argv) {
       median(steps[0]), median(steps[1]), median(steps[2]), median(steps[3]));
   quantiles(rest, "  of the steady state, transport, threads, conversions");
   std::printf("localisation process CPU: %.1f %% of one core\n", 100.0 * cpu / wall);
+  if (!wake_limit) {
+    std::printf("CPU wake-up limit in force: unknown (%s cannot be read)\n",
+                process::CpuWakeLatencyLimit::kDevice);
+  } else if (*wake_limit >= process::CpuWakeLatencyLimit::kNoLimitUs) {
+    std::printf("CPU wake-up limit in force: none\n");
+  } else {
+    std::printf("CPU wake-up limit in force: %d us\n", *wake_limit);
+  }
   std::printf("statuses received: %zu", update_at.size());
   for (const auto& [reason, count] : lost_reasons) {
     std::printf(", %d lost (%s)", count, reason.c_str());

@@ -6,9 +6,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cstdint>
-#include <fstream>
-#include <optional>
 #include <string>
 
 #include "localisation_feed.hpp"
@@ -23,13 +20,6 @@ namespace structloc {
 namespace {
 
 constexpr int kDomain = testing::domains::kCpuWakeLatency;
-
-std::optional<std::int32_t> HeldLimit() {
-  std::ifstream in(process::CpuWakeLatencyLimit::kDevice, std::ios::binary);
-  std::int32_t value = 0;
-  if (!in.read(reinterpret_cast<char*>(&value), sizeof value)) return std::nullopt;
-  return value;
-}
 
 TEST(CpuWakeLatency, TheComponentHoldsTheLimitOrSaysWhyNotAndLocalisesEitherWay) {
   const std::string device = process::CpuWakeLatencyLimit::kDevice;
@@ -48,7 +38,7 @@ TEST(CpuWakeLatency, TheComponentHoldsTheLimitOrSaysWhyNotAndLocalisesEitherWay)
   bool held_while_running = false;
   size_t sent = 0;
   feed.Play(scenario, [&](int, const simulation_core::SimState&, sensor_msgs::msg::LaserScan&) {
-    if (can_read && HeldLimit() == 0) held_while_running = true;
+    if (can_read && process::CpuWakeLatencyLimit::InForceUs() == 0) held_while_running = true;
     ++sent;
     return true;
   });
@@ -75,7 +65,7 @@ TEST(CpuWakeLatency, TheComponentHoldsTheLimitOrSaysWhyNotAndLocalisesEitherWay)
   localisation.Stop(std::chrono::seconds(5));
   // No test but this one holds 0 us: once the component is gone, neither does the kernel.
   if (can_hold && can_read) {
-    EXPECT_NE(HeldLimit(), 0);
+    EXPECT_NE(process::CpuWakeLatencyLimit::InForceUs(), 0);
   }
 }
 

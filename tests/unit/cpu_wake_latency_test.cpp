@@ -7,22 +7,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cstdint>
 #include <fstream>
-#include <optional>
 #include <stdexcept>
 
 #include "temp_dir.hpp"
 
 namespace structloc::process {
 namespace {
-
-std::optional<std::int32_t> ReadLimit(const std::string& device) {
-  std::ifstream in(device, std::ios::binary);
-  std::int32_t value = 0;
-  if (!in.read(reinterpret_cast<char*>(&value), sizeof value)) return std::nullopt;
-  return value;
-}
 
 TEST(CpuWakeLatencyLimit, WritesTheLimitAsTheKernelTakesIt) {
   testing::TempDir dir;
@@ -33,7 +24,7 @@ TEST(CpuWakeLatencyLimit, WritesTheLimitAsTheKernelTakesIt) {
   }
   std::ifstream in(device, std::ios::binary | std::ios::ate);
   EXPECT_EQ(in.tellg(), 4);  // one 32-bit integer, not text
-  EXPECT_EQ(ReadLimit(device), 25);
+  EXPECT_EQ(CpuWakeLatencyLimit::InForceUs(device), 25);
 }
 
 TEST(CpuWakeLatencyLimit, SaysWhichDeviceAndWhyWhenItCannotHoldTheLimit) {
@@ -48,6 +39,7 @@ TEST(CpuWakeLatencyLimit, SaysWhichDeviceAndWhyWhenItCannotHoldTheLimit) {
         << e.what();
   }
   EXPECT_THROW(CpuWakeLatencyLimit(-1, dir.Write("device", "")), std::invalid_argument);
+  EXPECT_FALSE(CpuWakeLatencyLimit::InForceUs(missing).has_value());
 }
 
 TEST(CpuWakeLatencyLimit, TheKernelHoldsTheLimitWhileItLivesAndDropsItAfter) {
@@ -60,11 +52,11 @@ TEST(CpuWakeLatencyLimit, TheKernelHoldsTheLimitWhileItLivesAndDropsItAfter) {
   constexpr int kLimitUs = 7;
   {
     CpuWakeLatencyLimit limit(kLimitUs, device);
-    const auto held = ReadLimit(device);
+    const auto held = CpuWakeLatencyLimit::InForceUs(device);
     ASSERT_TRUE(held.has_value());
     EXPECT_LE(*held, kLimitUs);
   }
-  EXPECT_NE(ReadLimit(device), kLimitUs);
+  EXPECT_NE(CpuWakeLatencyLimit::InForceUs(device), kLimitUs);
 }
 
 }  // namespace

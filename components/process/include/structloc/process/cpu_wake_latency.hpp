@@ -8,6 +8,7 @@
 // open. The price is power: the CPUs never sleep deeply.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace structloc::process {
@@ -23,6 +24,11 @@ class CpuWakeLatencyLimit {
   CpuWakeLatencyLimit& operator=(const CpuWakeLatencyLimit&) = delete;
 
   int MaxUs() const { return max_us_; }
+
+  // The limit the kernel holds now: the smallest any process asks for, or
+  // kNoLimitUs; none when the device cannot be read (it needs root).
+  static constexpr int kNoLimitUs = 2000000000;
+  static std::optional<int> InForceUs(const std::string& device = kDevice);
 
  private:
   int fd_ = -1;
