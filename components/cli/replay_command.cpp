@@ -42,8 +42,9 @@ int ReplayCommand(const Invocation& inv) {
        "localisation parameter file (default: the shipped preset the first scan's geometry "
        "names, printed in the summary; the built-in Table 6 defaults when none does)"},
       {"truth", true,
-       "TUM ground truth: adds RMSE, max and heading errors, as they are and after one rigid "
-       "alignment (for a map with a frame of its own)"},
+       "TUM ground truth: adds RMSE, max and heading errors, as they are, after one rigid "
+       "alignment (for a map with a frame of its own) and after one that also scales the "
+       "estimate (how much of the error is the map's or the truth's scale)"},
       {"plot", true, "PNG of map, scans, truth, odometry and estimate"},
       {"fixes-out", true, "also write the estimate as fixes.csv (with variances) for calibrate"},
       {"no-map", false, "pass odometry through (parse, filter and time only)"},

@@ -6,8 +6,9 @@
 // those poses as "structloc map build" builds one and checked against the
 // same scans as "structloc map check" checks one. With --relations, the
 // path is judged by Kuemmerle et al.'s relation metric beside raw odometry;
-// with --truth, against ground truth as it is and after one rigid alignment
-// (the path's frame is the first scan's odometry's, not the truth's). Ctrl-C
+// with --truth, against ground truth as it is, after one rigid alignment (the
+// path's frame is the first scan's odometry's, not the truth's) and after one
+// that also scales it. Ctrl-C
 // stops adding scans: the path and map of the scans added so far are written.
 #include <chrono>
 #include <cstdio>
@@ -41,7 +42,8 @@ void PrintRelations(const char* what, const replay::RelationError& e) {
   std::printf(")\n");
 }
 
-// `what` against the truth as it is and after one rigid alignment.
+// `what` against the truth as it is, after one rigid alignment and after one
+// with a scale as well.
 void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPose>& path,
                       const std::vector<log_formats::StampedPose>& truth) {
   const auto raw = replay::CompareTrajectories(path, truth);
@@ -55,6 +57,10 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
   if (const auto e = replay::CompareAligned(path, truth)) {
     std::printf("; aligned: RMSE %.1f mm, max %.1f mm, heading RMSE %.2f deg",
                 1e3 * e->position_rmse_m, 1e3 * e->position_max_m, kDeg * e->heading_rmse_rad);
+  }
+  if (const auto e = replay::CompareAlignedWithScale(path, truth)) {
+    std::printf("; with scale %.5f: RMSE %.1f mm, max %.1f mm", e->scale,
+                1e3 * e->error.position_rmse_m, 1e3 * e->error.position_max_m);
   }
   std::printf("\n");
 }
@@ -75,8 +81,8 @@ int SlamCommand(const Invocation& inv) {
       {"relations", true,
        "judge the path by this relations file (Kuemmerle et al. 2009), beside raw odometry"},
       {"truth", true,
-       "judge the path against these ground-truth poses (TUM, matched by stamp), as it is and "
-       "after one rigid alignment, beside raw odometry"},
+       "judge the path against these ground-truth poses (TUM, matched by stamp), as it is, "
+       "after one rigid alignment and after one that also scales it, beside raw odometry"},
       {"plot", true,
        "PNG of the map built on the path over the readings, each wall coloured by the check "
        "(as structloc map check draws it)"},

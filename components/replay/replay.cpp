@@ -386,6 +386,7 @@ class Replayer {
     if (!o_.truth_path.empty()) {
       report_.estimate_error = CompareTrajectories(report_.estimate, truth_);
       report_.aligned_estimate_error = CompareAligned(report_.estimate, truth_);
+      report_.scaled_estimate_error = CompareAlignedWithScale(report_.estimate, truth_);
       report_.odometry_error = CompareTrajectories(odometry_only_, truth_);
     }
     if (plot_) Plot(truth_);
@@ -665,6 +666,12 @@ std::string FormatReport(const ReplayReport& r) {
   if (r.estimate_error) error("estimate vs truth", *r.estimate_error);
   if (r.aligned_estimate_error) {
     error("estimate vs truth after one rigid alignment", *r.aligned_estimate_error);
+  }
+  if (r.scaled_estimate_error) {
+    std::ostringstream what;
+    what << "estimate vs truth after one alignment with scale (" << std::fixed
+         << std::setprecision(5) << r.scaled_estimate_error->scale << ")";
+    error(what.str().c_str(), r.scaled_estimate_error->error);
   }
   if (r.odometry_error) error("odometry only vs truth", *r.odometry_error);
   return out.str();

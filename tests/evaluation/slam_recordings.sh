@@ -10,7 +10,8 @@
 #             one rigid alignment: the path has the frame of its first
 #             odometry), then `structloc replay` of the same log on the map
 #             slam built, against the corrected poses (the real-recording bars:
-#             RMSE <= 50 mm, max <= 200 mm).
+#             RMSE <= 50 mm, max <= 200 mm), also after an alignment that
+#             scales the estimate (how much of the error is scale).
 # The corrected poses are GMapping's, not ground truth: on these logs they
 # are themselves off by centimetres. Last, how well the corrected poses and
 # the SLAM path each fit the raw scans step by step, with no reference
@@ -29,8 +30,8 @@ echo "MIT CSAIL, raw odometry:"
 "$structloc" slam --log "$data/mit-csail.clf.gz" --relations "$data/mit-csail.relations" \
   --poses-out "$out/mit-csail.slam.tum" | grep -E "structloc slam:|relation errors|  (slam|odometry) "
 echo
-echo "| recording | SLAM path RMSE / max mm | aligned RMSE / max mm | localisation on its map: RMSE / max mm | aligned RMSE / max mm | longest lost s | slam s |"
-echo "|---|---|---|---|---|---|---|"
+echo "| recording | SLAM path RMSE / max mm | aligned RMSE / max mm | localisation on its map: RMSE / max mm | aligned RMSE / max mm | aligned with scale: scale, RMSE / max mm | longest lost s | slam s |"
+echo "|---|---|---|---|---|---|---|---|"
 for name in freiburg_079 intel; do
   synthesise_raw_log "$name"
   log="$out/$name.raw.log"
@@ -44,8 +45,9 @@ for name in freiburg_079 intel; do
     --plot "$out/$name.localised.png" 2>&1)
   as_is=$(sed -n 's/^estimate vs truth: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2/p' <<<"$report")
   aligned=$(sed -n 's/^estimate vs truth after one rigid alignment: position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2/p' <<<"$report")
+  scaled=$(sed -n 's/^estimate vs truth after one alignment with scale (\([0-9.]*\)): position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1, \2 \/ \3/p' <<<"$report")
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
-  printf '| %s | %s | %s | %s | %s | %s |\n' "$name" "$path" "$as_is" "$aligned" "$lost" "$seconds"
+  printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$path" "$as_is" "$aligned" "$scaled" "$lost" "$seconds"
 done
 echo
 echo "Steps against the raw scans (structloc_path_scan_fit):"

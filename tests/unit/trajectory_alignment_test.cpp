@@ -1,7 +1,8 @@
 // One rigid alignment of a trajectory onto the truth (trajectory_alignment.hpp):
 // a path in a frame of its own is brought back exactly, turned either way;
 // what is not a rigid motion (a path bent on the way) stays as error; too
-// few matched poses give no alignment.
+// few matched poses give no alignment. With a scale: a path scaled as well is
+// brought back exactly, with the scale that undoes its own.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,6 +75,35 @@ TEST(TrajectoryAlignment, WhatIsNotARigidMotionStaysAsError) {
   ASSERT_TRUE(noisy);
   EXPECT_LE(replay::CompareTrajectories(replay::Moved(path, *noisy), truth).position_rmse_m,
             replay::CompareTrajectories(path, truth).position_rmse_m);
+}
+
+TEST(TrajectoryAlignment, AScaledPathIsBroughtBackExactlyOnlyWithAScale) {
+  const auto truth = Tour();
+  for (const double scale : {0.99, 1.006}) {
+    // The truth shrunk or stretched about the origin, in a frame of its own.
+    const replay::Similarity frame{{-4.0, 2.5, 0.7}, scale};
+    const auto path = replay::Moved(truth, frame);
+    const auto rigid = replay::CompareAligned(path, truth);
+    ASSERT_TRUE(rigid);
+    EXPECT_GT(rigid->position_rmse_m, 0.01) << scale;  // a scale is no rigid motion
+    const auto scaled = replay::CompareAlignedWithScale(path, truth);
+    ASSERT_TRUE(scaled) << scale;
+    EXPECT_NEAR(scaled->scale, 1.0 / scale, 1e-9);
+    EXPECT_LT(scaled->error.position_rmse_m, 1e-9) << scale;
+    EXPECT_LT(scaled->error.heading_rmse_rad, 1e-9) << scale;
+    EXPECT_EQ(scaled->error.matched, truth.size());
+  }
+  // A path of the truth's own scale is given scale 1 and the rigid motion.
+  const geometry::Pose2D motion{1.0, -2.0, -0.4};
+  const auto moved = replay::Moved(truth, motion);
+  const auto similarity = replay::AlignTrajectoryWithScale(moved, truth);
+  const auto rigid = replay::AlignTrajectory(moved, truth);
+  ASSERT_TRUE(similarity && rigid);
+  EXPECT_NEAR(similarity->scale, 1.0, 1e-12);
+  EXPECT_NEAR(similarity->motion.x, rigid->x, 1e-9);
+  EXPECT_NEAR(similarity->motion.y, rigid->y, 1e-9);
+  EXPECT_NEAR(similarity->motion.theta, rigid->theta, 1e-12);
+  EXPECT_FALSE(replay::CompareAlignedWithScale({truth[3]}, truth));
 }
 
 TEST(TrajectoryAlignment, TooFewMatchedPosesGiveNoAlignment) {

@@ -31,6 +31,7 @@
 #include "structloc/localisation_core/global/hypothesis_tracker.hpp"
 #include "structloc/localisation_core/global/kidnap_watch.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
+#include "structloc/replay/trajectory_alignment.hpp"
 #include "structloc/replay/trajectory_error.hpp"
 #include "structloc/world_model/world_model.hpp"
 
@@ -104,6 +105,9 @@ struct ReplayReport {
   // (trajectory_alignment.hpp): what remains when a map has a frame of its
   // own, such as one `structloc slam` built.
   std::optional<TrajectoryError> aligned_estimate_error;
+  // ... and after one similarity (a scale as well): how much of that is the
+  // map's (or the truth's) scale.
+  std::optional<ScaledError> scaled_estimate_error;
   std::optional<TrajectoryError> odometry_error;
   std::vector<log_formats::StampedPose> estimate;
   std::vector<GlobalAttempt> global_attempts;  // the searches; empty when an initial pose was given
