@@ -19,11 +19,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/map_building/posed_scans.hpp"
+#include "structloc/world_model/point_grid.hpp"
 
 namespace {
 
@@ -33,30 +33,21 @@ using Points = std::vector<Eigen::Vector2d>;
 constexpr double kCapM = 0.1;         // a point farther than this from the other scan counts this
 constexpr double kNeighbourM = 0.15;  // a neighbour farther than this is another surface
 
-// The earlier scan's points hashed on a 5 cm grid.
-class PointGrid {
+// The earlier scan, its points indexed for the nearest one.
+class EarlierScan {
  public:
-  explicit PointGrid(const Points& points) : points_(points) {
-    for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-      cells_[Key(Cell(points[i].x()), Cell(points[i].y()))].push_back(i);
-    }
+  explicit EarlierScan(const Points& points) : points_(points), grid_(kCapM) {
+    for (size_t i = 0; i < points.size(); ++i) grid_.Insert(points[i], i);
   }
   // Distance from q to the line through its nearest point and that point's
   // neighbour in beam order (to the point itself without one), at most kCapM.
   double Distance(const Eigen::Vector2d& q) const {
-    const int cx = Cell(q.x()), cy = Cell(q.y());
     double best = kCapM;
     int nearest = -1;
-    for (int dx = -2; dx <= 2; ++dx) {
-      for (int dy = -2; dy <= 2; ++dy) {
-        const auto it = cells_.find(Key(cx + dx, cy + dy));
-        if (it == cells_.end()) continue;
-        for (const int i : it->second) {
-          const double d = (points_[i] - q).norm();
-          if (d < best) best = d, nearest = i;
-        }
-      }
-    }
+    grid_.ForEachNear(q, [&](size_t i) {
+      const double d = (points_[i] - q).norm();
+      if (d < best) best = d, nearest = static_cast<int>(i);
+    });
     if (nearest < 0) return kCapM;
     for (const int j : {nearest + 1, nearest - 1}) {
       if (j < 0 || j >= static_cast<int>(points_.size())) continue;
@@ -69,11 +60,8 @@ class PointGrid {
   }
 
  private:
-  static constexpr double kCellM = 0.05;
-  static int Cell(double v) { return static_cast<int>(std::floor(v / kCellM)); }
-  static long long Key(int x, int y) { return static_cast<long long>(x) * 1000003LL + y; }
   const Points& points_;
-  std::unordered_map<long long, std::vector<int>> cells_;
+  structloc::world_model::PointGrid grid_;  // cells of kCapM: every point within it is found
 };
 
 }  // namespace
@@ -116,7 +104,7 @@ int main(int argc, char** argv) {
       while (j < log.scans.size() && (!laser[j] || apart(j) < min_m)) ++j;
       if (j >= log.scans.size() || apart(j) > max_m || log.scans[j].points.empty()) continue;
       const Pose2D step = geometry::Between(*laser[i], *laser[j]);
-      const PointGrid earlier(log.scans[i].points);
+      const EarlierScan earlier(log.scans[i].points);
       for (int k = 0; k < kScales; ++k) {
         const Pose2D scaled{step.x * scale_of(k), step.y * scale_of(k), step.theta};
         double sum = 0.0;
