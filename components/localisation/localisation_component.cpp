@@ -102,19 +102,15 @@ void LocalisationComponent::OfferInitialPose(
 }
 
 void LocalisationComponent::HoldCpuWakeLatency() {
-  if (!options_.max_cpu_wake_latency_us) {
-    wake_limit_state_ = "not limited";
-    return;
-  }
+  if (!options_.max_cpu_wake_latency_us) return;
   const int max_us = *options_.max_cpu_wake_latency_us;
   try {
     wake_limit_ = std::make_unique<process::CpuWakeLatencyLimit>(max_us);
-    wake_limit_state_ = "at most " + std::to_string(max_us) + " us";
     Log("every CPU of this machine is held to wake within " + std::to_string(max_us) +
         " us while the localisation runs (lower latency, more power)");
   } catch (const std::exception& e) {
     // A faster wake-up is worth having, not worth refusing to localise for.
-    wake_limit_state_ = std::string("not limited: ") + e.what();
+    wake_limit_refused_ = e.what();
     std::cerr << "localisation: WARNING: " << e.what() << "; running without the limit"
               << std::endl;
     session_.NoteProblem(e.what(), started_s_);
@@ -261,7 +257,11 @@ void LocalisationComponent::PublishDiagnostics(double now) {
   for (const auto& peer : node_.PeerProblems()) report.values.emplace_back("peer", peer);
   report.values.emplace_back("start_up", start_up);
   report.values.emplace_back("kidnappings", std::to_string(kidnappings));
-  report.values.emplace_back("cpu_wake_latency", wake_limit_state_);
+  report.values.emplace_back(
+      "cpu_wake_latency",
+      wake_limit_
+          ? "at most " + std::to_string(wake_limit_->MaxUs()) + " us"
+          : "not limited" + (wake_limit_refused_.empty() ? "" : ": " + wake_limit_refused_));
   // A log line whenever the headline changes kind (not its running seconds).
   const std::string state = std::to_string(static_cast<int>(report.level)) + " " +
                             report.message.substr(0, report.message.find(" for "));

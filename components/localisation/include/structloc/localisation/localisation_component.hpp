@@ -108,7 +108,7 @@ class LocalisationComponent : public dds_common::Component {
   std::string last_logged_state_;          // the diagnostics headline last printed
   std::unique_ptr<PoseSaver> pose_saver_;  // with a state file
   std::unique_ptr<process::CpuWakeLatencyLimit> wake_limit_;  // when asked for and granted
-  std::string wake_limit_state_;                              // for the diagnostics
+  std::string wake_limit_refused_;                            // why not, when refused
   std::thread worker_;
   // Last: destroyed first, so no sample reaches the members above then.
   dds_common::Subscription scan_subscription_;
