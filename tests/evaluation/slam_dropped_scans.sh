@@ -14,12 +14,9 @@
 #        (defaults: 24, slam_dropped_scans, build)
 set -euo pipefail
 patterns="${1:-24}"
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-out="${2:-slam_dropped_scans}"
-structloc="${3:-$root/build}/bin/structloc"
 # shellcheck source=tests/evaluation/recordings_common.sh
-source "$root/tests/evaluation/recordings_common.sh"
-mkdir -p "$out"
+source "$(dirname "${BASH_SOURCE[0]}")/recordings_common.sh"
+recordings_setup slam_dropped_scans "${@:2}"
 "$structloc" simulate --scenario "$root/maps/scenarios/office_people.xml" --out "$out/tour" >/dev/null
 scans=$(grep -c '^ROBOTLASER1 ' "$out/tour/run.clf")
 
