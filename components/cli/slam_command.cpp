@@ -170,6 +170,10 @@ int SlamCommand(const Invocation& inv) {
         "structloc slam: %zu scans in %.1f s: %zu keyframes (%zu steps on odometry alone), "
         "%zu loops closed of %zu tried\n",
         st.scans, seconds, st.keyframes, st.odometry_edges, st.loops_closed, st.loops_tried);
+    if (slam_options.walls.enabled)
+      std::printf("  refined with %zu walls seen from two keyframes or more (%zu sightings)%s\n",
+                  st.walls.walls, st.walls.observations,
+                  st.walls.usable ? "" : "; the solver ended without a usable solution");
     if (!relations.empty()) {
       std::printf("relation errors (Kuemmerle et al. 2009):\n");
       PrintRelations("slam", replay::CompareRelations(path, relations));

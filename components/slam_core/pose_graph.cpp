@@ -1,13 +1,12 @@
 // Pose-graph optimisation with Ceres Solver (see header).
 #include "structloc/slam_core/pose_graph.hpp"
 
-#include <ceres/ceres.h>
-
 #include <Eigen/Cholesky>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "pose_graph_problem.hpp"
 
 namespace structloc::slam_core {
 namespace {
@@ -43,8 +42,7 @@ Eigen::Matrix3d SqrtInformation(const Eigen::Matrix3d& information) {
   return Eigen::LLT<Eigen::Matrix3d>(information).matrixU();
 }
 
-void Check(const std::vector<geometry::Pose2D>& poses, const PoseGraphEdge& e) {
-  const int n = static_cast<int>(poses.size());
+void Check(int n, const PoseGraphEdge& e) {
   if (e.from < 0 || e.to < 0 || e.from >= n || e.to >= n || e.from == e.to)
     throw std::invalid_argument("pose graph: an edge joins poses " + std::to_string(e.from) +
                                 " and " + std::to_string(e.to) + " of " + std::to_string(n));
@@ -67,6 +65,46 @@ double EdgeError(const std::vector<geometry::Pose2D>& poses, const PoseGraphEdge
   return std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
 }
 
+namespace internal {
+
+PoseBlocks ToBlocks(const std::vector<geometry::Pose2D>& poses) {
+  PoseBlocks x(poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) x[i] = {poses[i].x, poses[i].y, poses[i].theta};
+  return x;
+}
+
+void FromBlocks(const PoseBlocks& blocks, std::vector<geometry::Pose2D>& poses) {
+  for (size_t i = 0; i < poses.size(); ++i)
+    poses[i] = {blocks[i][0], blocks[i][1], geometry::WrapAngle(blocks[i][2])};
+}
+
+void AddEdges(const std::vector<PoseGraphEdge>& edges, const PoseGraphOptions& options,
+              ceres::Problem& problem, PoseBlocks& blocks) {
+  for (const auto& e : edges) {
+    Check(static_cast<int>(blocks.size()), e);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
+        new RelativePoseError(e.measured, SqrtInformation(e.information)));
+    ceres::LossFunction* loss =
+        e.robust ? new ceres::CauchyLoss(options.robust_scale_sigmas) : nullptr;
+    problem.AddResidualBlock(cost, loss, blocks[e.from].data(), blocks[e.to].data());
+  }
+}
+
+ceres::Solver::Summary Solve(const PoseGraphOptions& options, ceres::Problem& problem,
+                             PoseBlocks& blocks) {
+  if (problem.HasParameterBlock(blocks[0].data()))
+    problem.SetParameterBlockConstant(blocks[0].data());
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 1;
+  ceres::Solver::Summary result;
+  ceres::Solve(solver, &problem, &result);
+  return result;
+}
+
+}  // namespace internal
+
 PoseGraphSummary OptimisePoseGraph(std::vector<geometry::Pose2D>& poses,
                                    const std::vector<PoseGraphEdge>& edges,
                                    const PoseGraphOptions& options) {
@@ -75,26 +113,11 @@ PoseGraphSummary OptimisePoseGraph(std::vector<geometry::Pose2D>& poses,
     summary.usable = true;
     return summary;
   }
-  std::vector<std::array<double, 3>> x(poses.size());
-  for (size_t i = 0; i < poses.size(); ++i) x[i] = {poses[i].x, poses[i].y, poses[i].theta};
+  internal::PoseBlocks x = internal::ToBlocks(poses);
   ceres::Problem problem;
-  for (const auto& e : edges) {
-    Check(poses, e);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
-        new RelativePoseError(e.measured, SqrtInformation(e.information)));
-    ceres::LossFunction* loss =
-        e.robust ? new ceres::CauchyLoss(options.robust_scale_sigmas) : nullptr;
-    problem.AddResidualBlock(cost, loss, x[e.from].data(), x[e.to].data());
-  }
-  if (problem.HasParameterBlock(x[0].data())) problem.SetParameterBlockConstant(x[0].data());
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options.max_iterations;
-  solver.num_threads = 1;
-  ceres::Solver::Summary result;
-  ceres::Solve(solver, &problem, &result);
-  for (size_t i = 0; i < poses.size(); ++i)
-    poses[i] = {x[i][0], x[i][1], geometry::WrapAngle(x[i][2])};
+  internal::AddEdges(edges, options, problem, x);
+  const ceres::Solver::Summary result = internal::Solve(options, problem, x);
+  internal::FromBlocks(x, poses);
   summary.iterations = static_cast<int>(result.iterations.size());
   summary.initial_cost = result.initial_cost;
   summary.final_cost = result.final_cost;

@@ -64,9 +64,7 @@ std::vector<Eigen::Vector2d> Slam::Reference(int first, int last, int frame) con
 
 void Slam::AddKeyframe(const SlamScan& scan) {
   if (keyframes_.empty()) {
-    keyframes_.push_back({scan.odometry, scan.points});
-    poses_.push_back(scan.odometry);
-    ++stats_.keyframes;
+    KeepKeyframe(scan, scan.odometry);
     return;
   }
   const int last = static_cast<int>(keyframes_.size()) - 1;
@@ -93,10 +91,16 @@ void Slam::AddKeyframe(const SlamScan& scan) {
         Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (st * st)).asDiagonal();
   }
   edges_.push_back(edge);
-  keyframes_.push_back({scan.odometry, scan.points});
-  poses_.push_back(geometry::Compose(poses_[last], edge.measured));
-  ++stats_.keyframes;
+  KeepKeyframe(scan, geometry::Compose(poses_[last], edge.measured));
   CloseLoops(last + 1);
+}
+
+void Slam::KeepKeyframe(const SlamScan& scan, const geometry::Pose2D& estimate) {
+  keyframes_.push_back({scan.odometry, scan.points});
+  poses_.push_back(estimate);
+  segments_.push_back(options_.walls.enabled ? FindKeyframeSegments(scan.points)
+                                             : std::vector<KeyframeSegment>{});
+  ++stats_.keyframes;
 }
 
 void Slam::CloseLoops(int k) {
@@ -145,6 +149,8 @@ void Slam::Optimise() {
 
 void Slam::Finish() {
   Optimise();
+  if (options_.walls.enabled)
+    stats_.walls = RefineWithWalls(poses_, segments_, edges_, options_.walls, options_.graph);
 }
 
 std::vector<log_formats::StampedPose> Slam::Trajectory() const {

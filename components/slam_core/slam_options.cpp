@@ -106,6 +106,28 @@ Table GraphSection() {
   return t;
 }
 
+Table WallsSection() {
+  using W = WallRefinementOptions;
+  Table t("walls", "the pose-and-wall refinement that ends SLAM (Ceres Solver)");
+  t.Flag("enabled", &O::walls, &W::enabled,
+         "refine the keyframe poses with the straight walls they see");
+  t.Number("rounds", &O::walls, &W::rounds, Range::Closed(1, 100), "",
+           "association and optimisation, alternating");
+  t.Number("max_angle_rad", &O::walls, &W::max_angle_rad, Range::Closed(0, 1), "rad",
+           "a keyframe's segment belongs to a wall facing the same way within this ...");
+  t.Number("max_offset_m", &O::walls, &W::max_offset_m, Range::Positive(), "m",
+           "... whose line both its ends lie within this of ...");
+  t.Number("max_gap_m", &O::walls, &W::max_gap_m, Range::NonNegative(), "m",
+           "... and which it overlaps or comes this close to along it");
+  t.Number("correlated_points", &O::walls, &W::correlated_points, Range::Closed(1, 1e6), "",
+           "a segment end's standard deviation counts one of its points in this many ...");
+  t.Number("min_sigma_m", &O::walls, &W::min_sigma_m, Range::Positive(), "m",
+           "... and is never below this");
+  t.Number("huber_sigmas", &O::walls, &W::huber_sigmas, Range::Positive(), "",
+           "an end farther from its wall than this many standard deviations counts linearly");
+  return t;
+}
+
 config::OptionFile<O> SlamOptionFile() {
   const auto step = [](auto& o) -> auto& {
     return o.match;
@@ -119,7 +141,7 @@ config::OptionFile<O> SlamOptionFile() {
        MatchSection("step_match", "the ICP of a keyframe against the keyframes before it", step),
        LoopsSection(),
        MatchSection("loop_match", "the ICP of a keyframe against a place seen long ago", loop),
-       GraphSection()});
+       GraphSection(), WallsSection()});
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // loops closed by matching the new keyframe against places seen long ago
 // near where the graph puts it, accepted only where the match explains most
 // of the scan tightly, and entered through a robust loss; the pose graph
-// optimised with Ceres (PoseGraph) after each loop closed and at the end.
+// optimised with Ceres (PoseGraph) after each loop closed and at the end,
+// then, where enabled, refined with the walls the keyframes see (RefineWithWalls).
 // Scans between keyframes are matched against their keyframe's submap too
 // (odometry's step where that fails), without entering the graph. DDS-free.
 #pragma once
@@ -20,6 +21,7 @@
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/slam_core/pose_graph.hpp"
 #include "structloc/slam_core/scan_matcher.hpp"
+#include "structloc/slam_core/wall_refinement.hpp"
 
 namespace structloc::slam_core {
 
@@ -60,6 +62,7 @@ struct SlamOptions {
   // ICP from the graph's guess, pairing from farther away than a step's.
   ScanMatchOptions loop_match{30, 2.0, 0.15, 0.25, 0.03, 10.0, 0.01, 0.003};
   PoseGraphOptions graph;
+  WallRefinementOptions walls;
 
   // Throws std::invalid_argument naming the section and key of a value out of
   // range.
@@ -88,6 +91,7 @@ struct SlamStats {
   size_t loops_tried = 0;
   size_t loops_closed = 0;
   size_t optimisations = 0;
+  WallRefinementSummary walls;  // the refinement that ends SLAM, when enabled
 };
 
 class Slam {
@@ -113,6 +117,8 @@ class Slam {
     geometry::Pose2D offset;  // its pose in the keyframe's frame
   };
   void AddKeyframe(const SlamScan& scan);
+  // Appends the keyframe with its first estimate (and its segments).
+  void KeepKeyframe(const SlamScan& scan, const geometry::Pose2D& estimate);
   // The step from the last keyframe to `scan`: the match against the
   // keyframes before it, and whether it is good enough to take over
   // odometry's step.
@@ -131,6 +137,8 @@ class Slam {
   SlamOptions options_;
   std::vector<Keyframe> keyframes_;
   std::vector<geometry::Pose2D> poses_;  // keyframe estimates
+  // Each keyframe's straight segments, for the wall refinement (when enabled).
+  std::vector<std::vector<KeyframeSegment>> segments_;
   std::vector<PoseGraphEdge> edges_;
   std::vector<ScanEntry> scans_;
   // Every scan's odometric distance from its keyframe, summed since a loop

@@ -1,0 +1,204 @@
+// Pose-and-wall refinement (see header).
+#include "structloc/slam_core/wall_refinement.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "pose_graph_problem.hpp"
+#include "structloc/map_building/scan_segments.hpp"
+#include "structloc/map_building/wall_fitting.hpp"
+
+namespace structloc::slam_core {
+namespace {
+
+// A segment in the map frame as the current poses put it, its normal facing
+// the laser that saw it (the two faces of a thin wall are different walls).
+struct Sighting {
+  int keyframe = 0;
+  const KeyframeSegment* segment = nullptr;
+  Eigen::Vector2d a, b, normal;
+};
+
+// A wall of the building: the line normal . p = distance, its extent along
+// (-normal.y, normal.x), and the sightings given to it.
+struct Wall {
+  Eigen::Vector2d normal;
+  double distance = 0.0;
+  double lo = 0.0, hi = 0.0;
+  std::vector<const Sighting*> sightings;
+  Eigen::Vector2d Along() const { return {-normal.y(), normal.x()}; }
+};
+
+Sighting Place(int keyframe, const KeyframeSegment& segment, const geometry::Pose2D& pose) {
+  Sighting s;
+  s.keyframe = keyframe;
+  s.segment = &segment;
+  s.a = pose.Apply(segment.a);
+  s.b = pose.Apply(segment.b);
+  const Eigen::Vector2d d = (s.b - s.a).normalized();
+  s.normal = {-d.y(), d.x()};
+  if (s.normal.dot(pose.Translation() - s.a) < 0) s.normal = -s.normal;
+  return s;
+}
+
+// How far the sighting's farther end lies from the wall's line, or a
+// negative number when the sighting does not belong to the wall.
+double Offset(const Wall& wall, const Sighting& s, const WallRefinementOptions& o) {
+  if (wall.normal.dot(s.normal) < std::cos(o.max_angle_rad)) return -1;
+  const double offset = std::max(std::abs(wall.normal.dot(s.a) - wall.distance),
+                                 std::abs(wall.normal.dot(s.b) - wall.distance));
+  if (offset > o.max_offset_m) return -1;
+  const double sa = wall.Along().dot(s.a), sb = wall.Along().dot(s.b);
+  if (std::min(sa, sb) > wall.hi + o.max_gap_m || std::max(sa, sb) < wall.lo - o.max_gap_m)
+    return -1;
+  return offset;
+}
+
+// Greedy association, longest sightings first: each joins the wall it lies
+// nearest to, else starts one. A wall reaches only as far as the sightings
+// given to it so far, so stretches of one wall begun apart stay apart: the
+// walls tie together keyframes whose sightings overlap, not every pass along
+// a wall (joining those was tried and was worse: the maps guide).
+std::vector<Wall> Associate(const std::vector<Sighting>& sightings,
+                            const WallRefinementOptions& options) {
+  std::vector<size_t> order(sightings.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t i, size_t j) {
+    return (sightings[i].b - sightings[i].a).squaredNorm() >
+           (sightings[j].b - sightings[j].a).squaredNorm();
+  });
+  std::vector<Wall> walls;
+  for (size_t i : order) {
+    const Sighting& s = sightings[i];
+    Wall* best = nullptr;
+    double best_offset = INFINITY;
+    for (auto& w : walls) {
+      const double offset = Offset(w, s, options);
+      if (offset >= 0 && offset < best_offset) {
+        best = &w;
+        best_offset = offset;
+      }
+    }
+    if (!best) {
+      walls.push_back({s.normal, s.normal.dot(s.a), 0, 0, {}});
+      best = &walls.back();
+      best->lo = best->hi = best->Along().dot(s.a);
+    }
+    for (const auto& end : {s.a, s.b}) {
+      best->lo = std::min(best->lo, best->Along().dot(end));
+      best->hi = std::max(best->hi, best->Along().dot(end));
+    }
+    best->sightings.push_back(&s);
+  }
+  return walls;
+}
+
+// A wall's line through all its sightings' ends, its normal kept facing the
+// same way.
+std::array<double, 2> FitLine(const Wall& wall) {
+  std::vector<Eigen::Vector2d> ends;
+  for (const auto* s : wall.sightings) {
+    ends.push_back(s->a);
+    ends.push_back(s->b);
+  }
+  const auto fitted = map_building::FitWall(ends);
+  Eigen::Vector2d normal(std::cos(fitted.line.alpha), std::sin(fitted.line.alpha));
+  double distance = fitted.line.r;
+  if (normal.dot(wall.normal) < 0) {
+    normal = -normal;
+    distance = -distance;
+  }
+  return {std::atan2(normal.y(), normal.x()), distance};
+}
+
+bool SeenTwice(const Wall& wall) {
+  for (const auto* s : wall.sightings)
+    if (s->keyframe != wall.sightings.front()->keyframe) return true;
+  return false;
+}
+
+// A segment end (keyframe frame) against its wall's line (angle of the
+// normal, distance): the distance across, in standard deviations.
+struct WallEndError {
+  Eigen::Vector2d a, b;
+  double inv_sigma;
+
+  template <typename T>
+  bool operator()(const T* const pose, const T* const wall, T* residual) const {
+    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
+    const T nx = ceres::cos(wall[0]), ny = ceres::sin(wall[0]);
+    const Eigen::Vector2d* ends[2] = {&a, &b};
+    for (int i = 0; i < 2; ++i) {
+      const T x = c * T(ends[i]->x()) - s * T(ends[i]->y()) + pose[0];
+      const T y = s * T(ends[i]->x()) + c * T(ends[i]->y()) + pose[1];
+      residual[i] = (nx * x + ny * y - wall[1]) * T(inv_sigma);
+    }
+    return true;
+  }
+};
+
+double EndSigma(const KeyframeSegment& s, const WallRefinementOptions& o) {
+  // A fitted line's offset has variance rms^2 / n at the centroid and its
+  // ends, half a length away, about four times that.
+  const double independent = std::max(1.0, static_cast<double>(s.points) / o.correlated_points);
+  return std::max(o.min_sigma_m, 2.0 * s.rms_m / std::sqrt(independent));
+}
+
+}  // namespace
+
+std::vector<KeyframeSegment> FindKeyframeSegments(const std::vector<Eigen::Vector2d>& points) {
+  std::vector<KeyframeSegment> out;
+  for (const auto& range : map_building::ExtractScanSegments(points, {})) {
+    const std::vector<Eigen::Vector2d> run(points.begin() + static_cast<long>(range.first),
+                                           points.begin() + static_cast<long>(range.last));
+    const auto fitted = map_building::FitWall(run);
+    out.push_back({fitted.a, fitted.b, fitted.rms_m, fitted.points});
+  }
+  return out;
+}
+
+WallRefinementSummary RefineWithWalls(std::vector<geometry::Pose2D>& poses,
+                                      const std::vector<std::vector<KeyframeSegment>>& segments,
+                                      const std::vector<PoseGraphEdge>& edges,
+                                      const WallRefinementOptions& options,
+                                      const PoseGraphOptions& graph) {
+  if (segments.size() != poses.size())
+    throw std::invalid_argument("wall refinement: segments of " + std::to_string(segments.size()) +
+                                " keyframes for " + std::to_string(poses.size()) + " poses");
+  WallRefinementSummary summary;
+  if (poses.size() < 2) return summary;
+  for (int round = 0; round < options.rounds; ++round) {
+    std::vector<Sighting> sightings;
+    for (size_t k = 0; k < poses.size(); ++k)
+      for (const auto& s : segments[k])
+        sightings.push_back(Place(static_cast<int>(k), s, poses[k]));
+    const std::vector<Wall> walls = Associate(sightings, options);
+    internal::PoseBlocks x = internal::ToBlocks(poses);
+    std::vector<std::array<double, 2>> lines;
+    lines.reserve(walls.size());
+    ceres::Problem problem;
+    internal::AddEdges(edges, graph, problem, x);
+    summary.walls = summary.observations = 0;
+    for (const auto& wall : walls) {
+      if (!SeenTwice(wall)) continue;
+      lines.push_back(FitLine(wall));
+      ++summary.walls;
+      for (const auto* s : wall.sightings) {
+        ++summary.observations;
+        auto* cost = new ceres::AutoDiffCostFunction<WallEndError, 2, 3, 2>(
+            new WallEndError{s->segment->a, s->segment->b, 1.0 / EndSigma(*s->segment, options)});
+        problem.AddResidualBlock(cost, new ceres::HuberLoss(options.huber_sigmas),
+                                 x[s->keyframe].data(), lines.back().data());
+      }
+    }
+    const auto result = internal::Solve(graph, problem, x);
+    summary.usable = summary.usable && result.IsSolutionUsable();
+    internal::FromBlocks(x, poses);
+  }
+  return summary;
+}
+
+}  // namespace structloc::slam_core
