@@ -3,7 +3,8 @@
 // The pose graph alone leaves the path bent metres off the corridor; the two
 // straight walls every keyframe sees pull each pose back onto the corridor's
 // axis and its heading along it. A scan's segments are found as the map
-// builder finds them, and segments that do not match the poses are refused.
+// builder finds them; without walls the poses stay where the graph put them;
+// segments that do not match the poses are refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,6 +85,22 @@ TEST(WallRefinement, TheCorridorsWallsStraightenAPathBentByItsSteps) {
   for (size_t k = 0; k < poses.size(); ++k) {
     EXPECT_NEAR(poses[k].y, 0.0, 0.02) << "keyframe " << k;
     EXPECT_NEAR(poses[k].theta, 0.0, 0.2 * kPi / 180) << "keyframe " << k;
+  }
+}
+
+TEST(WallRefinement, WithoutWallsThePosesStayAtTheGraphsOptimum) {
+  const Corridor corridor;
+  std::vector<geometry::Pose2D> graph = corridor.AsMatched();
+  OptimisePoseGraph(graph, corridor.steps);
+  std::vector<geometry::Pose2D> refined = graph;
+  const std::vector<std::vector<KeyframeSegment>> none(refined.size());
+  const auto summary = RefineWithWalls(refined, none, corridor.steps, {}, {});
+  EXPECT_TRUE(summary.usable);
+  EXPECT_EQ(summary.walls, 0u);
+  for (size_t k = 0; k < graph.size(); ++k) {
+    EXPECT_NEAR(refined[k].x, graph[k].x, 1e-6);
+    EXPECT_NEAR(refined[k].y, graph[k].y, 1e-6);
+    EXPECT_NEAR(refined[k].theta, graph[k].theta, 1e-8);
   }
 }
 
