@@ -104,8 +104,9 @@ int MapBuildCommand(const Invocation& inv) {
     std::cout << "structloc map build: " << log.scans.size() << " scans (" << log.readings
               << " readings, " << log.out_of_range << " out of range";
     if (log.reader.malformed > 0) std::cout << ", " << log.reader.malformed << " malformed lines";
-    std::cout << ")\n  " << r.segments << " scan segments -> " << r.candidates
-              << " wall candidates (" << r.merged << " merged) -> " << r.pieces
+    std::cout << ")\n"
+              << map_building::DeskewText(log) << "  " << r.segments << " scan segments -> "
+              << r.candidates << " wall candidates (" << r.merged << " merged) -> " << r.pieces
               << " pieces split at gaps\n  dropped: " << r.too_few_scans << " seen from fewer than "
               << options.walls.min_scans << " scans, " << r.too_few_points << " with fewer than "
               << options.walls.min_points << " points, " << r.too_rough << " rougher than "

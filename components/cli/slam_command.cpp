@@ -170,6 +170,7 @@ int SlamCommand(const Invocation& inv) {
         "structloc slam: %zu scans in %.1f s: %zu keyframes (%zu steps on odometry alone), "
         "%zu loops closed of %zu tried\n",
         st.scans, seconds, st.keyframes, st.odometry_edges, st.loops_closed, st.loops_tried);
+    std::printf("%s", map_building::DeskewText(log).c_str());
     if (slam_options.walls.enabled)
       std::printf("  refined with %zu walls seen from two keyframes or more (%zu sightings)%s\n",
                   st.walls.walls, st.walls.observations,

@@ -4,17 +4,65 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 #include "structloc/config/strict_number.hpp"
 #include "structloc/config/strict_xml.hpp"
 #include "structloc/log_formats/carmen_reader.hpp"
 
 namespace structloc::map_building {
+namespace {
+
+// The widest gap between two scans whose poses still give the laser's motion
+// during one of them.
+constexpr double kMaxMotionGapS = 0.5;
+
+// Thesis 3.6, EQ 45: each scan's beams were measured from the laser moving
+// as it moves from this scan's pose to the next's (the previous's for the
+// last scan), linearly; every point is moved into the laser frame of the
+// first beam (the scan's stamp and pose). `beams[k][j]`: the beam of scan
+// k's point j; beam i was measured `time_increment` * i after the first.
+size_t Deskew(std::vector<PosedScan>& scans, const std::vector<std::vector<uint32_t>>& beams,
+              double time_increment) {
+  size_t deskewed = 0;
+  for (size_t k = 0; k < scans.size(); ++k) {
+    const auto usable = [&](size_t n) {
+      const double dt = std::abs(scans[n].stamp - scans[k].stamp);
+      return dt > 0.0 && dt <= kMaxMotionGapS;
+    };
+    size_t n = k + 1;
+    if (n >= scans.size() || !usable(n)) {
+      if (k == 0 || !usable(k - 1)) continue;
+      n = k - 1;
+    }
+    const geometry::Pose2D motion = geometry::Between(scans[k].laser_pose, scans[n].laser_pose);
+    const double per_s = 1.0 / (scans[n].stamp - scans[k].stamp);
+    for (size_t j = 0; j < scans[k].points.size(); ++j) {
+      const double f = per_s * time_increment * beams[k][j];
+      const geometry::Pose2D beam{f * motion.x, f * motion.y, f * motion.theta};
+      scans[k].points[j] = beam.Apply(scans[k].points[j]);
+    }
+    ++deskewed;
+  }
+  return deskewed;
+}
+
+}  // namespace
+
+std::string DeskewText(const PosedScanLog& log) {
+  if (log.deskewed == 0) return "";
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "  %zu scans de-skewed by the log's beam timing (%.4f ms between beams)\n",
+                log.deskewed, 1000.0 * log.time_increment_s);
+  return text;
+}
 
 PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options) {
   log_formats::CarmenReader reader(log_path);
   log_formats::CarmenRecord record;
   PosedScanLog log;
+  std::vector<std::vector<uint32_t>> beams;  // of each scan's points
   while (reader.Next(record)) {
     if (record.kind != log_formats::CarmenRecord::Kind::kScan) continue;
     const auto& pose = record.laser_pose ? record.laser_pose : record.robot_pose;
@@ -32,6 +80,7 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
     scan.angular_resolution = record.angular_resolution;
     scan.beams = record.ranges.size();
     scan.points.reserve(record.ranges.size());
+    auto& beam = beams.emplace_back();
     for (size_t i = 0; i < record.ranges.size(); ++i) {
       const double r = record.ranges[i];
       ++log.readings;
@@ -43,10 +92,13 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
       const double a = record.start_angle + static_cast<double>(i) * record.angular_resolution;
       scan.points.emplace_back(r * std::cos(a), r * std::sin(a));
       scan.ranges.push_back(r);
+      beam.push_back(static_cast<uint32_t>(i));
     }
     log.scans.push_back(std::move(scan));
   }
   log.reader = reader.Stats();
+  log.time_increment_s = reader.LaserTimeIncrement();
+  if (log.time_increment_s > 0.0) log.deskewed = Deskew(log.scans, beams, log.time_increment_s);
   if (log.scans.empty()) {
     throw config::ConfigError(log_path + ": no laser scan with a pose (FLASER, ROBOTLASER) in " +
                               std::to_string(reader.Stats().lines) + " lines");

@@ -450,6 +450,45 @@ TEST(PosedScans, ALogWithoutScansIsAnErrorNamingTheFile) {
   EXPECT_THROW(ReadPosedScans(dir / "missing.log", {}), std::runtime_error);
 }
 
+// A laser driving at 1 m/s towards a wall 5 m ahead, its beams 0.5 ms apart
+// (90 ms a sweep, 9 cm of travel), as FLASER lines; with `time_increment`
+// the log states its beam timing as structloc's recordings do.
+std::string ApproachingWallLog(bool time_increment) {
+  std::ostringstream log;
+  log.precision(9);
+  if (time_increment) log << "PARAM structloc_laser_time_increment 0.0005\n";
+  for (int k = 0; k < 3; ++k) {
+    const double t = 0.1 * k;
+    log << "FLASER 181";
+    for (int i = 0; i <= 180; ++i) {
+      const double bearing = (i - 90) * kPi / 180;
+      const double x = t + 0.0005 * i;  // where the laser was when beam i left it
+      log << ' ' << (std::cos(bearing) > 0.5 ? (5.0 - x) / std::cos(bearing) : 80.0);
+    }
+    log << ' ' << t << " 0 0 " << t << " 0 0 " << t << " host " << t << "\n";
+  }
+  return log.str();
+}
+
+TEST(PosedScans, AScanTakenWhileMovingIsDeskewedWhereTheLogGivesItsBeamTiming) {
+  const testing::TempDir dir;
+  for (const bool timed : {false, true}) {
+    const auto log = ReadPosedScans(dir.Write("approach.log", ApproachingWallLog(timed)), {});
+    ASSERT_EQ(log.scans.size(), 3u);
+    EXPECT_EQ(log.deskewed, timed ? 3u : 0u);
+    for (const auto& scan : log.scans) {
+      // In the first beam's frame the wall lies 5 m ahead of where that beam left.
+      double worst = 0.0;
+      for (const auto& p : scan.points)
+        worst = std::max(worst, std::abs(p.x() - (5.0 - scan.laser_pose.x)));
+      if (timed)
+        EXPECT_LT(worst, 1e-6) << "scan " << scan.index;
+      else
+        EXPECT_GT(worst, 0.05) << "scan " << scan.index;  // the skew, left in
+    }
+  }
+}
+
 TEST(MapBuildOptions, TheShippedFileHoldsTheDefaultsAndBadFilesNameTheKey) {
   const auto shipped = LoadMapBuildOptions(testing::SourcePath("maps/map_build/sick_180deg.xml"));
   const MapBuildOptions defaults;

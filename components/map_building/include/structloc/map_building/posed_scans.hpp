@@ -43,13 +43,23 @@ struct PosedScanLog {
   size_t out_of_range = 0;          // of them, dropped by the range limits
   log_formats::CarmenStats reader;  // the lines read, and those left out as malformed
   size_t scans_without_pose = 0;    // laser lines with no pose at all (raw RAWLASER lines)
+  // Where the log gives its laser's beam timing (structloc's recordings do),
+  // the time between beams, and the scans de-skewed with it (moved into the
+  // first beam's laser frame by the motion to the neighbouring scan's pose).
+  double time_increment_s = 0.0;
+  size_t deskewed = 0;
 };
 
 // Reads every scan of the log with its laser pose (the line's laser pose, else
-// the robot pose: the corrected logs have no laser offset). Throws
+// the robot pose: the corrected logs have no laser offset), de-skewed where
+// the log gives its beam timing (thesis 3.6, EQ 45). Throws
 // std::runtime_error naming the file when it cannot be read, and
 // config::ConfigError when it holds no scan with a pose.
 PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options);
+
+// "  N scans de-skewed by the log's beam timing (... ms between beams)\n", or
+// "" where the log gives none: for the commands that read posed scans.
+std::string DeskewText(const PosedScanLog& log);
 
 // Keeps the scans numbered first .. last - 1 (their `index`), so that a map can
 // be built from one part of a recording and checked or localised on another;
