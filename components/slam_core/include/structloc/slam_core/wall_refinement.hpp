@@ -18,8 +18,8 @@
 namespace structloc::slam_core {
 
 struct WallRefinementOptions {
-  bool enabled = true;
-  int rounds = 3;  // association and optimisation, alternating
+  bool enabled = true;  // false: SLAM ends with the pose graph's optimum
+  int rounds = 3;       // association and optimisation, alternating
   // A keyframe's segment belongs to a wall facing the same way within this ...
   double max_angle_rad = 0.05;
   // ... whose line both its ends lie within this of ...
