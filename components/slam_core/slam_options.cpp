@@ -123,8 +123,9 @@ Table WallsSection() {
            "a segment end's standard deviation counts one of its points in this many ...");
   t.Number("min_sigma_m", &O::walls, &W::min_sigma_m, Range::Positive(), "m",
            "... and is never below this");
-  t.Number("huber_sigmas", &O::walls, &W::huber_sigmas, Range::Positive(), "",
-           "an end farther from its wall than this many standard deviations counts linearly");
+  t.Number("robust_scale_sigmas", &O::walls, &W::robust_scale_sigmas, Range::Positive(), "",
+           "segment ends go through a Cauchy loss of this scale, in their own standard "
+           "deviations (a segment given to the wrong wall weighs little)");
   return t;
 }
 

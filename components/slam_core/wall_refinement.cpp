@@ -57,11 +57,48 @@ double Offset(const Wall& wall, const Sighting& s, const WallRefinementOptions& 
   return offset;
 }
 
+// Whether `other`'s stretch of wall lies on `wall`: facing the same way, its
+// ends near `wall`'s line, overlapping it or near along it.
+bool SameWall(const Wall& wall, const Wall& other, const WallRefinementOptions& o) {
+  if (wall.normal.dot(other.normal) < std::cos(o.max_angle_rad)) return false;
+  if (other.lo > wall.hi + o.max_gap_m || other.hi < wall.lo - o.max_gap_m) return false;
+  for (const double s : {other.lo, other.hi}) {
+    const Eigen::Vector2d end = other.distance * other.normal + s * other.Along();
+    if (std::abs(wall.normal.dot(end) - wall.distance) > o.max_offset_m) return false;
+  }
+  return true;
+}
+
+// Walls begun apart (a sighting's wall grows only as far as the sightings
+// given to it so far reach) joined where they turn out to be one.
+void JoinWalls(std::vector<Wall>& walls, const WallRefinementOptions& options) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (size_t i = 0; i < walls.size(); ++i) {
+      for (size_t j = i + 1; j < walls.size();) {
+        if (!SameWall(walls[i], walls[j], options)) {
+          ++j;
+          continue;
+        }
+        // Extents are along each wall's own direction, the same within max_angle_rad.
+        const Eigen::Vector2d along = walls[j].Along();
+        for (const double s : {walls[j].lo, walls[j].hi}) {
+          const double t = walls[i].Along().dot(walls[j].distance * walls[j].normal + s * along);
+          walls[i].lo = std::min(walls[i].lo, t);
+          walls[i].hi = std::max(walls[i].hi, t);
+        }
+        walls[i].sightings.insert(walls[i].sightings.end(), walls[j].sightings.begin(),
+                                  walls[j].sightings.end());
+        walls.erase(walls.begin() + static_cast<long>(j));
+        joined = true;
+      }
+    }
+  }
+}
+
 // Greedy association, longest sightings first: each joins the wall it lies
-// nearest to, else starts one. A wall reaches only as far as the sightings
-// given to it so far, so stretches of one wall begun apart stay apart: the
-// walls tie together keyframes whose sightings overlap, not every pass along
-// a wall (joining those was tried and was worse: the maps guide).
+// nearest to, else starts one; then walls that are one are joined, so a wall
+// driven past twice ties both passes (a loop closure, hence the Cauchy loss).
 std::vector<Wall> Associate(const std::vector<Sighting>& sightings,
                             const WallRefinementOptions& options) {
   std::vector<size_t> order(sightings.size());
@@ -93,6 +130,7 @@ std::vector<Wall> Associate(const std::vector<Sighting>& sightings,
     }
     best->sightings.push_back(&s);
   }
+  JoinWalls(walls, options);
   return walls;
 }
 
@@ -190,7 +228,7 @@ WallRefinementSummary RefineWithWalls(std::vector<geometry::Pose2D>& poses,
         ++summary.observations;
         auto* cost = new ceres::AutoDiffCostFunction<WallEndError, 2, 3, 2>(
             new WallEndError{s->segment->a, s->segment->b, 1.0 / EndSigma(*s->segment, options)});
-        problem.AddResidualBlock(cost, new ceres::HuberLoss(options.huber_sigmas),
+        problem.AddResidualBlock(cost, new ceres::CauchyLoss(options.robust_scale_sigmas),
                                  x[s->keyframe].data(), lines.back().data());
       }
     }

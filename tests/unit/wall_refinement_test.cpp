@@ -80,7 +80,7 @@ TEST(WallRefinement, TheCorridorsWallsStraightenAPathBentByItsSteps) {
 
   const auto summary = RefineWithWalls(poses, corridor.segments, corridor.steps, {}, {});
   EXPECT_TRUE(summary.usable);
-  EXPECT_GE(summary.walls, 2u);  // a wall's stretches begun apart may stay apart
+  EXPECT_EQ(summary.walls, 2u);
   EXPECT_EQ(summary.observations, 2 * corridor.truth.size());
   for (size_t k = 0; k < poses.size(); ++k) {
     EXPECT_NEAR(poses[k].y, 0.0, 0.02) << "keyframe " << k;

@@ -3,9 +3,10 @@
 // between loop closures bends the corridors it drives along. A straight wall
 // seen from many keyframes ties them all to one line. Each keyframe's straight
 // segments (the thesis' line fits, 3.5.2, EQ 18) are associated with the
-// building's walls, and the keyframe poses and the walls' lines (r, alpha) are
-// optimised together with the graph's edges (Ceres Solver); association and
-// optimisation alternate for a few rounds. DDS-free.
+// building's walls (a wall seen on two passes ties them, as a loop closure
+// does), and the keyframe poses and the walls' lines (r, alpha) are optimised
+// together with the graph's edges (Ceres Solver, a robust loss); association
+// and optimisation alternate for a few rounds. DDS-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,9 +32,10 @@ struct WallRefinementOptions {
   // wall), never below min_sigma_m.
   double correlated_points = 10.0;
   double min_sigma_m = 0.01;
-  // An end farther from its wall than this many standard deviations counts
-  // linearly (Huber loss): a segment given to the wrong wall pulls less.
-  double huber_sigmas = 2.0;
+  // The Cauchy loss's scale, in standard deviations: an end this far from
+  // its wall counts half as much as a quadratic one, and a segment given to
+  // the wrong wall (a wrong loop closure, across passes) little.
+  double robust_scale_sigmas = 2.0;
 };
 
 // A straight segment of one keyframe's scan, in the keyframe's frame.
