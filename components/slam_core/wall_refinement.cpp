@@ -30,6 +30,8 @@ struct Wall {
   double lo = 0.0, hi = 0.0;
   std::vector<const Sighting*> sightings;
   Eigen::Vector2d Along() const { return {-normal.y(), normal.x()}; }
+  // The point of its line `s` along it.
+  Eigen::Vector2d At(double s) const { return distance * normal + s * Along(); }
 };
 
 Sighting Place(int keyframe, const KeyframeSegment& segment, const geometry::Pose2D& pose) {
@@ -44,13 +46,22 @@ Sighting Place(int keyframe, const KeyframeSegment& segment, const geometry::Pos
   return s;
 }
 
+// How far the farther of a stretch's ends `a`, `b` lies from the wall's line,
+// or a negative number when the stretch faces (`normal`) another way or lies
+// farther than max_offset_m.
+double FartherEndOffset(const Wall& wall, const Eigen::Vector2d& normal, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b, const WallRefinementOptions& o) {
+  if (wall.normal.dot(normal) < std::cos(o.max_angle_rad)) return -1;
+  const double offset = std::max(std::abs(wall.normal.dot(a) - wall.distance),
+                                 std::abs(wall.normal.dot(b) - wall.distance));
+  return offset > o.max_offset_m ? -1 : offset;
+}
+
 // How far the sighting's farther end lies from the wall's line, or a
 // negative number when the sighting does not belong to the wall.
 double Offset(const Wall& wall, const Sighting& s, const WallRefinementOptions& o) {
-  if (wall.normal.dot(s.normal) < std::cos(o.max_angle_rad)) return -1;
-  const double offset = std::max(std::abs(wall.normal.dot(s.a) - wall.distance),
-                                 std::abs(wall.normal.dot(s.b) - wall.distance));
-  if (offset > o.max_offset_m) return -1;
+  const double offset = FartherEndOffset(wall, s.normal, s.a, s.b, o);
+  if (offset < 0) return -1;
   const double sa = wall.Along().dot(s.a), sb = wall.Along().dot(s.b);
   if (std::min(sa, sb) > wall.hi + o.max_gap_m || std::max(sa, sb) < wall.lo - o.max_gap_m)
     return -1;
@@ -60,13 +71,8 @@ double Offset(const Wall& wall, const Sighting& s, const WallRefinementOptions& 
 // Whether `other`'s stretch of wall lies on `wall`: facing the same way, its
 // ends near `wall`'s line, overlapping it or near along it.
 bool SameWall(const Wall& wall, const Wall& other, const WallRefinementOptions& o) {
-  if (wall.normal.dot(other.normal) < std::cos(o.max_angle_rad)) return false;
   if (other.lo > wall.hi + o.max_gap_m || other.hi < wall.lo - o.max_gap_m) return false;
-  for (const double s : {other.lo, other.hi}) {
-    const Eigen::Vector2d end = other.distance * other.normal + s * other.Along();
-    if (std::abs(wall.normal.dot(end) - wall.distance) > o.max_offset_m) return false;
-  }
-  return true;
+  return FartherEndOffset(wall, other.normal, other.At(other.lo), other.At(other.hi), o) >= 0;
 }
 
 // Walls begun apart (a sighting's wall grows only as far as the sightings
@@ -81,9 +87,8 @@ void JoinWalls(std::vector<Wall>& walls, const WallRefinementOptions& options) {
           continue;
         }
         // Extents are along each wall's own direction, the same within max_angle_rad.
-        const Eigen::Vector2d along = walls[j].Along();
         for (const double s : {walls[j].lo, walls[j].hi}) {
-          const double t = walls[i].Along().dot(walls[j].distance * walls[j].normal + s * along);
+          const double t = walls[i].Along().dot(walls[j].At(s));
           walls[i].lo = std::min(walls[i].lo, t);
           walls[i].hi = std::max(walls[i].hi, t);
         }
@@ -215,7 +220,7 @@ WallRefinementSummary RefineWithWalls(std::vector<geometry::Pose2D>& poses,
         sightings.push_back(Place(static_cast<int>(k), s, poses[k]));
     const std::vector<Wall> walls = Associate(sightings, options);
     internal::PoseBlocks x = internal::ToBlocks(poses);
-    std::vector<std::array<double, 2>> lines;
+    std::vector<std::array<double, 2>> lines;  // Ceres keeps their addresses: reserved
     lines.reserve(walls.size());
     ceres::Problem problem;
     internal::AddEdges(edges, graph, problem, x);
