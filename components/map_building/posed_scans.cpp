@@ -22,6 +22,8 @@ constexpr double kMaxMotionGapS = 0.5;
 // last scan), linearly; every point is moved into the laser frame of the
 // first beam (the scan's stamp and pose). `beams[k][j]`: the beam of scan
 // k's point j; beam i was measured `time_increment` * i after the first.
+// (The localiser's LinearBeamMotion is the same motion for a whole scan in
+// its own scan type; map building does not depend on the localiser.)
 size_t Deskew(std::vector<PosedScan>& scans, const std::vector<std::vector<uint32_t>>& beams,
               double time_increment) {
   size_t deskewed = 0;

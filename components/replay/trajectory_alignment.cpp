@@ -81,10 +81,7 @@ std::optional<TrajectoryError> CompareAligned(const std::vector<log_formats::Sta
 
 std::vector<log_formats::StampedPose> Moved(const std::vector<log_formats::StampedPose>& trajectory,
                                             const geometry::Pose2D& motion) {
-  std::vector<log_formats::StampedPose> out;
-  out.reserve(trajectory.size());
-  for (const auto& p : trajectory) out.push_back({p.stamp, geometry::Compose(motion, p.pose)});
-  return out;
+  return Moved(trajectory, Similarity{motion, 1.0});
 }
 
 std::vector<log_formats::StampedPose> Moved(const std::vector<log_formats::StampedPose>& trajectory,
