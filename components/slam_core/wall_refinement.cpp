@@ -47,32 +47,24 @@ Sighting Place(int keyframe, const KeyframeSegment& segment, const geometry::Pos
 }
 
 // How far the farther of a stretch's ends `a`, `b` lies from the wall's line,
-// or a negative number when the stretch faces (`normal`) another way or lies
-// farther than max_offset_m.
-double FartherEndOffset(const Wall& wall, const Eigen::Vector2d& normal, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b, const WallRefinementOptions& o) {
+// or a negative number when the stretch does not belong to the wall: it faces
+// (`normal`) another way, lies farther than max_offset_m, or neither overlaps
+// the wall nor comes within max_gap_m along it.
+double StretchOffset(const Wall& wall, const Eigen::Vector2d& normal, const Eigen::Vector2d& a,
+                     const Eigen::Vector2d& b, const WallRefinementOptions& o) {
   if (wall.normal.dot(normal) < std::cos(o.max_angle_rad)) return -1;
   const double offset = std::max(std::abs(wall.normal.dot(a) - wall.distance),
                                  std::abs(wall.normal.dot(b) - wall.distance));
-  return offset > o.max_offset_m ? -1 : offset;
-}
-
-// How far the sighting's farther end lies from the wall's line, or a
-// negative number when the sighting does not belong to the wall.
-double Offset(const Wall& wall, const Sighting& s, const WallRefinementOptions& o) {
-  const double offset = FartherEndOffset(wall, s.normal, s.a, s.b, o);
-  if (offset < 0) return -1;
-  const double sa = wall.Along().dot(s.a), sb = wall.Along().dot(s.b);
+  if (offset > o.max_offset_m) return -1;
+  const double sa = wall.Along().dot(a), sb = wall.Along().dot(b);
   if (std::min(sa, sb) > wall.hi + o.max_gap_m || std::max(sa, sb) < wall.lo - o.max_gap_m)
     return -1;
   return offset;
 }
 
-// Whether `other`'s stretch of wall lies on `wall`: facing the same way, its
-// ends near `wall`'s line, overlapping it or near along it.
+// Whether `other`'s stretch of wall lies on `wall`.
 bool SameWall(const Wall& wall, const Wall& other, const WallRefinementOptions& o) {
-  if (other.lo > wall.hi + o.max_gap_m || other.hi < wall.lo - o.max_gap_m) return false;
-  return FartherEndOffset(wall, other.normal, other.At(other.lo), other.At(other.hi), o) >= 0;
+  return StretchOffset(wall, other.normal, other.At(other.lo), other.At(other.hi), o) >= 0;
 }
 
 // Walls begun apart (a sighting's wall grows only as far as the sightings
@@ -118,7 +110,7 @@ std::vector<Wall> Associate(const std::vector<Sighting>& sightings,
     Wall* best = nullptr;
     double best_offset = INFINITY;
     for (auto& w : walls) {
-      const double offset = Offset(w, s, options);
+      const double offset = StretchOffset(w, s.normal, s.a, s.b, options);
       if (offset >= 0 && offset < best_offset) {
         best = &w;
         best_offset = offset;
