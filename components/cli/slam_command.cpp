@@ -166,10 +166,11 @@ int SlamCommand(const Invocation& inv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& st = slam.Stats();
-    std::printf(
-        "structloc slam: %zu scans in %.1f s: %zu keyframes (%zu steps on odometry alone), "
-        "%zu loops closed of %zu tried\n",
-        st.scans, seconds, st.keyframes, st.odometry_edges, st.loops_closed, st.loops_tried);
+    std::printf("structloc slam: %zu scans in %.1f s: %zu keyframes (%zu steps on odometry alone",
+                st.scans, seconds, st.keyframes, st.odometry_edges);
+    if (slam_options.partial_matches)
+      std::printf(", %zu on odometry beside a match along a corridor", st.partial_matches);
+    std::printf("), %zu loops closed of %zu tried\n", st.loops_closed, st.loops_tried);
     std::printf("%s", map_building::DeskewText(log).c_str());
     if (slam_options.walls.enabled)
       std::printf("  refined with %zu walls seen from two keyframes or more (%zu sightings)%s\n",

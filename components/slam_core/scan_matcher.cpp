@@ -9,6 +9,10 @@
 namespace structloc::slam_core {
 namespace {
 
+// A position direction counts as pinned when the pairs' normal matrix holds
+// at least this share of their number along it.
+constexpr double kPinnedShare = 0.05;
+
 // Every point of `points` within `radius` of `centre`, through the cells.
 template <class Visit>
 void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, double cell_m,
@@ -38,6 +42,22 @@ bool Pair(const ReferencePoints& reference, const geometry::Pose2D& pose, double
   *e = n.dot(q - reference.Point(i));
   *j = {n.x(), n.y(), n.dot(Eigen::Vector2d(-s * p.x() - c * p.y(), c * p.x() - s * p.y()))};
   return true;
+}
+
+// The Gauss-Newton step for normal matrix `h` and gradient `g` over pairs of
+// total weight `weight`; with `hold_unpinned`, where the pairs pin one
+// direction of the position only, solved in the pinned directions (that one
+// and the heading) alone.
+Eigen::Vector3d Step(const Eigen::Matrix3d& h, const Eigen::Vector3d& g, double weight,
+                     bool hold_unpinned) {
+  if (!hold_unpinned) return -h.ldlt().solve(g);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> xy(h.topLeftCorner<2, 2>());
+  if (xy.eigenvalues()(0) > kPinnedShare * weight) return -h.ldlt().solve(g);
+  Eigen::Matrix<double, 3, 2> pinned = Eigen::Matrix<double, 3, 2>::Zero();
+  pinned.block<2, 1>(0, 0) = xy.eigenvectors().col(1);
+  pinned(2, 1) = 1.0;
+  const Eigen::Matrix2d reduced = pinned.transpose() * h * pinned;
+  return -pinned * reduced.ldlt().solve(pinned.transpose() * g);
 }
 
 }  // namespace
@@ -107,6 +127,7 @@ ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::V
     const double c = std::cos(pose.theta), s = std::sin(pose.theta);
     Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    double weight = 0.0;
     for (const auto& p : points) {
       double e = 0.0;
       Eigen::Vector3d j;
@@ -114,9 +135,10 @@ ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::V
       const double w = std::abs(e) <= huber ? 1.0 : huber / std::abs(e);
       h += w * j * j.transpose();
       g += w * j * e;
+      weight += w;
     }
     if (h.determinant() <= 1e-12) break;
-    const Eigen::Vector3d step = -h.ldlt().solve(g);
+    const Eigen::Vector3d step = Step(h, g, weight, options.hold_unpinned);
     pose = {pose.x + step(0), pose.y + step(1), geometry::WrapAngle(pose.theta + step(2))};
     if (f >= 1.0 && step.head<2>().norm() < 1e-5 && std::abs(step(2)) < 1e-6) break;
   }
@@ -137,7 +159,7 @@ ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::V
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> xy(hessian.topLeftCorner<2, 2>());
   // Pinned in every direction: walls of more than one direction, each seen
   // by a good share of the pairs.
-  match.constrained = match.pairs > 10 && xy.eigenvalues()(0) > 0.05 * match.pairs &&
+  match.constrained = match.pairs > 10 && xy.eigenvalues()(0) > kPinnedShare * match.pairs &&
                       hessian(2, 2) > 0.0 && std::abs(hessian.determinant()) > 1e-9;
   if (match.pairs > 10) {
     // Along a corridor the walls pin nothing: the covariance there grows as

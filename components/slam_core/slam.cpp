@@ -16,6 +16,7 @@ Eigen::Matrix3d Information(const Eigen::Matrix3d& covariance) {
 
 Slam::Slam(const SlamOptions& options) : options_(options) {
   options_.Validate();
+  options_.match.hold_unpinned = options_.partial_matches;
 }
 
 void Slam::Add(const SlamScan& scan) {
@@ -45,9 +46,12 @@ Slam::Step Slam::MatchStep(const SlamScan& scan) {
   const double travel = step.Translation().norm();
   travel_since_loop_m_ += travel;
   const geometry::Pose2D correction = geometry::Between(step, out.match.pose);
-  out.taken = out.match.constrained && out.match.inlier_share >= options_.min_match_share &&
-              correction.Translation().norm() <=
-                  options_.max_match_correction_m + options_.max_match_correction_share * travel;
+  const bool agrees =
+      out.match.inlier_share >= options_.min_match_share &&
+      correction.Translation().norm() <=
+          options_.max_match_correction_m + options_.max_match_correction_share * travel;
+  out.taken = agrees && out.match.constrained;
+  out.partial = agrees && !out.match.constrained && options_.partial_matches;
   return out;
 }
 
@@ -80,7 +84,7 @@ void Slam::AddKeyframe(const SlamScan& scan) {
     edge.measured = matched.match.pose;
     edge.information = Information(matched.match.covariance);
   } else {
-    ++stats_.odometry_edges;
+    if (!matched.partial) ++stats_.odometry_edges;
     edge.measured = step;
     const double sxy =
         std::max(options_.odometry_min_sigma_xy_m, options_.odometry_sigma_per_m * travel);
@@ -91,7 +95,18 @@ void Slam::AddKeyframe(const SlamScan& scan) {
         Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (st * st)).asDiagonal();
   }
   edges_.push_back(edge);
-  KeepKeyframe(scan, geometry::Compose(poses_[last], edge.measured));
+  if (matched.partial) {
+    // What the match pins, beside odometry's step (which pins the rest); the
+    // match places the keyframe, so that the next keyframes are not matched
+    // against a submap bent by odometry's heading drift.
+    PoseGraphEdge partial = edge;
+    partial.measured = matched.match.pose;
+    partial.information = Information(matched.match.covariance);
+    edges_.push_back(partial);
+    ++stats_.partial_matches;
+  }
+  KeepKeyframe(
+      scan, geometry::Compose(poses_[last], matched.partial ? matched.match.pose : edge.measured));
   CloseLoops(last + 1);
 }
 

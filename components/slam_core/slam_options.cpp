@@ -34,6 +34,11 @@ Table StepsSection() {
            "... and moves odometry's step by at most this ...");
   t.Number("max_match_correction_share", &O::max_match_correction_share, Range::NonNegative(), "",
            "... plus this share of the step's length");
+  t.Flag("partial_matches", &O::partial_matches,
+         "a match that passes those gates but does not pin every direction (along a corridor) "
+         "enters beside odometry's step and places the keyframe, its ICP holding odometry's "
+         "position along the corridor; false: odometry's step alone (for odometry that drifts "
+         "in heading more than the walls let a match)");
   t.Number("odometry_sigma_per_m", &O::odometry_sigma_per_m, Range::Positive(), "m/m",
            "odometry's noise per metre driven, where no match is taken");
   t.Number("odometry_sigma_per_rad", &O::odometry_sigma_per_rad, Range::NonNegative(), "",

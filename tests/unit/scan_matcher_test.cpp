@@ -1,7 +1,8 @@
 // MatchScan (scan_matcher.hpp): a scan of a room taken 0.3 m and 8 deg from
 // where the guess puts it is matched back to within millimetres, the match
 // explains all of it and pins every direction; in a corridor the match says
-// that it pins nothing along the corridor (a covariance that is large there).
+// that it pins nothing along the corridor (a covariance that is large there),
+// and, held there, keeps the guess's position along it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -62,6 +63,29 @@ TEST(ScanMatcher, AlongACorridorTheMatchPinsNothing) {
   EXPECT_NEAR(match.pose.y, 0.05, 0.005) << "across the corridor it is pinned";
   EXPECT_GT(match.covariance(0, 0), 1000 * match.covariance(1, 1)) << "along it, not";
   EXPECT_LE(match.covariance(1, 1), 0.01 * 0.01 + 1e-12);
+}
+
+TEST(ScanMatcher, AlongACorridorAHeldMatchKeepsTheGuessAlongIt) {
+  std::mt19937 rng(3);
+  // A corridor with a door jamb too short to pin the position along it.
+  const auto corridor = [&](const geometry::Pose2D& pose) {
+    auto points = Box(-10, -1, 10, 1, pose, rng, false);
+    for (double y = 1.0; y >= 0.5; y -= 0.02) points.push_back(pose.ApplyInverse({3.0, y}));
+    return points;
+  };
+  const ReferencePoints reference(corridor({}), {});
+  const geometry::Pose2D truth{0.0, 0.05, 0.01};
+  const auto scan = corridor(truth);
+  const geometry::Pose2D guess{0.4, 0.0, 0.0};
+  ScanMatchOptions held;
+  held.hold_unpinned = true;
+  const auto match = MatchScan(reference, scan, guess, held);
+  EXPECT_FALSE(match.constrained);
+  EXPECT_NEAR(match.pose.x, guess.x, 0.005) << "held along the corridor";
+  EXPECT_NEAR(match.pose.y, truth.y, 0.005);
+  EXPECT_NEAR(match.pose.theta, truth.theta, 0.001);
+  EXPECT_LT(MatchScan(reference, scan, guess).pose.x, 0.2)
+      << "not held, the jamb alone pulls the match along the corridor";
 }
 
 }  // namespace

@@ -27,6 +27,11 @@ struct ScanMatchOptions {
   double correlated_points = 10.0;
   double min_sigma_xy_m = 0.01;  // the covariance never claims better than these
   double min_sigma_theta_rad = 0.003;
+  // Where the pairs pin one direction of the position only (a corridor), the
+  // match keeps the guess's position along it instead of sliding, each
+  // update solved in the directions pinned (solution remapping, Zhang, Kaess
+  // and Singh 2016). Slam sets it for its step matches with partial matches.
+  bool hold_unpinned = false;
 };
 
 struct ScanMatch {

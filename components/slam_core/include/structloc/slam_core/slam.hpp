@@ -1,7 +1,8 @@
 // SLAM from raw odometry and scans (thesis 6.5.5: the robot maps its own
 // building): a keyframe every few decimetres of travel, matched against the
 // keyframes just before it (point-to-line ICP, ScanMatcher) for a relative
-// pose with its covariance, odometry's step where the match pins too little;
+// pose with its covariance, odometry's step where the match pins too little
+// (or, with partial_matches, odometry's step beside what the match pins);
 // loops closed by matching the new keyframe against places seen long ago
 // near where the graph puts it, accepted only where the match explains most
 // of the scan tightly, and entered through a robust loss; the pose graph
@@ -35,6 +36,12 @@ struct SlamOptions {
   double min_match_share = 0.5;
   double max_match_correction_m = 0.3;
   double max_match_correction_share = 0.5;
+  // A match that passes those gates but pins some directions only (along a
+  // corridor) is dropped for odometry's step (false), or enters the graph
+  // beside it and places the keyframe (true), its ICP holding odometry's
+  // position along what it does not pin (ScanMatchOptions::hold_unpinned):
+  // for odometry that drifts in heading more than the walls let a match.
+  bool partial_matches = false;
   // Odometry's standard deviation (the edge where no match pins the step):
   // position per metre driven, heading per radian turned plus per metre
   // driven, never below the floors.
@@ -87,7 +94,8 @@ struct SlamScan {
 struct SlamStats {
   size_t scans = 0;
   size_t keyframes = 0;
-  size_t odometry_edges = 0;  // steps no match pinned
+  size_t odometry_edges = 0;   // steps no match pinned
+  size_t partial_matches = 0;  // steps on odometry beside a partial match (partial_matches)
   size_t loops_tried = 0;
   size_t loops_closed = 0;
   size_t optimisations = 0;
@@ -126,6 +134,7 @@ class Slam {
     geometry::Pose2D odometry;
     ScanMatch match;
     bool taken = false;
+    bool partial = false;  // passes the gates without pinning every direction
     geometry::Pose2D Pose() const { return taken ? match.pose : odometry; }
   };
   Step MatchStep(const SlamScan& scan);
