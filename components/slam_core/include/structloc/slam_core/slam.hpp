@@ -134,7 +134,7 @@ class Slam {
     geometry::Pose2D odometry;
     ScanMatch match;
     bool taken = false;
-    bool partial = false;  // passes the gates without pinning every direction
+    bool partial = false;  // with partial_matches: passes the gates, pins not every direction
     geometry::Pose2D Pose() const { return taken ? match.pose : odometry; }
   };
   Step MatchStep(const SlamScan& scan);
