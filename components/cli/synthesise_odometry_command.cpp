@@ -1,6 +1,7 @@
 // "structloc synthesise-odometry --log CORRECTED.log --out EVAL.log --truth
 // TRUTH.tum [--scale-error X] [--heading-drift DEG_PER_M] [--noise-xy M]
-// [--noise-theta DEG] [--seed N] [--restamp SPEED] [--scans A:B]": turns a recording whose
+// [--noise-theta DEG] [--turn-scale-error X] [--noise-theta-turn DEG] [--seed N]
+// [--restamp SPEED] [--scans A:B]": turns a recording whose
 // poses are SLAM-corrected into an evaluation log for `structloc replay`: the
 // same scans, with odometry re-synthesised from the corrected poses with
 // documented systematic errors and noise (none: the corrected poses as perfect
@@ -42,6 +43,10 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       {"heading-drift", true, "heading error per metre travelled, deg/m, e.g. 0.3 (default 0)"},
       {"noise-xy", true, "random translation error, m per sqrt(m) travelled, 1 sigma (default 0)"},
       {"noise-theta", true, "random heading error, deg per sqrt(m) travelled, 1 sigma (default 0)"},
+      {"turn-scale-error", true, "each turn scaled by (1 + X), e.g. 0.02 (default 0)"},
+      {"noise-theta-turn", true,
+       "random heading error, deg per sqrt(rad) turned, 1 sigma: wheels slipping in turns "
+       "(default 0)"},
       {"seed", true, "seed of the noise generator (default 1)"},
       {"restamp", true,
        "new stamps as if driven at this speed, m/s (and 0.5 rad/s, at least 0.1 s apart), for "
@@ -60,6 +65,8 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
     model.heading_drift_rad_per_m = cli.NumberIn("heading-drift", 0.0, -90.0, 90.0) * kDegree;
     model.noise_xy_m_per_sqrt_m = cli.NumberIn("noise-xy", 0.0, 0.0, 1.0);
     model.noise_theta_rad_per_sqrt_m = cli.NumberIn("noise-theta", 0.0, 0.0, 90.0) * kDegree;
+    model.turn_scale_error = cli.NumberIn("turn-scale-error", 0.0, -0.5, 0.5);
+    model.noise_theta_per_sqrt_rad = cli.NumberIn("noise-theta-turn", 0.0, 0.0, 90.0) * kDegree;
     std::mt19937 rng(static_cast<uint32_t>(cli.IntegerIn("seed", 1, 0, 4294967295LL)));
     Restamp restamp;
     if (cli.Has("restamp")) {
@@ -125,8 +132,11 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
     std::cout << std::setprecision(4) << "\n  odometry: scale error " << model.scale_error
               << ", heading drift " << model.heading_drift_rad_per_m / kDegree << " deg/m, noise "
               << model.noise_xy_m_per_sqrt_m << " m and "
-              << model.noise_theta_rad_per_sqrt_m / kDegree << " deg per sqrt(m)"
-              << (restamp.enabled ? ", restamped at " : "");
+              << model.noise_theta_rad_per_sqrt_m / kDegree << " deg per sqrt(m)";
+    if (model.turn_scale_error != 0.0 || model.noise_theta_per_sqrt_rad != 0.0)
+      std::cout << "; turn scale error " << model.turn_scale_error << ", heading noise "
+                << model.noise_theta_per_sqrt_rad / kDegree << " deg per sqrt(rad) turned";
+    std::cout << (restamp.enabled ? ", restamped at " : "");
     if (restamp.enabled) std::cout << restamp.speed_m_s << " m/s";
     std::cout << "\n  wrote " << out_path << " and " << truth_path << "\n";
     return 0;

@@ -19,6 +19,10 @@ void OdometryErrorModel::Validate() const {
           "noise_xy_m_per_sqrt_m must be finite and >= 0");
   require(std::isfinite(noise_theta_rad_per_sqrt_m) && noise_theta_rad_per_sqrt_m >= 0.0,
           "noise_theta_rad_per_sqrt_m must be finite and >= 0");
+  require(std::isfinite(turn_scale_error) && turn_scale_error > -1.0,
+          "turn_scale_error must be a finite number above -1");
+  require(std::isfinite(noise_theta_per_sqrt_rad) && noise_theta_per_sqrt_rad >= 0.0,
+          "noise_theta_per_sqrt_rad must be finite and >= 0");
 }
 
 OdometrySynthesiser::OdometrySynthesiser(const OdometryErrorModel& model, std::mt19937& rng,
@@ -32,10 +36,16 @@ geometry::Pose2D OdometrySynthesiser::Next(const geometry::Pose2D& known) {
   previous_known_ = known;
   const double distance = std::hypot(step.x, step.y);
   const double root = std::sqrt(distance);
+  const double turn_root = std::sqrt(std::abs(step.theta));
   step.x = step.x * (1.0 + model_.scale_error) + model_.noise_xy_m_per_sqrt_m * root * unit_(rng_);
   step.y = step.y * (1.0 + model_.scale_error) + model_.noise_xy_m_per_sqrt_m * root * unit_(rng_);
-  step.theta += model_.heading_drift_rad_per_m * distance +
-                model_.noise_theta_rad_per_sqrt_m * root * unit_(rng_);
+  step.theta = step.theta * (1.0 + model_.turn_scale_error) +
+               model_.heading_drift_rad_per_m * distance +
+               model_.noise_theta_rad_per_sqrt_m * root * unit_(rng_);
+  // Drawn only when asked for, so that logs synthesised without it keep
+  // their noise sequence.
+  if (model_.noise_theta_per_sqrt_rad > 0.0)
+    step.theta += model_.noise_theta_per_sqrt_rad * turn_root * unit_(rng_);
   odometry_ = geometry::Compose(odometry_, step);
   odometry_.theta = geometry::WrapAngle(odometry_.theta);
   return odometry_;

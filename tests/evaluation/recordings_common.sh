@@ -6,7 +6,9 @@
 # data, params (the SICK LMS 2xx preset the recordings are localised with)
 # and odometry_errors (synthesise-odometry's options for the real-recording
 # table's errors: 1.5 % scale error, 0.3 deg/m heading drift, 5 mm and
-# 0.1 deg noise per sqrt(m)).
+# 0.1 deg noise per sqrt(m)), followed by the options in the environment
+# variable EXTRA_ODOMETRY_ERRORS when it is set (e.g. "--turn-scale-error 0.02
+# --noise-theta-turn 3": wheels slipping in turns, as MIT CSAIL's odometry does).
 # shellcheck disable=SC2034  # the caller uses them
 recordings_setup() {
   root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -15,6 +17,9 @@ recordings_setup() {
   data="${4:-$root/../shared/data}"
   params="$root/maps/params/sick_lms2xx.xml"
   odometry_errors=(--scale-error 0.015 --heading-drift 0.3 --noise-xy 0.005 --noise-theta 0.1)
+  local extra=()
+  read -r -a extra <<<"${EXTRA_ODOMETRY_ERRORS:-}"
+  odometry_errors+=("${extra[@]}")
   mkdir -p "$out"
 }
 

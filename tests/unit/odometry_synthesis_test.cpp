@@ -71,6 +71,31 @@ TEST(OdometrySynthesis, NoiseIsSeededAndGrowsWithTheDistance) {
   EXPECT_THROW(Synthesise(noise, 1), std::invalid_argument);
 }
 
+TEST(OdometrySynthesis, TurnErrorsGrowWithTheTurnNotTheDistance) {
+  OdometryErrorModel scale;
+  scale.turn_scale_error = 0.02;
+  const Pose2D turned = Synthesise(scale, 1);
+  EXPECT_NEAR(turned.theta, 1.02 * kPi / 2, 1e-9);
+  EXPECT_NEAR(turned.x, 10.0, 1e-9) << "the straight drive has no turn to scale";
+  EXPECT_NEAR(turned.y, 0.0, 1e-9);
+
+  OdometryErrorModel slip;
+  slip.noise_theta_per_sqrt_rad = 3.0 * kPi / 180.0;
+  EXPECT_EQ(Synthesise(slip, 7).theta, Synthesise(slip, 7).theta);
+  // Ten turns of pi/20: sigma 3 deg * sqrt(pi/2) over the quarter turn, nothing
+  // on the straight.
+  double sum2 = 0.0;
+  for (uint32_t seed = 1; seed <= 400; ++seed) {
+    const Pose2D end = Synthesise(slip, seed);
+    EXPECT_NEAR(end.y, 0.0, 1e-9);
+    sum2 += std::pow(end.theta - kPi / 2, 2);
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / 400.0), slip.noise_theta_per_sqrt_rad * std::sqrt(kPi / 2),
+              0.1 * slip.noise_theta_per_sqrt_rad * std::sqrt(kPi / 2));
+  slip.turn_scale_error = -1.0;
+  EXPECT_THROW(Synthesise(slip, 1), std::invalid_argument);
+}
+
 TEST(OdometrySynthesis, RestampingRespectsSpeedTurnRateAndMinimumStep) {
   EXPECT_DOUBLE_EQ(RestampedTime(1.0, {0, 0, 0}, {1.0, 0, 0}, 0.5, 0.5, 0.1), 3.0);
   EXPECT_DOUBLE_EQ(RestampedTime(1.0, {0, 0, 0}, {0, 0, 1.0}, 0.5, 0.5, 0.1), 3.0);

@@ -1,8 +1,10 @@
 // Odometry re-synthesised from a trajectory of known poses (a SLAM-corrected
 // recording) with the errors real wheel odometry has: a scale error (wrong
 // wheel radius), a heading drift per metre (wrong axle distance, steering
-// offset) and random noise growing with the distance travelled, so that a
-// localiser can be evaluated on real scans with realistic, documented odometry.
+// offset), random noise growing with the distance travelled, and a turn
+// scale error and random heading noise growing with the turn (wheels
+// slipping as the robot turns), so that a localiser can be evaluated on real
+// scans with realistic, documented odometry.
 // Zero errors give the known poses back (perfect odometry). DDS-free;
 // randomness from the injected generator.
 #pragma once
@@ -18,8 +20,10 @@ struct OdometryErrorModel {
   double heading_drift_rad_per_m = 0.0;     // heading error added per metre travelled
   double noise_xy_m_per_sqrt_m = 0.0;       // random translation error, 1 sigma per sqrt(metre)
   double noise_theta_rad_per_sqrt_m = 0.0;  // random heading error, 1 sigma per sqrt(metre)
+  double turn_scale_error = 0.0;            // each turn is scaled by (1 + this)
+  double noise_theta_per_sqrt_rad = 0.0;    // random heading error, rad per sqrt(rad) turned
   // Throws std::invalid_argument naming the field when a value is not finite,
-  // a noise is negative or the scale error is at or below -1.
+  // a noise is negative or a scale error is at or below -1.
   void Validate() const;
 };
 
