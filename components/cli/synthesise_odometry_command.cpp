@@ -66,7 +66,7 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
     model.noise_xy_m_per_sqrt_m = cli.NumberIn("noise-xy", 0.0, 0.0, 1.0);
     model.noise_theta_rad_per_sqrt_m = cli.NumberIn("noise-theta", 0.0, 0.0, 90.0) * kDegree;
     model.turn_scale_error = cli.NumberIn("turn-scale-error", 0.0, -0.5, 0.5);
-    model.noise_theta_per_sqrt_rad = cli.NumberIn("noise-theta-turn", 0.0, 0.0, 90.0) * kDegree;
+    model.noise_theta_rad_per_sqrt_rad = cli.NumberIn("noise-theta-turn", 0.0, 0.0, 90.0) * kDegree;
     std::mt19937 rng(static_cast<uint32_t>(cli.IntegerIn("seed", 1, 0, 4294967295LL)));
     Restamp restamp;
     if (cli.Has("restamp")) {
@@ -133,9 +133,9 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
               << ", heading drift " << model.heading_drift_rad_per_m / kDegree << " deg/m, noise "
               << model.noise_xy_m_per_sqrt_m << " m and "
               << model.noise_theta_rad_per_sqrt_m / kDegree << " deg per sqrt(m)";
-    if (model.turn_scale_error != 0.0 || model.noise_theta_per_sqrt_rad != 0.0)
+    if (model.turn_scale_error != 0.0 || model.noise_theta_rad_per_sqrt_rad != 0.0)
       std::cout << "; turn scale error " << model.turn_scale_error << ", heading noise "
-                << model.noise_theta_per_sqrt_rad / kDegree << " deg per sqrt(rad) turned";
+                << model.noise_theta_rad_per_sqrt_rad / kDegree << " deg per sqrt(rad) turned";
     std::cout << (restamp.enabled ? ", restamped at " : "");
     if (restamp.enabled) std::cout << restamp.speed_m_s << " m/s";
     std::cout << "\n  wrote " << out_path << " and " << truth_path << "\n";

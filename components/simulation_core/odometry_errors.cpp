@@ -21,8 +21,8 @@ void OdometryErrorModel::Validate() const {
           "noise_theta_rad_per_sqrt_m must be finite and >= 0");
   require(std::isfinite(turn_scale_error) && turn_scale_error > -1.0,
           "turn_scale_error must be a finite number above -1");
-  require(std::isfinite(noise_theta_per_sqrt_rad) && noise_theta_per_sqrt_rad >= 0.0,
-          "noise_theta_per_sqrt_rad must be finite and >= 0");
+  require(std::isfinite(noise_theta_rad_per_sqrt_rad) && noise_theta_rad_per_sqrt_rad >= 0.0,
+          "noise_theta_rad_per_sqrt_rad must be finite and >= 0");
 }
 
 OdometrySynthesiser::OdometrySynthesiser(const OdometryErrorModel& model, std::mt19937& rng,
@@ -44,8 +44,8 @@ geometry::Pose2D OdometrySynthesiser::Next(const geometry::Pose2D& known) {
                model_.noise_theta_rad_per_sqrt_m * root * unit_(rng_);
   // Drawn only when asked for, so that logs synthesised without it keep
   // their noise sequence.
-  if (model_.noise_theta_per_sqrt_rad > 0.0)
-    step.theta += model_.noise_theta_per_sqrt_rad * turn_root * unit_(rng_);
+  if (model_.noise_theta_rad_per_sqrt_rad > 0.0)
+    step.theta += model_.noise_theta_rad_per_sqrt_rad * turn_root * unit_(rng_);
   odometry_ = geometry::Compose(odometry_, step);
   odometry_.theta = geometry::WrapAngle(odometry_.theta);
   return odometry_;

@@ -80,7 +80,7 @@ TEST(OdometrySynthesis, TurnErrorsGrowWithTheTurnNotTheDistance) {
   EXPECT_NEAR(turned.y, 0.0, 1e-9);
 
   OdometryErrorModel slip;
-  slip.noise_theta_per_sqrt_rad = 3.0 * kPi / 180.0;
+  slip.noise_theta_rad_per_sqrt_rad = 3.0 * kPi / 180.0;
   EXPECT_EQ(Synthesise(slip, 7).theta, Synthesise(slip, 7).theta);
   // Ten turns of pi/20: sigma 3 deg * sqrt(pi/2) over the quarter turn, nothing
   // on the straight.
@@ -90,8 +90,8 @@ TEST(OdometrySynthesis, TurnErrorsGrowWithTheTurnNotTheDistance) {
     EXPECT_NEAR(end.y, 0.0, 1e-9);
     sum2 += std::pow(end.theta - kPi / 2, 2);
   }
-  EXPECT_NEAR(std::sqrt(sum2 / 400.0), slip.noise_theta_per_sqrt_rad * std::sqrt(kPi / 2),
-              0.1 * slip.noise_theta_per_sqrt_rad * std::sqrt(kPi / 2));
+  EXPECT_NEAR(std::sqrt(sum2 / 400.0), slip.noise_theta_rad_per_sqrt_rad * std::sqrt(kPi / 2),
+              0.1 * slip.noise_theta_rad_per_sqrt_rad * std::sqrt(kPi / 2));
   slip.turn_scale_error = -1.0;
   EXPECT_THROW(Synthesise(slip, 1), std::invalid_argument);
 }

@@ -16,12 +16,12 @@
 namespace structloc::simulation_core {
 
 struct OdometryErrorModel {
-  double scale_error = 0.0;                 // distance travelled is scaled by (1 + this)
-  double heading_drift_rad_per_m = 0.0;     // heading error added per metre travelled
-  double noise_xy_m_per_sqrt_m = 0.0;       // random translation error, 1 sigma per sqrt(metre)
-  double noise_theta_rad_per_sqrt_m = 0.0;  // random heading error, 1 sigma per sqrt(metre)
-  double turn_scale_error = 0.0;            // each turn is scaled by (1 + this)
-  double noise_theta_per_sqrt_rad = 0.0;    // random heading error, rad per sqrt(rad) turned
+  double scale_error = 0.0;                   // distance travelled is scaled by (1 + this)
+  double heading_drift_rad_per_m = 0.0;       // heading error added per metre travelled
+  double noise_xy_m_per_sqrt_m = 0.0;         // random translation error, 1 sigma per sqrt(metre)
+  double noise_theta_rad_per_sqrt_m = 0.0;    // random heading error, 1 sigma per sqrt(metre)
+  double turn_scale_error = 0.0;              // each turn is scaled by (1 + this)
+  double noise_theta_rad_per_sqrt_rad = 0.0;  // random heading error, rad per sqrt(rad) turned
   // Throws std::invalid_argument naming the field when a value is not finite,
   // a noise is negative or a scale error is at or below -1.
   void Validate() const;
