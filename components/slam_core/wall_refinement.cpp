@@ -78,7 +78,7 @@ void JoinWalls(std::vector<Wall>& walls, const WallRefinementOptions& options) {
           ++j;
           continue;
         }
-        // Extents are along each wall's own direction, the same within max_angle_rad.
+        // The other's ends projected on this wall's direction, as a sighting's are.
         for (const double s : {walls[j].lo, walls[j].hi}) {
           const double t = walls[i].Along().dot(walls[j].At(s));
           walls[i].lo = std::min(walls[i].lo, t);
