@@ -65,6 +65,33 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
   std::printf("\n");
 }
 
+// Each scan's odometric laser pose at the moment it was taken: its stamp less
+// the latency the options give or the log shows (printed).
+std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& log,
+                                              const slam_core::SlamOptions& options) {
+  std::vector<double> stamps;
+  std::vector<geometry::Pose2D> odometry;
+  std::vector<std::vector<Eigen::Vector2d>> points;
+  for (const auto& s : log.scans) {
+    stamps.push_back(s.stamp);
+    odometry.push_back(s.laser_pose);
+    if (options.estimate_scan_latency) points.push_back(s.points);
+  }
+  double latency = options.scan_latency_s;
+  if (options.estimate_scan_latency) {
+    const auto e =
+        slam_core::EstimateScanLatency(stamps, odometry, points, options.latency, options.match);
+    latency = e.latency_s;
+    std::printf(
+        "  scan latency estimated from the log: %.3f s (%zu pairs of consecutive scans; their "
+        "matched rotations against odometry's %.2f deg RMS at this latency, %.2f deg at none)\n",
+        latency, e.pairs, kDeg * e.rms_at_estimate_rad, kDeg * e.rms_at_zero_rad);
+  } else if (latency != 0.0) {
+    std::printf("  scan latency %.3f s (the options')\n", latency);
+  }
+  return slam_core::OdometryBefore(stamps, odometry, latency);
+}
+
 }  // namespace
 
 int SlamCommand(const Invocation& inv) {
@@ -138,6 +165,7 @@ int SlamCommand(const Invocation& inv) {
       break;
     }
     const geometry::Pose2D unmount = geometry::Inverse(mount);
+    const std::vector<geometry::Pose2D> laser_odometry = OdometryAtScans(log, slam_options);
     // SLAM in the laser's frame: its odometric pose and its own readings.
     slam_core::Slam slam(slam_options);
     for (size_t i = 0; i < log.scans.size(); ++i) {
@@ -148,7 +176,7 @@ int SlamCommand(const Invocation& inv) {
         break;
       }
       const auto& s = log.scans[i];
-      slam.Add({s.stamp, s.laser_pose, s.points});
+      slam.Add({s.stamp, laser_odometry[i], s.points});
       if ((i + 1) % 1000 == 0) {
         std::printf("  %zu of %zu scans, %zu keyframes, %zu loops closed\n", i + 1,
                     log.scans.size(), slam.Stats().keyframes, slam.Stats().loops_closed);

@@ -134,6 +134,36 @@ Table WallsSection() {
   return t;
 }
 
+Table ScanLatencySection() {
+  using L = ScanLatencyOptions;
+  Table t("scan_latency",
+          "the laser's latency against odometry (a scan stamped when its readings arrived)");
+  t.Flag("estimate", &O::estimate_scan_latency,
+         "estimate it from the recording: consecutive scans matched where the robot's turn "
+         "speeds up or slows down, their rotations against odometry's sampled at each stamp "
+         "minus the latency; false: latency_s");
+  t.Number("latency_s", &O::scan_latency_s, Range::Closed(-1, 1), "s",
+           "each scan's odometry is taken this long before its stamp (negative: after)");
+  t.Number("max_latency_s", &O::latency, &L::max_latency_s, Range::Closed(0.001, 1), "s",
+           "the estimate is sought within this either way ...");
+  t.Number("step_s", &O::latency, &L::step_s, Range::Closed(0.0001, 0.1), "s",
+           "... on a grid of this step");
+  t.Number("min_sensitivity_rad", &O::latency, &L::min_sensitivity_rad, Range::Positive(), "rad",
+           "a pair of consecutive scans enters when the latencies searched move its odometric "
+           "rotation by this much ...");
+  t.Number("min_share", &O::latency, &L::min_share, Range::Closed(0, 1), "",
+           "... and its match explains this share of the later scan ...");
+  t.Number("max_rms_m", &O::latency, &L::max_rms_m, Range::Positive(), "m",
+           "... with the explained points' distances at most this RMS");
+  t.Number("huber_rad", &O::latency, &L::huber_rad, Range::Positive(), "rad",
+           "a pair's rotation residual enters through a Huber loss from this on");
+  t.Number("max_pairs", &O::latency, &L::max_pairs, Range::Closed(1, 1000000), "",
+           "at most this many pairs, spread evenly over the log");
+  t.Number("rounds", &O::latency, &L::rounds, Range::Closed(1, 10), "",
+           "the pairs matched again from the last estimate this many times in all");
+  return t;
+}
+
 config::OptionFile<O> SlamOptionFile() {
   const auto step = [](auto& o) -> auto& {
     return o.match;
@@ -147,7 +177,7 @@ config::OptionFile<O> SlamOptionFile() {
        MatchSection("step_match", "the ICP of a keyframe against the keyframes before it", step),
        LoopsSection(),
        MatchSection("loop_match", "the ICP of a keyframe against a place seen long ago", loop),
-       GraphSection(), WallsSection()});
+       GraphSection(), WallsSection(), ScanLatencySection()});
 }
 
 }  // namespace
@@ -163,6 +193,8 @@ void SlamOptions::Validate() const {
       throw std::invalid_argument(std::string(section) +
                                   ": first_pair_distance_m must be at most 20 normal_radius_m");
   }
+  if (!(latency.max_latency_s >= latency.step_s))
+    throw std::invalid_argument("scan_latency: max_latency_s must be >= step_s");
   if (!(loop_max_radius_m >= loop_radius_m))
     throw std::invalid_argument("loops: max_radius_m must be >= radius_m");
 }

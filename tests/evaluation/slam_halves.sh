@@ -33,6 +33,7 @@ for name in freiburg_079 intel; do
     aligned=$(sed -n 's/^  slam .*aligned: RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \2/p' <<<"$slam")
     read -r rmse max <<<"$aligned"
     printf '| %s | %s | %s | %s |\n' "$name" "$half" "$rmse" "$max"
+    sed -n 's/^  \(scan latency .*\)/  (\1)/p' <<<"$slam"
     sum=$(awk -v a="$sum" -v b="$rmse" 'BEGIN { print a + b }')
   done
 done

@@ -20,15 +20,19 @@
 # scans prefer). Outputs (paths, maps, pictures) go to OUT_DIR.
 #
 # Usage: tests/evaluation/slam_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
-#        (defaults: slam_evaluation, build, ../shared/data)
+#        (defaults: slam_evaluation, build, ../shared/data); SLAM_PARAMS=FILE
+#        in the environment maps every log with those SLAM options.
 set -euo pipefail
 # shellcheck source=tests/evaluation/recordings_common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/recordings_common.sh"
 recordings_setup slam_evaluation "$@"
+slam_options=()
+[ -n "${SLAM_PARAMS:-}" ] && slam_options=(--slam-params "$SLAM_PARAMS")
 
 echo "MIT CSAIL, raw odometry:"
 "$structloc" slam --log "$data/mit-csail.clf.gz" --relations "$data/mit-csail.relations" \
-  --poses-out "$out/mit-csail.slam.tum" | grep -E "structloc slam:|relation errors|  (slam|odometry) "
+  --poses-out "$out/mit-csail.slam.tum" "${slam_options[@]}" |
+  grep -E "structloc slam:|scan latency|relation errors|  (slam|odometry) "
 echo
 echo "| recording | SLAM path RMSE / max mm | aligned RMSE / max mm | localisation on its map: RMSE / max mm | aligned RMSE / max mm | aligned with scale: scale, RMSE / max mm | longest lost s | slam s |"
 echo "|---|---|---|---|---|---|---|---|"
@@ -37,7 +41,7 @@ for name in freiburg_079 intel; do
   log="$out/$name.raw.log"
   truth="$out/$name.truth.tum"
   slam=$("$structloc" slam --log "$log" --truth "$truth" --poses-out "$out/$name.slam.tum" \
-    --out "$out/$name.slam.xml" --plot "$out/$name.slam.png")
+    --out "$out/$name.slam.xml" --plot "$out/$name.slam.png" "${slam_options[@]}")
   path=$(sed -n 's/^  slam *RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*aligned: RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1 \/ \2 | \3 \/ \4/p' <<<"$slam")
   seconds=$(sed -n 's/^structloc slam: [0-9]* scans in \([0-9.]*\) s.*/\1/p' <<<"$slam")
   report=$("$structloc" replay --map "$out/$name.slam.xml" --log "$log" --truth "$truth" \

@@ -3,8 +3,9 @@
 // raw odometry gives the figure the benchmark's users quote for it (1.68 +-
 // 5.29 m, 5.1 +- 8.2 deg), so the metric is theirs. Then structloc slam's path
 // must beat raw odometry tenfold in translation and twofold in rotation: a
-// regression guard, well short of the particle-filter class (0.05 m, 1 deg)
-// the SLAM issue asks for, which is not met yet. Stopped by Ctrl-C part of the
+// regression guard, short of the particle-filter class (0.05 m, 1 deg) the
+// SLAM issue asks for, which it reaches when the scans' latency the log
+// shows is taken into account (scan_latency estimate="true"). Stopped by Ctrl-C part of the
 // way, `structloc slam` writes the path and map of the scans it had. Intel
 // with re-synthesised odometry, judged by localising on the map slam built.
 #include <gtest/gtest.h>
@@ -79,6 +80,40 @@ TEST(SlamOnRealLogs, TheMitPathBeatsRawOdometryByFar) {
   EXPECT_GT(st.loops_closed, 0u);
   EXPECT_LT(e.translation_mean_m, raw.translation_mean_m / 10.0);
   EXPECT_LT(e.rotation_mean_rad, raw.rotation_mean_rad / 2.0);
+}
+
+// MIT's laser is stamped late (a 361-reading SICK on a 38400-baud line takes
+// about 0.2 s to send a scan; the log's 5 Hz fits that line): the log itself
+// shows it, its scans' rotations agreeing with odometry sampled about a tenth
+// of a second before their stamps far better than at them. With the latency
+// the log shows, structloc slam's path is in the particle-filter class the
+// SLAM issue asks for (0.05 m, 1 deg).
+TEST(SlamOnRealLogs, MitsLaserIsStampedLateAndTheLogShowsIt) {
+  const Mit mit;
+  std::vector<double> stamps;
+  std::vector<geometry::Pose2D> odometry;
+  std::vector<std::vector<Eigen::Vector2d>> points;
+  for (const auto& s : mit.log.scans) {
+    stamps.push_back(s.stamp);
+    odometry.push_back(s.laser_pose);
+    points.push_back(s.points);
+  }
+  const auto latency = slam_core::EstimateScanLatency(stamps, odometry, points);
+  EXPECT_GT(latency.latency_s, 0.05);
+  EXPECT_LT(latency.latency_s, 0.25);
+  EXPECT_LT(latency.rms_at_estimate_rad, 0.75 * latency.rms_at_zero_rad);
+
+  const auto taken = slam_core::OdometryBefore(stamps, odometry, latency.latency_s);
+  slam_core::Slam slam;
+  for (size_t i = 0; i < mit.log.scans.size(); ++i)
+    slam.Add({stamps[i], taken[i], mit.log.scans[i].points});
+  slam.Finish();
+  const auto e = replay::CompareRelations(slam.Trajectory(), mit.relations);
+  std::printf("MIT CSAIL with its scans %.3f s late: relations %.3f +- %.3f m, %.2f +- %.2f deg\n",
+              latency.latency_s, e.translation_mean_m, e.translation_std_m,
+              e.rotation_mean_rad / kDeg, e.rotation_std_rad / kDeg);
+  EXPECT_LE(e.translation_mean_m, 0.05);
+  EXPECT_LE(e.rotation_mean_rad, 1.0 * kDeg);
 }
 
 TEST(SlamOnRealLogs, CtrlCPartOfTheWayWritesThePathAndMapSoFar) {

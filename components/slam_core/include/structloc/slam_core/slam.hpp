@@ -21,6 +21,7 @@
 
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/slam_core/pose_graph.hpp"
+#include "structloc/slam_core/scan_latency.hpp"
 #include "structloc/slam_core/scan_matcher.hpp"
 #include "structloc/slam_core/wall_refinement.hpp"
 
@@ -70,6 +71,13 @@ struct SlamOptions {
   ScanMatchOptions loop_match{30, 2.0, 0.15, 0.25, 0.03, 10.0, 0.01, 0.003};
   PoseGraphOptions graph;
   WallRefinementOptions walls;
+  // The laser's latency against odometry: each scan's odometry is taken this
+  // long before its stamp (a scan stamped when its readings arrived) ...
+  double scan_latency_s = 0.0;
+  // ... or as the recording shows it (EstimateScanLatency), which then
+  // replaces scan_latency_s.
+  bool estimate_scan_latency = false;
+  ScanLatencyOptions latency;
 
   // Throws std::invalid_argument naming the section and key of a value out of
   // range.
