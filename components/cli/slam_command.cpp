@@ -1,15 +1,17 @@
 // "structloc slam --log RAW.log --poses-out POSES.tum [--out WORLD.xml]
 // [--plot P.png] [--relations R] [--truth T.tum] [--params MAP_BUILD.xml]
 // [--slam-params SLAM.xml] [--scans F:L]": the robot's path from its raw
-// odometry and scans (slam_core::Slam: keyframes matched, loops closed, the pose graph
-// optimised with Ceres), then, with --out or --plot, the wall map built on
-// those poses as "structloc map build" builds one and checked against the
-// same scans as "structloc map check" checks one. With --relations, the
-// path is judged by Kuemmerle et al.'s relation metric beside raw odometry;
-// with --truth, against ground truth as it is, after one rigid alignment (the
-// path's frame is the first scan's odometry's, not the truth's) and after one
-// that also scales it. Ctrl-C
-// stops adding scans: the path and map of the scans added so far are written.
+// odometry and scans (slam_core::Slam: keyframes matched, loops closed, the
+// pose graph optimised with Ceres), each scan's odometry taken at its stamp
+// less the laser's latency the options give or the log shows; then, with
+// --out or --plot, the wall map built on those poses as "structloc map
+// build" builds one and checked against the same scans as "structloc map
+// check" checks one. With --relations, the path is judged by Kuemmerle et
+// al.'s relation metric beside raw odometry; with --truth, against ground
+// truth as it is, after one rigid alignment (the path's frame is the first
+// scan's odometry's, not the truth's) and after one that also scales it.
+// Ctrl-C stops adding scans: the path and map of the scans added so far are
+// written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
