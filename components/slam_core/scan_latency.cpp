@@ -104,6 +104,10 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
                                         const ScanLatencyOptions& options,
                                         const ScanMatchOptions& match) {
+  if (!(options.step_s > 0) || !(options.max_latency_s >= options.step_s) ||
+      !(options.max_pairs >= 1) || !(options.rounds >= 1))
+    throw std::invalid_argument(
+        "scan latency: step_s must be > 0, max_latency_s >= step_s, max_pairs and rounds >= 1");
   CheckSizes(stamps, odometry.size());
   CheckIncreasing(stamps);
   if (stamps.size() < 2)

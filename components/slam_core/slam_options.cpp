@@ -160,7 +160,8 @@ Table ScanLatencySection() {
   t.Number("max_pairs", &O::latency, &L::max_pairs, Range::Closed(1, 1000000), "",
            "at most this many pairs, spread evenly over the log");
   t.Number("rounds", &O::latency, &L::rounds, Range::Closed(1, 10), "",
-           "the pairs matched again from the last estimate this many times in all");
+           "rounds of matching, each from the last estimate (a pair in a quick turn matches "
+           "only from a guess near its latency)");
   return t;
 }
 

@@ -137,8 +137,7 @@ TEST(ScanLatency, StampsThatDoNotIncreaseAreNamed) {
 
 TEST(ScanLatency, ALogWithoutTurnsDoesNotTellIt) {
   Recording r = Record(0.1);
-  for (auto& pose : r.odometry) pose.theta = 0.0;
-  for (auto& pose : r.odometry) pose.x = 0.0;
+  for (auto& pose : r.odometry) pose = {};
   try {
     EstimateScanLatency(r.stamps, r.odometry, r.points);
     FAIL() << "no error";

@@ -30,7 +30,9 @@ struct ScanLatencyOptions {
   double max_rms_m = 0.05;
   double huber_rad = 0.035;  // the rotation residual's robust loss, past 2 deg
   int max_pairs = 1500;      // evenly spread over the log, to bound the time
-  int rounds = 2;            // matched again from the estimate, which pairs a faster turn
+  // Rounds of matching, each from the last estimate (a pair in a quick turn
+  // matches only from a guess near its latency).
+  int rounds = 2;
 };
 
 struct ScanLatencyEstimate {
@@ -53,8 +55,8 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
 
 // The latency of scans `points` (laser frame) against their `odometry`
 // (the laser's odometric pose at `stamps`). Throws std::invalid_argument as
-// OdometryBefore does, or when no pair of scans tells the latency (a log
-// without turns), saying so.
+// OdometryBefore does, for options out of range, or when no pair of scans
+// tells the latency (a log without turns), saying so.
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<geometry::Pose2D>& odometry,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
