@@ -67,31 +67,29 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
   std::printf("\n");
 }
 
-// Each scan's odometric laser pose at the moment it was taken: its stamp less
-// the latency the options give or the log shows (printed).
+// Each scan's odometric laser pose at the moment it was taken, the latency
+// printed where there is one.
 std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& log,
                                               const slam_core::SlamOptions& options) {
   std::vector<double> stamps;
   std::vector<geometry::Pose2D> odometry;
-  std::vector<std::vector<Eigen::Vector2d>> points;
+  std::vector<std::vector<Eigen::Vector2d>> points;  // the estimate's only
   for (const auto& s : log.scans) {
     stamps.push_back(s.stamp);
     odometry.push_back(s.laser_pose);
     if (options.estimate_scan_latency) points.push_back(s.points);
   }
-  double latency = options.scan_latency_s;
+  slam_core::ScanLatencyEstimate e;
+  auto taken = slam_core::OdometryWhenTaken(options, stamps, odometry, points, &e);
   if (options.estimate_scan_latency) {
-    const auto e =
-        slam_core::EstimateScanLatency(stamps, odometry, points, options.latency, options.match);
-    latency = e.latency_s;
     std::printf(
         "  scan latency estimated from the log: %.3f s (%zu pairs of consecutive scans; their "
         "matched rotations against odometry's %.2f deg RMS at this latency, %.2f deg at none)\n",
-        latency, e.pairs, kDeg * e.rms_at_estimate_rad, kDeg * e.rms_at_zero_rad);
-  } else if (latency != 0.0) {
-    std::printf("  scan latency %.3f s (the options')\n", latency);
+        e.latency_s, e.pairs, kDeg * e.rms_at_estimate_rad, kDeg * e.rms_at_zero_rad);
+  } else if (options.scan_latency_s != 0.0) {
+    std::printf("  scan latency %.3f s (the options')\n", options.scan_latency_s);
   }
-  return slam_core::OdometryBefore(stamps, odometry, latency);
+  return taken;
 }
 
 }  // namespace

@@ -168,6 +168,20 @@ void Slam::Finish() {
     stats_.walls = RefineWithWalls(poses_, segments_, edges_, options_.walls, options_.graph);
 }
 
+std::vector<geometry::Pose2D> OdometryWhenTaken(
+    const SlamOptions& options, const std::vector<double>& stamps,
+    const std::vector<geometry::Pose2D>& odometry,
+    const std::vector<std::vector<Eigen::Vector2d>>& points, ScanLatencyEstimate* estimate) {
+  double latency = options.scan_latency_s;
+  if (options.estimate_scan_latency) {
+    const ScanLatencyEstimate e =
+        EstimateScanLatency(stamps, odometry, points, options.latency, options.match);
+    latency = e.latency_s;
+    if (estimate) *estimate = e;
+  }
+  return OdometryBefore(stamps, odometry, latency);
+}
+
 std::vector<log_formats::StampedPose> Slam::Trajectory() const {
   std::vector<log_formats::StampedPose> out;
   out.reserve(scans_.size());

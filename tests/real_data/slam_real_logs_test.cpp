@@ -99,13 +99,15 @@ TEST(SlamOnRealLogs, MitsLaserIsStampedLateAndTheLogShowsIt) {
     odometry.push_back(s.laser_pose);
     points.push_back(s.points);
   }
-  const auto latency = slam_core::EstimateScanLatency(stamps, odometry, points);
+  slam_core::SlamOptions options;
+  options.estimate_scan_latency = true;
+  slam_core::ScanLatencyEstimate latency;
+  const auto taken = slam_core::OdometryWhenTaken(options, stamps, odometry, points, &latency);
   EXPECT_GT(latency.latency_s, 0.05);
   EXPECT_LT(latency.latency_s, 0.25);
   EXPECT_LT(latency.rms_at_estimate_rad, 0.75 * latency.rms_at_zero_rad);
 
-  const auto taken = slam_core::OdometryBefore(stamps, odometry, latency.latency_s);
-  slam_core::Slam slam;
+  slam_core::Slam slam(options);
   for (size_t i = 0; i < mit.log.scans.size(); ++i)
     slam.Add({stamps[i], taken[i], mit.log.scans[i].points});
   slam.Finish();

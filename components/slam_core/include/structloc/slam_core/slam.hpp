@@ -84,6 +84,17 @@ struct SlamOptions {
   void Validate() const;
 };
 
+// Each scan's odometry at the moment it was taken: at its stamp less the
+// options' scan_latency_s, or, with estimate_scan_latency, less the latency
+// the scans `points` show (EstimateScanLatency; `estimate` receives it, and
+// `points` are needed only then). Throws std::invalid_argument as
+// OdometryBefore and EstimateScanLatency do.
+std::vector<geometry::Pose2D> OdometryWhenTaken(
+    const SlamOptions& options, const std::vector<double>& stamps,
+    const std::vector<geometry::Pose2D>& odometry,
+    const std::vector<std::vector<Eigen::Vector2d>>& points,
+    ScanLatencyEstimate* estimate = nullptr);
+
 // A <slam_params> file (`structloc params --slam` lists its keys); throws
 // config::ConfigError naming the file, line and key.
 SlamOptions LoadSlamOptions(const std::string& path);
