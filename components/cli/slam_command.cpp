@@ -81,11 +81,16 @@ std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& 
   }
   slam_core::ScanLatencyEstimate e;
   auto taken = slam_core::OdometryWhenTaken(options, stamps, odometry, points, &e);
-  if (options.estimate_scan_latency) {
+  if (options.estimate_scan_latency && !e.untold.empty()) {
+    std::printf("  scan latency: the log does not tell it (%s); none applied\n", e.untold.c_str());
+  } else if (options.estimate_scan_latency) {
     std::printf(
-        "  scan latency estimated from the log: %.3f s (%zu pairs of consecutive scans; their "
-        "matched rotations against odometry's %.2f deg RMS at this latency, %.2f deg at none)\n",
-        e.latency_s, e.pairs, kDeg * e.rms_at_estimate_rad, kDeg * e.rms_at_zero_rad);
+        "  scan latency estimated from the log: %.3f s, %.0f %% interval %.3f to %.3f s: %s (%zu "
+        "pairs of consecutive scans; their matched rotations against odometry's %.2f deg RMS at "
+        "the estimate, %.2f deg at none)\n",
+        e.latency_s, 100.0 * options.latency.confidence, e.interval_low_s, e.interval_high_s,
+        e.shown ? "applied" : "none shown, none applied", e.pairs, kDeg * e.rms_at_estimate_rad,
+        kDeg * e.rms_at_zero_rad);
   } else if (options.scan_latency_s != 0.0) {
     std::printf("  scan latency %.3f s (the options')\n", options.scan_latency_s);
   }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -15,14 +17,15 @@ void CheckSizes(const std::vector<double>& stamps, size_t poses) {
                                 std::to_string(poses) + " poses");
 }
 
-void CheckIncreasing(const std::vector<double>& stamps) {
+// Empty when `stamps` increase; else names the first that does not.
+std::string NotIncreasing(const std::vector<double>& stamps) {
   for (size_t i = 1; i < stamps.size(); ++i) {
     if (!(stamps[i] > stamps[i - 1]))
-      throw std::invalid_argument("scan latency: scan " + std::to_string(i) + "'s stamp " +
-                                  std::to_string(stamps[i]) + " is not after the one before (" +
-                                  std::to_string(stamps[i - 1]) +
-                                  "); a latency needs increasing stamps (re-stamp the log)");
+      return "scan " + std::to_string(i) + "'s stamp " + std::to_string(stamps[i]) +
+             " is not after the one before (" + std::to_string(stamps[i - 1]) +
+             "); a latency needs increasing stamps (re-stamp the log)";
   }
+  return {};
 }
 
 // Odometry as a function of time: linear between its samples, made
@@ -84,6 +87,44 @@ struct MatchedPair {
   double rotation;
 };
 
+// Each matched pair's robust cost at each latency of the grid.
+using LatencyCosts = std::vector<std::vector<double>>;
+
+// The grid index whose cost summed over pairs `rows` is least.
+size_t Best(const LatencyCosts& costs, const std::vector<size_t>& rows) {
+  std::vector<double> sum(costs.front().size(), 0.0);
+  for (const size_t r : rows) {
+    for (size_t k = 0; k < sum.size(); ++k) sum[k] += costs[r][k];
+  }
+  return static_cast<size_t>(std::min_element(sum.begin(), sum.end()) - sum.begin());
+}
+
+// The interval (grid indices) holding the estimate at the options' confidence:
+// the pairs resampled in blocks of consecutive ones, with replacement, the
+// estimate found again on each resampling, and the percentiles of those
+// estimates (a moving-block bootstrap, Kuensch 1989).
+std::pair<size_t, size_t> BootstrapInterval(const LatencyCosts& costs,
+                                            const ScanLatencyOptions& options) {
+  const size_t n = costs.size();
+  const size_t block = std::min(n, static_cast<size_t>(options.block_pairs));
+  std::mt19937 rng(options.seed);
+  std::uniform_int_distribution<size_t> start(0, n - block);
+  std::vector<size_t> estimates, rows;
+  for (int b = 0; b < options.resamples; ++b) {
+    rows.clear();
+    while (rows.size() < n) {
+      const size_t s = start(rng);
+      for (size_t r = s; r < s + block && rows.size() < n; ++r) rows.push_back(r);
+    }
+    estimates.push_back(Best(costs, rows));
+  }
+  std::sort(estimates.begin(), estimates.end());
+  const double tail = 0.5 * (1.0 - options.confidence) * static_cast<double>(estimates.size());
+  const size_t low = std::min(estimates.size() - 1, static_cast<size_t>(std::floor(tail)));
+  const size_t high = estimates.size() - 1 - low;
+  return {estimates[low], estimates[high]};
+}
+
 }  // namespace
 
 std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
@@ -91,7 +132,8 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
                                              double latency_s) {
   CheckSizes(stamps, odometry.size());
   if (latency_s == 0.0 || odometry.size() < 2) return odometry;
-  CheckIncreasing(stamps);
+  if (const std::string why = NotIncreasing(stamps); !why.empty())
+    throw std::invalid_argument("scan latency: " + why);
   const OdometryTrack track(stamps, odometry);
   std::vector<geometry::Pose2D> out;
   out.reserve(odometry.size());
@@ -105,16 +147,19 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const ScanLatencyOptions& options,
                                         const ScanMatchOptions& match) {
   if (!(options.step_s > 0) || !(options.max_latency_s >= options.step_s) ||
-      !(options.max_pairs >= 1) || !(options.rounds >= 1))
+      !(options.max_pairs >= 1) || !(options.rounds >= 1) || !(options.confidence > 0) ||
+      !(options.confidence < 1) || !(options.resamples >= 1) || !(options.block_pairs >= 1))
     throw std::invalid_argument(
-        "scan latency: step_s must be > 0, max_latency_s >= step_s, max_pairs and rounds >= 1");
+        "scan latency: step_s must be > 0, max_latency_s >= step_s, confidence within (0, 1), "
+        "max_pairs, rounds, resamples and block_pairs >= 1");
   CheckSizes(stamps, odometry.size());
-  CheckIncreasing(stamps);
-  if (stamps.size() < 2)
-    throw std::invalid_argument("scan latency: a log of fewer than two scans does not tell it");
   if (points.size() != odometry.size())
     throw std::invalid_argument("scan latency: " + std::to_string(points.size()) + " scans for " +
                                 std::to_string(odometry.size()) + " poses");
+  ScanLatencyEstimate estimate;
+  estimate.untold = NotIncreasing(stamps);
+  if (stamps.size() < 2) estimate.untold = "a log of fewer than two scans does not tell it";
+  if (!estimate.untold.empty()) return estimate;
   const OdometryTrack track(stamps, odometry);
   // Odometry's rotation from scan i to i + 1, both sampled `latency` earlier.
   const auto rotation = [&](size_t i, double latency) {
@@ -142,8 +187,8 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
     }
     return std::sqrt(sum / static_cast<double>(pairs.size()));
   };
-  ScanLatencyEstimate estimate;
   std::vector<MatchedPair> pairs;
+  LatencyCosts costs;
   for (int round = 0; round < options.rounds; ++round) {
     pairs.clear();
     for (const size_t i : telling) {
@@ -155,23 +200,27 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
       if (m.inlier_share >= options.min_share && m.rms_m <= options.max_rms_m)
         pairs.push_back({i, m.pose.theta});
     }
-    if (pairs.empty())
-      throw std::invalid_argument(
-          "scan latency: no pair of consecutive scans tells it (" + std::to_string(telling.size()) +
-          " pairs turn faster or slower, none matched well): give the latency instead");
-    double best_cost = INFINITY;
-    for (int k = -steps; k <= steps; ++k) {
-      const double latency = k * options.step_s;
-      double cost = 0.0;
-      for (const auto& p : pairs)
-        cost +=
-            Huber(geometry::WrapAngle(p.rotation - rotation(p.first, latency)), options.huber_rad);
-      if (cost < best_cost) {
-        best_cost = cost;
-        estimate.latency_s = latency;
-      }
+    if (pairs.empty()) {
+      estimate = {};
+      estimate.untold = "no turn that speeds up or slows down matched well (" +
+                        std::to_string(telling.size()) + " pairs of consecutive scans tried)";
+      return estimate;
     }
+    costs.assign(pairs.size(), std::vector<double>(static_cast<size_t>(2 * steps + 1)));
+    for (size_t p = 0; p < pairs.size(); ++p) {
+      for (int k = -steps; k <= steps; ++k)
+        costs[p][static_cast<size_t>(k + steps)] = Huber(
+            geometry::WrapAngle(pairs[p].rotation - rotation(pairs[p].first, k * options.step_s)),
+            options.huber_rad);
+    }
+    std::vector<size_t> all(pairs.size());
+    std::iota(all.begin(), all.end(), size_t{0});
+    estimate.latency_s = (static_cast<int>(Best(costs, all)) - steps) * options.step_s;
   }
+  const auto [low, high] = BootstrapInterval(costs, options);
+  estimate.interval_low_s = (static_cast<int>(low) - steps) * options.step_s;
+  estimate.interval_high_s = (static_cast<int>(high) - steps) * options.step_s;
+  estimate.shown = estimate.interval_low_s > 0.0 || estimate.interval_high_s < 0.0;
   estimate.pairs = pairs.size();
   estimate.rms_at_zero_rad = rms(pairs, 0.0);
   estimate.rms_at_estimate_rad = rms(pairs, estimate.latency_s);

@@ -176,7 +176,7 @@ std::vector<geometry::Pose2D> OdometryWhenTaken(
   if (options.estimate_scan_latency) {
     const ScanLatencyEstimate e =
         EstimateScanLatency(stamps, odometry, points, options.latency, options.match);
-    latency = e.latency_s;
+    latency = e.Applied();
     if (estimate) *estimate = e;
   }
   return OdometryBefore(stamps, odometry, latency);

@@ -141,9 +141,10 @@ Table ScanLatencySection() {
   t.Flag("estimate", &O::estimate_scan_latency,
          "estimate it from the recording: consecutive scans matched where the robot's turn "
          "speeds up or slows down, their rotations against odometry's sampled at each stamp "
-         "minus the latency; false: latency_s");
+         "minus the latency, applied where the recording shows one; false: latency_s");
   t.Number("latency_s", &O::scan_latency_s, Range::Closed(-1, 1), "s",
-           "each scan's odometry is taken this long before its stamp (negative: after)");
+           "with estimate false, each scan's odometry is taken this long before its stamp "
+           "(negative: after)");
   t.Number("max_latency_s", &O::latency, &L::max_latency_s, Range::Closed(0.001, 1), "s",
            "the estimate is sought within this either way ...");
   t.Number("step_s", &O::latency, &L::step_s, Range::Closed(0.0001, 0.1), "s",
@@ -162,6 +163,15 @@ Table ScanLatencySection() {
   t.Number("rounds", &O::latency, &L::rounds, Range::Closed(1, 10), "",
            "rounds of matching, each from the last estimate (a pair in a quick turn matches "
            "only from a guess near its latency)");
+  t.Number("confidence", &O::latency, &L::confidence, Range::Open(0, 1), "",
+           "the estimate is applied only when its interval at this confidence excludes 0 (the "
+           "recording shows a latency) ...");
+  t.Number("resamples", &O::latency, &L::resamples, Range::Closed(1, 100000), "",
+           "... found from this many resamplings of the matched pairs ...");
+  t.Number("block_pairs", &O::latency, &L::block_pairs, Range::Closed(1, 100000), "",
+           "... in blocks of this many consecutive pairs ...");
+  t.Number("seed", &O::latency, &L::seed, Range::Closed(0, 4294967295.0), "",
+           "... drawn by a generator seeded with this");
   return t;
 }
 
@@ -196,6 +206,11 @@ void SlamOptions::Validate() const {
   }
   if (!(latency.max_latency_s >= latency.step_s))
     throw std::invalid_argument("scan_latency: max_latency_s must be >= step_s");
+  if (estimate_scan_latency && scan_latency_s != 0.0)
+    throw std::invalid_argument(
+        "scan_latency: latency_s is " + config::FormatNumber(scan_latency_s) +
+        " but estimate is true, which would replace it; set estimate=\"false\" to give the "
+        "latency, or latency_s=\"0\" to have it estimated");
   if (!(loop_max_radius_m >= loop_radius_m))
     throw std::invalid_argument("loops: max_radius_m must be >= radius_m");
 }

@@ -3,7 +3,8 @@
 // while it creeps forward; each scan is taken `latency` before its stamp, and
 // the log gives it the odometry at the stamp, sampled at 5 Hz like the scans.
 // The estimate must find the latency from the scans and odometry alone, and
-// find none where there is none.
+// apply none where there is none, nor where odometry's noise only seems to
+// show one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,6 +85,10 @@ TEST(ScanLatency, FoundFromTheScansAndOdometry) {
     const Recording r = Record(latency);
     const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
     EXPECT_NEAR(e.latency_s, latency, 0.01);
+    EXPECT_TRUE(e.shown) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
+    EXPECT_EQ(e.Applied(), e.latency_s);
+    EXPECT_NEAR(e.interval_low_s, latency, 0.015);
+    EXPECT_NEAR(e.interval_high_s, latency, 0.015);
     EXPECT_GT(e.pairs, 50u);
     EXPECT_LT(e.rms_at_estimate_rad, 0.5 * e.rms_at_zero_rad);
   }
@@ -91,7 +96,25 @@ TEST(ScanLatency, FoundFromTheScansAndOdometry) {
 
 TEST(ScanLatency, NoneWhereThereIsNone) {
   const Recording r = Record(0.0);
-  EXPECT_NEAR(EstimateScanLatency(r.stamps, r.odometry, r.points).latency_s, 0.0, 0.01);
+  const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
+  EXPECT_NEAR(e.latency_s, 0.0, 0.01);
+  EXPECT_FALSE(e.shown) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
+  EXPECT_EQ(e.Applied(), 0.0);
+}
+
+// Odometry whose heading errs by a degree at random at each sample (no
+// latency): the errors pull the estimate off 0 by chance, and its interval
+// must say that the recording does not show a latency.
+TEST(ScanLatency, NoneAppliedWhereNoisyOdometryDoesNotShowOne) {
+  Recording r = Record(0.0);
+  std::mt19937 random(5);
+  std::normal_distribution<double> heading_error(0.0, kPi / 180);
+  for (auto& pose : r.odometry) pose.theta += heading_error(random);
+  const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
+  EXPECT_LE(e.interval_low_s, 0.0);
+  EXPECT_GE(e.interval_high_s, 0.0);
+  EXPECT_FALSE(e.shown);
+  EXPECT_EQ(e.Applied(), 0.0) << "estimate " << e.latency_s;
 }
 
 TEST(ScanLatency, OdometryTakenEarlierAlongItsSteps) {
@@ -138,12 +161,30 @@ TEST(ScanLatency, StampsThatDoNotIncreaseAreNamed) {
 TEST(ScanLatency, ALogWithoutTurnsDoesNotTellIt) {
   Recording r = Record(0.1);
   for (auto& pose : r.odometry) pose = {};
-  try {
-    EstimateScanLatency(r.stamps, r.odometry, r.points);
-    FAIL() << "no error";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("give the latency"), std::string::npos) << e.what();
-  }
+  const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
+  EXPECT_EQ(e.pairs, 0u);
+  EXPECT_FALSE(e.shown);
+  EXPECT_EQ(e.Applied(), 0.0);
+  EXPECT_NE(e.untold.find("no turn"), std::string::npos) << e.untold;
+}
+
+TEST(ScanLatency, StampsThatDoNotIncreaseTellNone) {
+  Recording r = Record(0.1);
+  r.stamps[40] = r.stamps[39];
+  const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
+  EXPECT_FALSE(e.shown);
+  EXPECT_EQ(e.Applied(), 0.0);
+  EXPECT_NE(e.untold.find("scan 40's stamp"), std::string::npos) << e.untold;
+}
+
+TEST(ScanLatency, OptionsOutOfRangeAreRefused) {
+  const Recording r = Record(0.0);
+  ScanLatencyOptions options;
+  options.confidence = 1.0;
+  EXPECT_THROW(EstimateScanLatency(r.stamps, r.odometry, r.points, options), std::invalid_argument);
+  options = {};
+  options.block_pairs = 0;
+  EXPECT_THROW(EstimateScanLatency(r.stamps, r.odometry, r.points, options), std::invalid_argument);
 }
 
 }  // namespace

@@ -99,6 +99,10 @@ TEST(SlamOptions, ABadFileIsRefusedNamingItsLineSectionAndKey) {
             "last_pair_distance_m=\"0.2\"\n"
             "              normal_radius_m=\"1e-9\"",
             "step_match: normal_radius_m must be in [0.02, 5]"},
+           {"latency_s=\"0\"", "latency_s=\"0.13\"",
+            "scan_latency: latency_s is 0.13 but estimate is true"},
+           {"confidence=\"0.95\"", "confidence=\"1\"",
+            "scan_latency: confidence must be in (0, 1), not 1"},
        }) {
     const auto path = with(c.from, c.to);
     const std::string error = LoadError(path);

@@ -7,10 +7,15 @@
 // latency is found as the one that best reconciles the rotations consecutive
 // scans match by ICP with odometry's, sampled at each stamp minus it (a
 // temporal calibration in the spirit of Furgale, Rehder and Siegwart 2013,
-// rotation only, where the latency shows); no ground truth enters it. DDS-free.
+// rotation only, where the latency shows); no ground truth enters it. It is
+// applied only where the recording shows it: a moving-block bootstrap of the
+// matched pairs (Kuensch 1989) gives the estimate's interval, and one that
+// holds no latency gives none. DDS-free.
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -33,11 +38,26 @@ struct ScanLatencyOptions {
   // Rounds of matching, each from the last estimate (a pair in a quick turn
   // matches only from a guess near its latency).
   int rounds = 2;
+  // The estimate's interval at this confidence, from `resamples` resamplings
+  // of the matched pairs in blocks of `block_pairs` consecutive ones (a pair
+  // shares a scan with its neighbours, and a turn lasts a few pairs), drawn
+  // by a generator seeded with `seed`; an interval that holds 0 applies none.
+  double confidence = 0.95;
+  int resamples = 200;
+  int block_pairs = 10;
+  uint32_t seed = 1;
 };
 
 struct ScanLatencyEstimate {
   double latency_s = 0.0;  // the scan was taken this long before its stamp
-  size_t pairs = 0;        // consecutive scans whose matches entered
+  // The estimate's interval (options' confidence); the latency applied is
+  // latency_s when the interval excludes 0 (the recording shows one), else 0.
+  double interval_low_s = 0.0;
+  double interval_high_s = 0.0;
+  bool shown = false;
+  double Applied() const { return shown ? latency_s : 0.0; }
+  size_t pairs = 0;    // consecutive scans whose matches entered
+  std::string untold;  // why the log does not tell the latency (no pairs), else empty
   // The matched rotations against odometry's, RMS over those pairs, at no
   // latency and at the estimate.
   double rms_at_zero_rad = 0.0;
@@ -54,9 +74,11 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
                                              double latency_s);
 
 // The latency of scans `points` (laser frame) against their `odometry`
-// (the laser's odometric pose at `stamps`). Throws std::invalid_argument as
-// OdometryBefore does, for options out of range, or when no pair of scans
-// tells the latency (a log without turns), saying so.
+// (the laser's odometric pose at `stamps`), with its interval. A log that
+// does not tell it (stamps that do not increase; no turn that speeds up or
+// slows down, or none matched well) gives no pairs, no latency shown and
+// says why in `untold`. Throws std::invalid_argument when the sizes differ
+// or for options out of range.
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<geometry::Pose2D>& odometry,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,

@@ -74,9 +74,9 @@ struct SlamOptions {
   // The laser's latency against odometry: each scan's odometry is taken this
   // long before its stamp (a scan stamped when its readings arrived) ...
   double scan_latency_s = 0.0;
-  // ... or as the recording shows it (EstimateScanLatency), which then
-  // replaces scan_latency_s.
-  bool estimate_scan_latency = false;
+  // ... or as the recording shows it (EstimateScanLatency: none where its
+  // interval holds none), which then replaces scan_latency_s.
+  bool estimate_scan_latency = true;
   ScanLatencyOptions latency;
 
   // Throws std::invalid_argument naming the section and key of a value out of
@@ -86,9 +86,9 @@ struct SlamOptions {
 
 // Each scan's odometry at the moment it was taken: at its stamp less the
 // options' scan_latency_s, or, with estimate_scan_latency, less the latency
-// the scans `points` show (EstimateScanLatency; `estimate` receives it, and
-// `points` are needed only then). Throws std::invalid_argument as
-// OdometryBefore and EstimateScanLatency do.
+// the scans `points` show (EstimateScanLatency's, applied where its interval
+// excludes none; `estimate` receives it, and `points` are needed only then).
+// Throws std::invalid_argument as OdometryBefore and EstimateScanLatency do.
 std::vector<geometry::Pose2D> OdometryWhenTaken(
     const SlamOptions& options, const std::vector<double>& stamps,
     const std::vector<geometry::Pose2D>& odometry,
