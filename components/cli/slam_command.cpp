@@ -91,6 +91,11 @@ std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& 
         e.latency_s, 100.0 * options.latency.confidence, e.interval_low_s, e.interval_high_s,
         e.shown ? "applied" : "none shown, none applied", e.pairs, kDeg * e.rms_at_estimate_rad,
         kDeg * e.rms_at_zero_rad);
+    if (e.shown)
+      std::printf(
+          "  track this laser with it too: <tracking scan_latency_s=\"%.3f\"/> in the "
+          "localisation parameters\n",
+          e.latency_s);
   } else if (options.scan_latency_s != 0.0) {
     std::printf("  scan latency %.3f s (the options')\n", options.scan_latency_s);
   }

@@ -1,13 +1,16 @@
 // "structloc synthesise-odometry --log CORRECTED.log --out EVAL.log --truth
 // TRUTH.tum [--scale-error X] [--heading-drift DEG_PER_M] [--noise-xy M]
 // [--noise-theta DEG] [--turn-scale-error X] [--noise-theta-turn DEG] [--seed N]
-// [--restamp SPEED] [--scans A:B]": turns a recording whose
+// [--restamp SPEED] [--scan-latency S] [--scans A:B]": turns a recording whose
 // poses are SLAM-corrected into an evaluation log for `structloc replay`: the
 // same scans, with odometry re-synthesised from the corrected poses with
 // documented systematic errors and noise (none: the corrected poses as perfect
 // odometry), and the corrected poses as ground truth (TUM). --scans keeps one
 // part of the recording (numbered as `structloc map build --scans` numbers
-// them), to localise on a part the map was not built from.
+// them), to localise on a part the map was not built from. --scan-latency
+// writes a laser stamped late: each scan stamped S after it was taken, with
+// the odometry of that later moment, as a logger does that stamps a scan
+// when its readings arrive (the truth keeps the scan's pose at its stamp).
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -24,6 +27,24 @@ namespace structloc::cli {
 namespace {
 
 constexpr double kDegree = geometry::kPi / 180.0;
+
+// One scan to write: when it was taken, its odometric and true poses then.
+struct Synthesised {
+  double taken;
+  geometry::Pose2D odometry, known, mount;
+  log_formats::CarmenRecord record;
+};
+
+// The odometric pose at `t` along `scans` (taken times increasing): linear
+// between neighbours, along the last step beyond the end.
+geometry::Pose2D OdometryAt(const std::vector<Synthesised>& scans, double t) {
+  if (scans.size() < 2) return scans.front().odometry;
+  size_t j = 0;
+  while (j + 2 < scans.size() && scans[j + 1].taken <= t) ++j;
+  const auto& a = scans[j];
+  const auto& b = scans[j + 1];
+  return geometry::Interpolate(a.odometry, b.odometry, (t - a.taken) / (b.taken - a.taken));
+}
 
 struct Restamp {
   bool enabled = false;
@@ -54,6 +75,9 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       {"scans", true,
        "use only the scans FIRST:LAST of the log (numbered from 0 as by map build --scans, LAST "
        "not included; default: all)"},
+      {"scan-latency", true,
+       "a laser stamped late: each scan stamped this many seconds after it was taken, with the "
+       "odometry of that moment (default 0)"},
   };
   try {
     const config::CommandLine cli(inv.argc, inv.argv, 2, specs);
@@ -73,6 +97,7 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
       restamp.enabled = true;
       restamp.speed_m_s = cli.NumberIn("restamp", restamp.speed_m_s, 0.01, 100.0);
     }
+    const double latency_s = cli.NumberIn("scan-latency", 0.0, -1.0, 1.0);
     const auto [first, last] =
         map_building::ParseScanRange(cli.Has("scans") ? cli.Required("scans") : ":");
     log_formats::CarmenReader reader(log_path);
@@ -80,10 +105,11 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
     log_formats::TumWriter truth(truth_path, {log_path, out_path});
     out.Comment("made by structloc synthesise-odometry from " + log_path);
     std::optional<simulation_core::OdometrySynthesiser> odometry;
+    std::vector<Synthesised> synthesised;
     log_formats::CarmenRecord record;
     geometry::Pose2D previous_known;
     double stamp = 0.0;
-    size_t scans = 0, without_pose = 0, index = 0;
+    size_t without_pose = 0, index = 0;
     while (reader.Next(record)) {
       if (record.kind != log_formats::CarmenRecord::Kind::kScan) continue;
       const auto& known = record.robot_pose ? record.robot_pose : record.laser_pose;
@@ -101,24 +127,33 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
                                          : geometry::Pose2D{};
       if (!odometry) odometry.emplace(model, rng, *known);
       stamp = !restamp.enabled ? record.stamp
-              : scans == 0
+              : synthesised.empty()
                   ? record.stamp
                   : simulation_core::RestampedTime(stamp, previous_known, *known, restamp.speed_m_s,
                                                    restamp.turn_rate_rad_s, restamp.min_step_s);
       previous_known = *known;
-      const geometry::Pose2D pose = odometry->Next(*known);
+      if (!synthesised.empty() && !(stamp > synthesised.back().taken) && latency_s != 0.0)
+        throw config::ConfigError(log_path + ": scan " + std::to_string(index - 1) +
+                                  " is not stamped after the one before; --scan-latency needs "
+                                  "increasing stamps (add --restamp)");
+      synthesised.push_back({stamp, odometry->Next(*known), *known, mount, record});
+    }
+    for (const auto& s : synthesised) {
+      const double stamped = s.taken + latency_s;
+      const geometry::Pose2D pose =
+          latency_s == 0.0 ? s.odometry : OdometryAt(synthesised, stamped);
       // The field of view from the first beam to the last (none for a scan of
       // no beams), within one turn: the reader refuses beams beyond it.
-      const size_t beams = record.ranges.size();
+      const auto& r = s.record;
+      const size_t beams = r.ranges.size();
       log_formats::CarmenLaser laser{
-          record.start_angle,
-          beams > 0 ? record.angular_resolution * static_cast<double>(beams - 1) : 0.0,
-          record.angular_resolution, record.max_range, 0.01};
-      out.Odometry(stamp, pose, 0.0, 0.0);
-      out.RobotLaser(stamp, laser, record.ranges, geometry::Compose(pose, mount), pose, 0.0, 0.0);
-      truth.Pose(stamp, *known);
-      ++scans;
+          r.start_angle, beams > 0 ? r.angular_resolution * static_cast<double>(beams - 1) : 0.0,
+          r.angular_resolution, r.max_range, 0.01};
+      out.Odometry(stamped, pose, 0.0, 0.0);
+      out.RobotLaser(stamped, laser, r.ranges, geometry::Compose(pose, s.mount), pose, 0.0, 0.0);
+      truth.Pose(stamped, s.known);
     }
+    const size_t scans = synthesised.size();
     std::cerr << log_formats::MalformedLinesText(reader.Stats(), log_path);
     if (scans == 0)
       throw config::ConfigError(log_path + ": no laser scan with a pose to make odometry from" +
@@ -138,6 +173,7 @@ int SynthesiseOdometryCommand(const Invocation& inv) {
                 << model.noise_theta_rad_per_sqrt_rad / kDegree << " deg per sqrt(rad) turned";
     std::cout << (restamp.enabled ? ", restamped at " : "");
     if (restamp.enabled) std::cout << restamp.speed_m_s << " m/s";
+    if (latency_s != 0.0) std::cout << ", scans stamped " << latency_s << " s late";
     std::cout << "\n  wrote " << out_path << " and " << truth_path << "\n";
     return 0;
   } catch (const config::ConfigError& e) {

@@ -74,7 +74,9 @@ LocalisationComponent::LocalisationComponent(
   // The listeners only copy into the inbox and notify.
   scan_subscription_ = node.Subscribe<sensor_msgs::msg::LaserScanPubSubType>(
       dds_common::topics::kScan, [this](const sensor_msgs::msg::LaserScan& m) {
-        inbox_.OfferScan(ToSessionScan(m), dds_common::WallClockSeconds());
+        auto scan = ToSessionScan(m);
+        scan.TakenEarlier(session_.Options().scan_latency_s);
+        inbox_.OfferScan(std::move(scan), dds_common::WallClockSeconds());
       });
   odometry_subscription_ = node.Subscribe<nav_msgs::msg::OdometryPubSubType>(
       dds_common::topics::kOdom, [this](const nav_msgs::msg::Odometry& m) {

@@ -267,6 +267,7 @@ class Replayer {
     scan.geometry.range_max = rec.max_range;
     scan.ranges = rec.ranges;
     scan.odometry = rec.robot_pose;
+    scan.TakenEarlier(session_options_.scan_latency_s);
     return scan;
   }
 
@@ -292,7 +293,7 @@ class Replayer {
     // Odometry alone, carried from the initial pose.
     const geometry::Pose2D dead_reckoned =
         geometry::Compose(*initial_pose_, geometry::Between(*first_odometry_, *report.odometry));
-    odometry_only_.push_back({report.stamp, dead_reckoned});
+    odometry_only_.push_back({LogStamp(report.stamp), dead_reckoned});
     if (o_.no_map) {
       PassThrough(scan, report, dead_reckoned);
       return;
@@ -309,7 +310,7 @@ class Replayer {
     if (report.lost) ++report_.scans_lost;
     if (r.Matched() > 0) ++report_.scans_matched;
     if (report.reacquired) {
-      report_.reacquisitions.push_back({report.stamp, report.pose.pose, report.jump});
+      report_.reacquisitions.push_back({LogStamp(report.stamp), report.pose.pose, report.jump});
     }
     Emit(scan, report.pose.pose);
     WatchForKidnapping(report);
@@ -361,8 +362,13 @@ class Replayer {
     Emit(scan, pose);
   }
 
+  // A scan tracked at the moment it was taken (its stamp less the laser's
+  // latency) is written, and judged, at its stamp in the log, as slam's path
+  // is: the truth of a recording is stamped as its scans are.
+  double LogStamp(double taken) const { return taken + session_options_.scan_latency_s; }
+
   void Emit(const localisation_core::SessionScan& scan, const geometry::Pose2D& pose) {
-    const double stamp = scan.geometry.stamp;
+    const double stamp = LogStamp(scan.geometry.stamp);
     out_->Pose(stamp, pose);
     report_.estimate.push_back({stamp, pose});
     if (!o_.plot_path.empty() && report_.scans_used % 10 == 1) {

@@ -1,7 +1,7 @@
 // Odometry re-synthesised from known poses (structloc synthesise-odometry):
 // zero errors give the poses back, each systematic error has the size it is
 // given, noise is seeded, and the command turns a corrected log into an
-// evaluation log and a ground-truth file.
+// evaluation log and a ground-truth file, with a laser stamped late if asked.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -124,6 +124,35 @@ TEST(SynthesiseOdometryCommand, WritesAnEvaluationLogAndTheTruth) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no laser scan with a pose"), std::string::npos) << r.output;
   EXPECT_FALSE(std::ifstream(dir / "e.log").good());
+}
+
+// A laser stamped late: each scan written at its stamp plus the latency, with
+// the odometry of that moment; the truth keeps the scan's pose at the new stamp.
+TEST(SynthesiseOdometryCommand, WritesALaserStampedLate) {
+  const testing::TempDir dir;
+  std::ostringstream log;
+  for (int i = 0; i < 5; ++i) {
+    log << "FLASER 3 1.0 1.5 2.0 " << 0.1 * i << " 0 0 " << 0.1 * i << " 0 0 " << i << ".0 host "
+        << i << ".0\n";
+  }
+  const auto in = dir.Write("corrected.log", log.str());
+  auto r = testing::RunCli({"synthesise-odometry", "--log", in, "--out", dir / "eval.log",
+                            "--truth", dir / "truth.tum", "--scan-latency", "0.25"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string eval = testing::ReadFile(dir / "eval.log");
+  EXPECT_NE(eval.find("ODOM 0.125000 0.000000 0.000000 0.000000 0.000000 0 1.250000"),
+            std::string::npos)
+      << eval;
+  EXPECT_NE(eval.find("ODOM 0.425000"), std::string::npos) << "along the last step\n" << eval;
+  const std::string truth = testing::ReadFile(dir / "truth.tum");
+  EXPECT_NE(truth.find("1.250000 0.100000 0.000000"), std::string::npos) << truth;
+
+  std::ostringstream same;
+  for (int i = 0; i < 3; ++i) same << "FLASER 3 1.0 1.5 2.0 0 0 0 0 0 0 7.0 host 7.0\n";
+  r = testing::RunCli({"synthesise-odometry", "--log", dir.Write("same.log", same.str()), "--out",
+                       dir / "s.log", "--truth", dir / "s.tum", "--scan-latency", "0.1"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--restamp"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -84,6 +84,10 @@ config::OptionFile<SessionOptions> SessionOptionFile() {
            "a rejected input stays in the health report this long");
   t.Number("max_pending_scans", &S::max_pending_scans, Range::Closed(1, 1000000), "",
            "scans waiting for odometry in in-order scheduling (replay)");
+  t.Number("scan_latency_s", &S::scan_latency_s, Range::Closed(-1, 1), "s",
+           "each scan was taken this long before its stamp (a laser stamped when its readings "
+           "arrived, as structloc slam estimates): tracked, and its pose stamped, that much "
+           "earlier");
   std::set<std::string> localiser_sections;
   const auto localiser_file = LocaliserOptionFile();
   for (const auto& section : localiser_file.Sections()) {

@@ -22,6 +22,15 @@ struct SessionScan {
     in.count = ranges.size();
     return in;
   }
+  // A laser stamped when its readings arrived, `latency_s` after it took
+  // them: the stamp moved back to when they were taken, and the odometry the
+  // scan came with (that of its old stamp) dropped, to be interpolated at
+  // the new one. Nothing changes at no latency.
+  void TakenEarlier(double latency_s) {
+    if (latency_s == 0.0) return;
+    geometry.stamp -= latency_s;
+    odometry.reset();
+  }
   // Stamp of the last beam.
   double LastBeamStamp() const {
     return geometry.stamp +

@@ -21,6 +21,10 @@ struct SessionOptions {
   // At most this many scans wait for odometry in in-order scheduling (replay);
   // beyond it the oldest is processed with what there is.
   size_t max_pending_scans = 1000;
+  // Each scan was taken this long before its stamp (a laser stamped when its
+  // readings arrived; `structloc slam` estimates it from a recording). The
+  // adapters move a scan's stamp back by it (SessionScan::TakenEarlier).
+  double scan_latency_s = 0.0;
 
   // Throws std::invalid_argument naming the broken option ("tracking: ...").
   void Validate() const;
