@@ -17,7 +17,10 @@
 # the SLAM path each fit the raw scans step by step, with no reference
 # (structloc_path_scan_fit: scans 1-1.5 m apart, the mean distance of one's
 # points from the other's surfaces, and the scale of the path's steps the
-# scans prefer). Outputs (paths, maps, pictures) go to OUT_DIR.
+# scans prefer), and how straight the map built on each is against the
+# building's axes (structloc_map_straightness: the shipped map of maps/real/,
+# built on the corrected poses, and the one slam built). Outputs (paths,
+# maps, pictures) go to OUT_DIR.
 #
 # Usage: tests/evaluation/slam_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: slam_evaluation, build, ../shared/data); SLAM_PARAMS=FILE
@@ -61,4 +64,11 @@ for name in freiburg_079 intel; do
     printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
     "$fit" "$out/$name.raw.log" "$out/$name.$path.tum"
   done
+done
+echo
+echo "Walls against the building's axes (structloc_map_straightness):"
+straightness="$(dirname "$structloc")/../tests/structloc_map_straightness"
+for name in freiburg_079 intel; do
+  "$straightness" "$root/maps/real/$name.xml"
+  "$straightness" "$out/$name.slam.xml"
 done
