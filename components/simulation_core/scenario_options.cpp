@@ -100,6 +100,10 @@ OptionTable<LaserSpec> LaserAttributes(const ScenarioLimits& limits) {
            "per beam: a short random return");
   t.Number("mixed_pixel_probability", &L::mixed_pixel_probability, Range::Closed(0, 1), "",
            "per beam at a depth jump > 0.2 m: a range between the two");
+  t.Number("stamp_latency_s", &L::stamp_latency_s, Range::Closed(0, 1), "s",
+           "each scan stamped, and given out, this long after its first beam was taken (a "
+           "laser stamped when its readings arrive)")
+      .Optional();
   return t;
 }
 

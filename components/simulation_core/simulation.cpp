@@ -245,7 +245,7 @@ void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D&
   for (;;) {
     const double scan_start = scan_index_ * scan_.scan_time;
     const double t = scan_start + next_beam_ * scan_.time_increment;
-    if (t > t1 + 1e-12) return;
+    if (t > t1 + 1e-12) break;
     const double f = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
     const geometry::Pose2D base = geometry::Interpolate(from, to, f);
     if (next_beam_ == 0) {
@@ -256,10 +256,37 @@ void Simulation::CastBeams(const geometry::Pose2D& from, const geometry::Pose2D&
     }
     scan_.ranges.push_back(Measure(scene_, geometry::Compose(base, l.mount), next_beam_));
     if (++next_beam_ == l.beams) {
-      completed_ = scan_;
+      if (l.stamp_latency_s > 0) {
+        stamped_late_.push_back(scan_);
+        stamped_late_.back().stamp += l.stamp_latency_s;
+      } else {
+        completed_ = scan_;
+      }
       next_beam_ = 0;
       ++scan_index_;
     }
+  }
+  ReleaseStampedLate(t0, t1);
+}
+
+void Simulation::ReleaseStampedLate(double t0, double t1) {
+  if (scenario_.laser.stamp_latency_s <= 0) return;
+  // Odometry as far back as a stamp can lie behind the scan's last beam.
+  if (odometry_history_.empty()) odometry_history_.push_back({t0, last_odometry_});
+  odometry_history_.push_back({t1, state_.odometry});
+  while (odometry_history_.size() > 2 &&
+         odometry_history_[1].first < t1 - scan_.scan_time - scenario_.step_s)
+    odometry_history_.pop_front();
+  while (!stamped_late_.empty() && stamped_late_.front().stamp <= t1 + 1e-12) {
+    SimScan& scan = stamped_late_.front();
+    size_t j = 0;
+    while (j + 2 < odometry_history_.size() && odometry_history_[j + 1].first < scan.stamp) ++j;
+    const auto& [ta, a] = odometry_history_[j];
+    const auto& [tb, b] = odometry_history_[j + 1];
+    scan.odometry =
+        geometry::Interpolate(a, b, std::clamp((scan.stamp - ta) / (tb - ta), 0.0, 1.0));
+    completed_ = std::move(scan);
+    stamped_late_.pop_front();
   }
 }
 

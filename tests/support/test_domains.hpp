@@ -55,6 +55,7 @@ inline constexpr int kLatencyBenchmark = 90;
 inline constexpr int kSoakBenchmark = 86;
 inline constexpr int kRecordCli = 91;
 inline constexpr int kCpuWakeLatency = 92;
+inline constexpr int kLateLaser = 93;
 
 inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kQosProfiles,
@@ -88,7 +89,8 @@ inline constexpr std::array kAll = {kIdlRoundtrip,
                                     kLatencyBenchmark,
                                     kSoakBenchmark,
                                     kRecordCli,
-                                    kCpuWakeLatency};
+                                    kCpuWakeLatency,
+                                    kLateLaser};
 
 constexpr bool AllDistinctAndSafe() {
   for (size_t i = 0; i < kAll.size(); ++i) {

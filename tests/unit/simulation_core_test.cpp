@@ -1,6 +1,7 @@
 // The simulator core: tricycle kinematics against closed forms, dead reckoning
 // against ground truth, encoders (quantisation and wrap-around), the skew of a
-// scan taken while moving, determinism, scenario files and recordings.
+// scan taken while moving, a scan stamped late, determinism, scenario files and
+// recordings.
 #include <gtest/gtest.h>
 
 #include "test_paths.hpp"
@@ -145,6 +146,46 @@ TEST(Simulation, TheSkewOfAScanTakenAt1MetrePerSecondMatchesTheAnalyticDisplacem
   // And the skew itself is visible: the first and last of those beams differ
   // by the 1 m/s travel over the scan.
   EXPECT_GT(scan->time_increment * static_cast<double>(scan->ranges.size()), 0.1);
+}
+
+// A laser stamped when its readings arrive: the same readings and true pose
+// as on time, the stamp later by the latency, given out no earlier than that,
+// with the odometry of the later moment.
+TEST(Simulation, AScanStampedLateKeepsItsReadingsAndCarriesTheOdometryOfItsStamp) {
+  auto scenario =
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/dead_end_corridor.xml"));
+  scenario.errors = {};
+  scenario.path.mode = simulation_core::PathSpec::Mode::kCmdVel;
+  scenario.initial_pose = {5.0, 1.155, kPi};
+  const auto scans = [&](double latency_s) {
+    auto s = scenario;
+    s.laser.stamp_latency_s = latency_s;
+    simulation_core::Simulation sim(s);
+    sim.CommandVelocity(1.0, 0.0);
+    std::vector<std::pair<double, simulation_core::SimScan>> out;  // (given out at, scan)
+    for (int i = 0; i < 150; ++i) {
+      sim.Step();
+      if (auto scan = sim.TakeScan()) out.push_back({sim.State().time, *scan});
+    }
+    return out;
+  };
+  const auto on_time = scans(0.0);
+  const auto late = scans(0.13);
+  ASSERT_GE(on_time.size(), 5u);
+  ASSERT_GE(late.size(), on_time.size() - 1);
+  for (size_t i = 1; i + 1 < late.size(); ++i) {
+    const auto& [given, scan] = late[i];
+    const auto& reference = on_time[i].second;
+    EXPECT_NEAR(scan.stamp, reference.stamp + 0.13, 1e-9) << i;
+    // Given out at its stamp, or when complete if that is later (this
+    // laser's 360 deg sweep takes 0.2 s).
+    EXPECT_GE(given + 1e-9, scan.stamp) << i;
+    EXPECT_LT(given, std::max(scan.stamp, on_time[i].first) + scenario.step_s + 1e-9) << i;
+    EXPECT_EQ(scan.ranges, reference.ranges) << i;
+    EXPECT_NEAR(scan.truth.x, reference.truth.x, 1e-12) << i;
+    // At 1 m/s straight ahead in the odometry frame.
+    EXPECT_NEAR(scan.odometry.x, reference.odometry.x + 0.13, 2e-3) << i;
+  }
 }
 
 TEST(Simulation, SameScenarioAndSeedGiveBitForBitTheSameRecording) {

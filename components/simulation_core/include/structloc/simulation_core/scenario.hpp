@@ -42,6 +42,9 @@ struct LaserSpec {
   bool no_return_is_max = false;         // "no return" as max_range_m + 1 instead of +inf
   double spurious_probability = 0.0;     // short random returns
   double mixed_pixel_probability = 0.0;  // at depth jumps > 0.2 m
+  // Each scan stamped, and given out, this long after its first beam was
+  // taken: a laser stamped when its readings arrive (a slow serial line).
+  double stamp_latency_s = 0.0;
   std::vector<std::pair<double, double>> blocked_sectors;  // [from, to] rad, laser frame
 };
 

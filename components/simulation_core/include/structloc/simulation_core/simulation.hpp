@@ -7,6 +7,7 @@
 // the same scenario and seed give bit-for-bit the same output. DDS-free.
 #pragma once
 
+#include <deque>
 #include <optional>
 #include <random>
 #include <vector>
@@ -23,8 +24,10 @@ struct SimScan {
   double angle_min = 0.0, angle_increment = 0.0, time_increment = 0.0, scan_time = 0.0;
   double range_min = 0.0, range_max = 0.0;
   std::vector<float> ranges;
-  geometry::Pose2D truth;     // robot base in the map frame at `stamp`
-  geometry::Pose2D odometry;  // robot base in the odom frame at `stamp`
+  // The robot base in the map frame when the first beam was taken (at
+  // `stamp`, less the laser's stamp_latency_s) ...
+  geometry::Pose2D truth;
+  geometry::Pose2D odometry;  // ... and in the odom frame at `stamp`
 };
 
 // The state after one integration step.
@@ -48,7 +51,8 @@ class Simulation {
   // Advances one step; returns the new state.
   const SimState& Step();
   const SimState& State() const { return state_; }
-  // A scan whose last beam was taken during the last step, if any.
+  // A scan whose last beam was taken during the last step, if any (with a
+  // stamp latency: whose stamp fell in the last step).
   std::optional<SimScan> TakeScan();
   bool Finished() const;
   // Velocity command for PathSpec::Mode::kCmdVel (m/s, rad/s).
@@ -65,6 +69,10 @@ class Simulation {
   void StepDifferential(double wheel_angle, double steering, double slip_factor);
   void MovePeople(double t);
   void CastBeams(const geometry::Pose2D& from, const geometry::Pose2D& to, double t0, double t1);
+  // Gives out the scans stamped late whose stamps fell by t1 (a stamp
+  // within a scan's sweep: when it is complete), with the odometry at their
+  // stamps.
+  void ReleaseStampedLate(double t0, double t1);
   float Measure(const world_model::Scene& scene, const geometry::Pose2D& laser_pose, int beam);
 
   Scenario scenario_;
@@ -89,6 +97,9 @@ class Simulation {
   int scan_index_ = 0;
   double previous_true_range_ = 0.0;
   std::optional<SimScan> completed_;
+  std::deque<SimScan> stamped_late_;  // complete, waiting for their late stamps
+  // (time, odometry) back to the oldest stamp a complete scan can have.
+  std::deque<std::pair<double, geometry::Pose2D>> odometry_history_;
   double last_step_time_ = 0.0;
   geometry::Pose2D last_truth_, last_odometry_;
 };
