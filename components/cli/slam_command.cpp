@@ -68,19 +68,27 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
 }
 
 // Each scan's odometric laser pose at the moment it was taken, the latency
-// printed where there is one.
-std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& log,
-                                              const slam_core::SlamOptions& options) {
+// printed where there is one; the log's points de-skewed to that moment
+// where it gives its beam timing (it was read without de-skewing).
+std::vector<geometry::Pose2D> TakeScansAsTaken(map_building::PosedScanLog& log,
+                                               const slam_core::SlamOptions& options) {
   std::vector<double> stamps;
   std::vector<geometry::Pose2D> odometry;
-  std::vector<std::vector<Eigen::Vector2d>> points;  // the estimate's only
+  std::vector<std::vector<Eigen::Vector2d>> points;
+  slam_core::PointTimes times;
   for (const auto& s : log.scans) {
     stamps.push_back(s.stamp);
     odometry.push_back(s.laser_pose);
-    if (options.estimate_scan_latency) points.push_back(s.points);
+    points.push_back(s.points);
+    if (log.time_increment_s > 0.0) {
+      auto& t = times.emplace_back();
+      for (const uint32_t beam : s.point_beams) t.push_back(log.time_increment_s * beam);
+    }
   }
   slam_core::ScanLatencyEstimate e;
-  auto taken = slam_core::OdometryWhenTaken(options, stamps, odometry, points, &e);
+  auto taken = slam_core::AsTaken(options, stamps, odometry, points, times, &e);
+  for (size_t i = 0; i < log.scans.size(); ++i) log.scans[i].points = std::move(taken.points[i]);
+  if (!times.empty()) log.deskewed = log.scans.size();
   if (options.estimate_scan_latency && !e.untold.empty()) {
     std::printf("  scan latency: the log does not tell it (%s); none applied\n", e.untold.c_str());
   } else if (options.estimate_scan_latency) {
@@ -99,7 +107,7 @@ std::vector<geometry::Pose2D> OdometryAtScans(const map_building::PosedScanLog& 
   } else if (options.scan_latency_s != 0.0) {
     std::printf("  scan latency %.3f s (the options')\n", options.scan_latency_s);
   }
-  return taken;
+  return taken.odometry;
 }
 
 }  // namespace
@@ -165,7 +173,7 @@ int SlamCommand(const Invocation& inv) {
     const auto range = map_building::ParseScanRange(cli.GetOr("scans", ":"));
 
     const auto start = std::chrono::steady_clock::now();
-    auto log = map_building::ReadPosedScans(log_path, build.scans);
+    auto log = map_building::ReadPosedScans(log_path, build.scans, map_building::ScanDeskew::kNone);
     map_building::KeepScans(log, range.first, range.second);
     // The laser on the robot, from the first line with both poses.
     geometry::Pose2D mount;
@@ -175,7 +183,7 @@ int SlamCommand(const Invocation& inv) {
       break;
     }
     const geometry::Pose2D unmount = geometry::Inverse(mount);
-    const std::vector<geometry::Pose2D> laser_odometry = OdometryAtScans(log, slam_options);
+    const std::vector<geometry::Pose2D> laser_odometry = TakeScansAsTaken(log, slam_options);
     // SLAM in the laser's frame: its odometric pose and its own readings.
     slam_core::Slam slam(slam_options);
     for (size_t i = 0; i < log.scans.size(); ++i) {

@@ -20,12 +20,11 @@ constexpr double kMaxMotionGapS = 0.5;
 // Thesis 3.6, EQ 45: each scan's beams were measured from the laser moving
 // as it moves from this scan's pose to the next's (the previous's for the
 // last scan), linearly; every point is moved into the laser frame of the
-// first beam (the scan's stamp and pose). `beams[k][j]`: the beam of scan
-// k's point j; beam i was measured `time_increment` * i after the first.
+// first beam (the scan's stamp and pose). Beam i was measured
+// `time_increment` * i after the first.
 // (The localiser's LinearBeamMotion is the same motion for a whole scan in
 // its own scan type; map building does not depend on the localiser.)
-size_t Deskew(std::vector<PosedScan>& scans, const std::vector<std::vector<uint32_t>>& beams,
-              double time_increment) {
+size_t Deskew(std::vector<PosedScan>& scans, double time_increment) {
   size_t deskewed = 0;
   for (size_t k = 0; k < scans.size(); ++k) {
     const auto usable = [&](size_t n) {
@@ -40,7 +39,7 @@ size_t Deskew(std::vector<PosedScan>& scans, const std::vector<std::vector<uint3
     const geometry::Pose2D motion = geometry::Between(scans[k].laser_pose, scans[n].laser_pose);
     const double per_s = 1.0 / (scans[n].stamp - scans[k].stamp);
     for (size_t j = 0; j < scans[k].points.size(); ++j) {
-      const double f = per_s * time_increment * beams[k][j];
+      const double f = per_s * time_increment * scans[k].point_beams[j];
       const geometry::Pose2D beam{f * motion.x, f * motion.y, f * motion.theta};
       scans[k].points[j] = beam.Apply(scans[k].points[j]);
     }
@@ -60,11 +59,11 @@ std::string DeskewText(const PosedScanLog& log) {
   return text;
 }
 
-PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options) {
+PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options,
+                            ScanDeskew deskew) {
   log_formats::CarmenReader reader(log_path);
   log_formats::CarmenRecord record;
   PosedScanLog log;
-  std::vector<std::vector<uint32_t>> beams;  // of each scan's points
   while (reader.Next(record)) {
     if (record.kind != log_formats::CarmenRecord::Kind::kScan) continue;
     const auto& pose = record.laser_pose ? record.laser_pose : record.robot_pose;
@@ -82,7 +81,6 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
     scan.angular_resolution = record.angular_resolution;
     scan.beams = record.ranges.size();
     scan.points.reserve(record.ranges.size());
-    auto& beam = beams.emplace_back();
     for (size_t i = 0; i < record.ranges.size(); ++i) {
       const double r = record.ranges[i];
       ++log.readings;
@@ -94,13 +92,14 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
       const double a = record.start_angle + static_cast<double>(i) * record.angular_resolution;
       scan.points.emplace_back(r * std::cos(a), r * std::sin(a));
       scan.ranges.push_back(r);
-      beam.push_back(static_cast<uint32_t>(i));
+      scan.point_beams.push_back(static_cast<uint32_t>(i));
     }
     log.scans.push_back(std::move(scan));
   }
   log.reader = reader.Stats();
   log.time_increment_s = reader.LaserTimeIncrement();
-  if (log.time_increment_s > 0.0) log.deskewed = Deskew(log.scans, beams, log.time_increment_s);
+  if (log.time_increment_s > 0.0 && deskew == ScanDeskew::kByNeighbours)
+    log.deskewed = Deskew(log.scans, log.time_increment_s);
   if (log.scans.empty()) {
     throw config::ConfigError(log_path + ": no laser scan with a pose (FLASER, ROBOTLASER) in " +
                               std::to_string(reader.Stats().lines) + " lines");

@@ -87,6 +87,29 @@ struct MatchedPair {
   double rotation;
 };
 
+// Scan `points`, whose first beam was taken at `taken`, moved into the laser's
+// frame then, each point by the motion to `times` later.
+std::vector<Eigen::Vector2d> Deskewed(const OdometryTrack& track, double taken,
+                                      const std::vector<Eigen::Vector2d>& points,
+                                      const std::vector<double>& times) {
+  if (times.empty()) return points;
+  const geometry::Pose2D first = track.PoseAt(taken);
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
+  for (size_t j = 0; j < points.size(); ++j)
+    out.push_back(geometry::Between(first, track.PoseAt(taken + times[j])).Apply(points[j]));
+  return out;
+}
+
+void CheckTimes(const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& times) {
+  if (times.empty()) return;
+  bool fit = times.size() == points.size();
+  for (size_t i = 0; fit && i < times.size(); ++i)
+    fit = times[i].empty() || times[i].size() == points[i].size();
+  if (!fit)
+    throw std::invalid_argument("scan latency: the points' times do not fit the scans' points");
+}
+
 // Each matched pair's robust cost at each latency of the grid.
 using LatencyCosts = std::vector<std::vector<double>>;
 
@@ -141,21 +164,41 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
   return out;
 }
 
+std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
+    const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry,
+    const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& point_times,
+    double latency_s) {
+  CheckSizes(stamps, odometry.size());
+  CheckTimes(points, point_times);
+  if (point_times.empty() || odometry.size() < 2) return points;
+  if (const std::string why = NotIncreasing(stamps); !why.empty())
+    throw std::invalid_argument("scan latency: " + why);
+  const OdometryTrack track(stamps, odometry);
+  std::vector<std::vector<Eigen::Vector2d>> out;
+  out.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    out.push_back(Deskewed(track, stamps[i] - latency_s, points[i], point_times[i]));
+  return out;
+}
+
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<geometry::Pose2D>& odometry,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
                                         const ScanLatencyOptions& options,
-                                        const ScanMatchOptions& match) {
+                                        const ScanMatchOptions& match,
+                                        const PointTimes& point_times) {
   if (!(options.step_s > 0) || !(options.max_latency_s >= options.step_s) ||
-      !(options.max_pairs >= 1) || !(options.rounds >= 1) || !(options.confidence > 0) ||
+      !(options.max_pairs >= 1) || !(options.rounds >= 1) ||
+      !(options.max_rounds >= options.rounds) || !(options.confidence > 0) ||
       !(options.confidence < 1) || !(options.resamples >= 1) || !(options.block_pairs >= 1))
     throw std::invalid_argument(
         "scan latency: step_s must be > 0, max_latency_s >= step_s, confidence within (0, 1), "
-        "max_pairs, rounds, resamples and block_pairs >= 1");
+        "max_pairs, rounds, resamples and block_pairs >= 1, max_rounds >= rounds");
   CheckSizes(stamps, odometry.size());
   if (points.size() != odometry.size())
     throw std::invalid_argument("scan latency: " + std::to_string(points.size()) + " scans for " +
                                 std::to_string(odometry.size()) + " poses");
+  CheckTimes(points, point_times);
   ScanLatencyEstimate estimate;
   estimate.untold = NotIncreasing(stamps);
   if (stamps.size() < 2) estimate.untold = "a log of fewer than two scans does not tell it";
@@ -189,14 +232,22 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
   };
   std::vector<MatchedPair> pairs;
   LatencyCosts costs;
-  for (int round = 0; round < options.rounds; ++round) {
+  const auto at = [&](size_t i, double latency) {
+    return point_times.empty() ? points[i]
+                               : Deskewed(track, stamps[i] - latency, points[i], point_times[i]);
+  };
+  double moved = INFINITY;  // by the last round
+  for (int round = 0;
+       round < options.rounds ||
+       (!point_times.empty() && round < options.max_rounds && moved > 0.5 * options.step_s);
+       ++round) {
+    const double from = estimate.latency_s;
     pairs.clear();
     for (const size_t i : telling) {
-      const ReferencePoints reference(points[i], match);
+      const ReferencePoints reference(at(i, from), match);
       const geometry::Pose2D guess =
-          geometry::Between(track.PoseAt(stamps[i] - estimate.latency_s),
-                            track.PoseAt(stamps[i + 1] - estimate.latency_s));
-      const ScanMatch m = MatchScan(reference, points[i + 1], guess, match);
+          geometry::Between(track.PoseAt(stamps[i] - from), track.PoseAt(stamps[i + 1] - from));
+      const ScanMatch m = MatchScan(reference, at(i + 1, from), guess, match);
       if (m.inlier_share >= options.min_share && m.rms_m <= options.max_rms_m)
         pairs.push_back({i, m.pose.theta});
     }
@@ -216,6 +267,7 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
     std::vector<size_t> all(pairs.size());
     std::iota(all.begin(), all.end(), size_t{0});
     estimate.latency_s = (static_cast<int>(Best(costs, all)) - steps) * options.step_s;
+    moved = std::abs(estimate.latency_s - from);
   }
   const auto [low, high] = BootstrapInterval(costs, options);
   estimate.interval_low_s = (static_cast<int>(low) - steps) * options.step_s;

@@ -168,18 +168,21 @@ void Slam::Finish() {
     stats_.walls = RefineWithWalls(poses_, segments_, edges_, options_.walls, options_.graph);
 }
 
-std::vector<geometry::Pose2D> OdometryWhenTaken(
-    const SlamOptions& options, const std::vector<double>& stamps,
-    const std::vector<geometry::Pose2D>& odometry,
-    const std::vector<std::vector<Eigen::Vector2d>>& points, ScanLatencyEstimate* estimate) {
-  double latency = options.scan_latency_s;
+ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stamps,
+                     const std::vector<geometry::Pose2D>& odometry,
+                     const std::vector<std::vector<Eigen::Vector2d>>& points,
+                     const PointTimes& point_times, ScanLatencyEstimate* estimate) {
+  ScansAsTaken taken;
+  taken.latency_s = options.scan_latency_s;
   if (options.estimate_scan_latency) {
     const ScanLatencyEstimate e =
-        EstimateScanLatency(stamps, odometry, points, options.latency, options.match);
-    latency = e.Applied();
+        EstimateScanLatency(stamps, odometry, points, options.latency, options.match, point_times);
+    taken.latency_s = e.Applied();
     if (estimate) *estimate = e;
   }
-  return OdometryBefore(stamps, odometry, latency);
+  taken.odometry = OdometryBefore(stamps, odometry, taken.latency_s);
+  taken.points = DeskewedPoints(stamps, odometry, points, point_times, taken.latency_s);
+  return taken;
 }
 
 std::vector<log_formats::StampedPose> Slam::Trajectory() const {

@@ -163,6 +163,9 @@ Table ScanLatencySection() {
   t.Number("rounds", &O::latency, &L::rounds, Range::Closed(1, 10), "",
            "rounds of matching, each from the last estimate (a pair in a quick turn matches "
            "only from a guess near its latency)");
+  t.Number("max_rounds", &O::latency, &L::max_rounds, Range::Closed(1, 20), "",
+           "where the log gives its beams' times, rounds go on while the estimate still moves, "
+           "each de-skewing the scans at the last estimate, up to this many");
   t.Number("confidence", &O::latency, &L::confidence, Range::Open(0, 1), "",
            "the estimate is applied only when its interval at this confidence excludes 0 (the "
            "recording shows a latency) ...");
@@ -206,6 +209,8 @@ void SlamOptions::Validate() const {
   }
   if (!(latency.max_latency_s >= latency.step_s))
     throw std::invalid_argument("scan_latency: max_latency_s must be >= step_s");
+  if (!(latency.max_rounds >= latency.rounds))
+    throw std::invalid_argument("scan_latency: max_rounds must be >= rounds");
   if (estimate_scan_latency && scan_latency_s != 0.0)
     throw std::invalid_argument(
         "scan_latency: latency_s is " + config::FormatNumber(scan_latency_s) +

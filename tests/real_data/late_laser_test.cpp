@@ -68,7 +68,7 @@ TEST(LateLaser, TheLogShowsTheLatencyAndTrackingWithItMeetsTheBars) {
     points.push_back(s.points);
   }
   slam_core::ScanLatencyEstimate estimate;
-  slam_core::OdometryWhenTaken({}, stamps, odometry, points, &estimate);
+  slam_core::AsTaken({}, stamps, odometry, points, {}, &estimate);
   std::cout << "estimate " << estimate.latency_s << " s, interval " << estimate.interval_low_s
             << " to " << estimate.interval_high_s << " s" << std::endl;
   EXPECT_TRUE(estimate.shown);

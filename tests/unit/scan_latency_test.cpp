@@ -37,11 +37,15 @@ geometry::Pose2D TruePose(double t) {
   return {-2.0 + 0.1 * t, -0.5, (60 * kPi / 180) * std::sin(2 * kPi * t / 4.0)};
 }
 
-// 181 beams over 180 deg, 5 mm range noise, in the laser's frame.
-std::vector<Eigen::Vector2d> Scan(const geometry::Pose2D& pose, std::mt19937& random) {
+// 181 beams over 180 deg, 5 mm range noise, in the laser's frame; beam k
+// taken at `pose_of_beam(k)` (a laser sweeping while the robot turns), or
+// all at `pose`.
+template <class PoseOfBeam>
+std::vector<Eigen::Vector2d> SweptScan(PoseOfBeam pose_of_beam, std::mt19937& random) {
   std::normal_distribution<double> noise(0.0, 0.005);
   std::vector<Eigen::Vector2d> points;
   for (int k = 0; k <= 180; ++k) {
+    const geometry::Pose2D pose = pose_of_beam(k);
     const double angle = pose.theta + (k - 90) * kPi / 180;
     const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
     double range = INFINITY;
@@ -60,6 +64,10 @@ std::vector<Eigen::Vector2d> Scan(const geometry::Pose2D& pose, std::mt19937& ra
         {range * std::cos((k - 90) * kPi / 180), range * std::sin((k - 90) * kPi / 180)});
   }
   return points;
+}
+
+std::vector<Eigen::Vector2d> Scan(const geometry::Pose2D& pose, std::mt19937& random) {
+  return SweptScan([&](int) { return pose; }, random);
 }
 
 struct Recording {
@@ -115,6 +123,47 @@ TEST(ScanLatency, NoneAppliedWhereNoisyOdometryDoesNotShowOne) {
   EXPECT_GE(e.interval_high_s, 0.0);
   EXPECT_FALSE(e.shown);
   EXPECT_EQ(e.Applied(), 0.0) << "estimate " << e.latency_s;
+}
+
+// A laser whose 180 beams sweep over 0.1 s while the robot swings (one
+// beam each 0.55 ms after the first): matched as they are, the scans tell the
+// latency of their middle; given their beams' times, the estimate de-skews
+// them and finds that of their first beam.
+TEST(ScanLatency, ScansThatSweepAreDeskewedToTheirFirstBeam) {
+  constexpr double kLatencyS = 0.1237, kBeamS = 0.1 / 180;
+  std::mt19937 random(11);
+  Recording r;
+  PointTimes times;
+  for (int i = 0; i < 100; ++i) {
+    const double stamp = 10.0 + kPeriodS * i;
+    r.stamps.push_back(stamp);
+    r.odometry.push_back(TruePose(stamp));
+    const double first = stamp - kLatencyS;
+    r.points.push_back(SweptScan([&](int k) { return TruePose(first + k * kBeamS); }, random));
+    auto& t = times.emplace_back();
+    for (int k = 0; k <= 180; ++k) t.push_back(k * kBeamS);
+  }
+  const auto as_they_are = EstimateScanLatency(r.stamps, r.odometry, r.points);
+  EXPECT_NEAR(as_they_are.latency_s, kLatencyS - 0.05, 0.02) << "the sweep's middle";
+  const auto deskewed = EstimateScanLatency(r.stamps, r.odometry, r.points, {}, {}, times);
+  EXPECT_NEAR(deskewed.latency_s, kLatencyS, 0.01);
+  EXPECT_TRUE(deskewed.shown);
+  EXPECT_LT(deskewed.rms_at_estimate_rad, as_they_are.rms_at_estimate_rad);
+}
+
+TEST(ScanLatency, DeskewedPointsAreThoseOfTheFirstBeamsFrame) {
+  // Turning at 1 rad/s about the laser: a point seen 0.1 s after the first
+  // beam, straight ahead, lies 0.1 rad to the left in the first beam's frame.
+  const std::vector<double> stamps = {0.0, 1.0};
+  const std::vector<geometry::Pose2D> odometry = {{0, 0, 0}, {0, 0, 1.0}};
+  const std::vector<std::vector<Eigen::Vector2d>> points = {{{2.0, 0.0}}, {{2.0, 0.0}}};
+  const auto out = DeskewedPoints(stamps, odometry, points, {{0.1}, {0.0}}, 0.0);
+  EXPECT_NEAR(out[0][0].x(), 2.0 * std::cos(0.1), 1e-12);
+  EXPECT_NEAR(out[0][0].y(), 2.0 * std::sin(0.1), 1e-12);
+  EXPECT_EQ(out[1][0], points[1][0]);
+  EXPECT_EQ(DeskewedPoints(stamps, odometry, points, {}, 0.0)[0][0], points[0][0]) << "no times";
+  EXPECT_THROW(DeskewedPoints(stamps, odometry, points, {{0.1, 0.2}, {0.0}}, 0.0),
+               std::invalid_argument);
 }
 
 TEST(ScanLatency, OdometryTakenEarlierAlongItsSteps) {

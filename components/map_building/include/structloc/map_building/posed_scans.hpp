@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,8 +34,9 @@ struct PosedScan {
   // the range of each (a jump in range separates objects).
   std::vector<Eigen::Vector2d> points;
   std::vector<double> ranges;
-  double angular_resolution = 0.0;  // rad between beams
-  size_t beams = 0;                 // readings of the scan, within the limits or not
+  std::vector<uint32_t> point_beams;  // the beam of each point (its time: beam x time increment)
+  double angular_resolution = 0.0;    // rad between beams
+  size_t beams = 0;                   // readings of the scan, within the limits or not
 };
 
 struct PosedScanLog {
@@ -50,12 +52,18 @@ struct PosedScanLog {
   size_t deskewed = 0;
 };
 
+// Whether ReadPosedScans de-skews the scans where the log gives its beam
+// timing: by the motion to the neighbouring scan's pose, or not (for a reader
+// that de-skews them itself, e.g. once it knows when each scan was taken).
+enum class ScanDeskew { kByNeighbours, kNone };
+
 // Reads every scan of the log with its laser pose (the line's laser pose, else
 // the robot pose: the corrected logs have no laser offset), de-skewed where
-// the log gives its beam timing (thesis 3.6, EQ 45). Throws
+// the log gives its beam timing (thesis 3.6, EQ 45) unless told not to. Throws
 // std::runtime_error naming the file when it cannot be read, and
 // config::ConfigError when it holds no scan with a pose.
-PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options);
+PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions& options,
+                            ScanDeskew deskew = ScanDeskew::kByNeighbours);
 
 // "  N scans de-skewed by the log's beam timing (... ms between beams)\n", or
 // "" where the log gives none: for the commands that read posed scans.

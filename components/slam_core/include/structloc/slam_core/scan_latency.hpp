@@ -38,6 +38,10 @@ struct ScanLatencyOptions {
   // Rounds of matching, each from the last estimate (a pair in a quick turn
   // matches only from a guess near its latency).
   int rounds = 2;
+  // Where the scans come with their beams' times, matching goes on past
+  // `rounds` while the estimate still moves by more than a step, each round
+  // de-skewing the scans at the last estimate, up to this many rounds.
+  int max_rounds = 6;
   // The estimate's interval at this confidence, from `resamples` resamplings
   // of the matched pairs in blocks of `block_pairs` consecutive ones (a pair
   // shares a scan with its neighbours, and a turn lasts a few pairs), drawn
@@ -64,6 +68,10 @@ struct ScanLatencyEstimate {
   double rms_at_estimate_rad = 0.0;
 };
 
+// Each scan's points' times after its first beam, in seconds (empty: the
+// log gives no beam timing, every point taken at once).
+using PointTimes = std::vector<std::vector<double>>;
+
 // Each pose of `odometry` (stamped `stamps`, increasing) replaced by the pose
 // at its stamp minus `latency_s`, linear between neighbouring samples (beyond
 // the ends, along the first or last step); unchanged at no latency. Throws
@@ -79,10 +87,24 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
 // slows down, or none matched well) gives no pairs, no latency shown and
 // says why in `untold`. Throws std::invalid_argument when the sizes differ
 // or for options out of range.
+// With `point_times`, the scans are de-skewed at each round's latency
+// (DeskewedPoints), so that the estimate is that of the first beam.
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<geometry::Pose2D>& odometry,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
                                         const ScanLatencyOptions& options = {},
-                                        const ScanMatchOptions& match = {});
+                                        const ScanMatchOptions& match = {},
+                                        const PointTimes& point_times = {});
+
+// The points of each scan (laser frame) moved into the laser's frame at its
+// first beam, taken at its stamp less `latency_s`: each by the odometric
+// motion from then to when it was measured, `point_times` later (thesis 3.6,
+// EQ 45), odometry linear between its samples. Unchanged without times.
+// Throws std::invalid_argument as OdometryBefore does, or when the times do
+// not fit the points.
+std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
+    const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry,
+    const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& point_times,
+    double latency_s);
 
 }  // namespace structloc::slam_core

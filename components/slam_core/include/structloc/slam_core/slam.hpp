@@ -84,16 +84,23 @@ struct SlamOptions {
   void Validate() const;
 };
 
-// Each scan's odometry at the moment it was taken: at its stamp less the
-// options' scan_latency_s, or, with estimate_scan_latency, less the latency
-// the scans `points` show (EstimateScanLatency's, applied where its interval
-// excludes none; `estimate` receives it, and `points` are needed only then).
-// Throws std::invalid_argument as OdometryBefore and EstimateScanLatency do.
-std::vector<geometry::Pose2D> OdometryWhenTaken(
-    const SlamOptions& options, const std::vector<double>& stamps,
-    const std::vector<geometry::Pose2D>& odometry,
-    const std::vector<std::vector<Eigen::Vector2d>>& points,
-    ScanLatencyEstimate* estimate = nullptr);
+// The scans of a log as they were taken: each one's odometry at the moment
+// its first beam was taken, `latency_s` before its stamp (the options'
+// scan_latency_s, or with estimate_scan_latency the latency the scans show:
+// EstimateScanLatency's, applied where its interval excludes none), and its
+// points de-skewed to that moment where the log gives their times.
+struct ScansAsTaken {
+  std::vector<geometry::Pose2D> odometry;
+  std::vector<std::vector<Eigen::Vector2d>> points;
+  double latency_s = 0.0;
+};
+
+// `estimate` receives the estimate, when made. Throws std::invalid_argument
+// as OdometryBefore, EstimateScanLatency and DeskewedPoints do.
+ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stamps,
+                     const std::vector<geometry::Pose2D>& odometry,
+                     const std::vector<std::vector<Eigen::Vector2d>>& points,
+                     const PointTimes& point_times = {}, ScanLatencyEstimate* estimate = nullptr);
 
 // A <slam_params> file (`structloc params --slam` lists its keys); throws
 // config::ConfigError naming the file, line and key.
