@@ -20,32 +20,15 @@
 #include "structloc/slam_core/slam.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
+#include "tum_first_pose.hpp"
 
 namespace structloc {
 namespace {
 
 constexpr double kLatencyS = 0.13;
 
-std::string Source(const std::string& path) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + path;
-}
-
-geometry::Pose2D FirstPose(const std::string& tum) {
-  std::ifstream in(tum);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    double t, x, y, z, qx, qy, qz, qw;
-    fields >> t >> x >> y >> z >> qx >> qy >> qz >> qw;
-    return {x, y, 2.0 * std::atan2(qz, qw)};
-  }
-  ADD_FAILURE() << tum << " has no pose";
-  return {};
-}
-
 TEST(LateLaser, TheLogShowsTheLatencyAndTrackingWithItMeetsTheBars) {
-  const std::string recording = Source("../shared/data/freiburg-079-corrected.log.gz");
+  const std::string recording = testing::SourcePath("../shared/data/freiburg-079-corrected.log.gz");
   ASSERT_TRUE(std::filesystem::exists(recording))
       << "shared/ is not beside the checkout (run `ctest -LE shared_data` without it)";
   const testing::TempDir temp;
@@ -76,15 +59,16 @@ TEST(LateLaser, TheLogShowsTheLatencyAndTrackingWithItMeetsTheBars) {
 
   const auto track = [&](double latency_s) {
     const std::string params = temp / ("params_" + std::to_string(latency_s) + ".xml");
-    std::ofstream(params) << "<localisation_params base=\"" << Source("maps/params/sick_lms2xx.xml")
+    std::ofstream(params) << "<localisation_params base=\""
+                          << testing::SourcePath("maps/params/sick_lms2xx.xml")
                           << "\"><tracking scan_latency_s=\"" << latency_s
                           << "\"/></localisation_params>\n";
     replay::ReplayOptions o;
-    o.map_path = Source("maps/real/freiburg_079.xml");
+    o.map_path = testing::SourcePath("maps/real/freiburg_079.xml");
     o.log_path = log;
     o.truth_path = truth;
     o.params_path = params;
-    o.initial_pose = FirstPose(truth);
+    o.initial_pose = testing::FirstTumPose(truth);
     o.out_tum = temp / "estimate.tum";
     const auto report = replay::RunReplay(o);
     EXPECT_TRUE(report.estimate_error);

@@ -22,6 +22,7 @@
 #include "structloc/replay/replay.hpp"
 #include "temp_dir.hpp"
 #include "test_paths.hpp"
+#include "tum_first_pose.hpp"
 
 namespace structloc {
 namespace {
@@ -50,21 +51,6 @@ std::string SharedData(const std::string& name) {
 
 std::string Source(const std::string& path) {
   return std::string(STRUCTLOC_SOURCE_DIR) + "/" + path;
-}
-
-// The first pose of a TUM file (x y and the yaw of its quaternion).
-geometry::Pose2D FirstPose(const std::string& tum) {
-  std::ifstream in(tum);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    double t, x, y, z, qx, qy, qz, qw;
-    fields >> t >> x >> y >> z >> qx >> qy >> qz >> qw;
-    return {x, y, 2.0 * std::atan2(qz, qw)};
-  }
-  ADD_FAILURE() << tum << " has no pose";
-  return {};
 }
 
 struct Evaluation {
@@ -116,7 +102,7 @@ void ExpectBars(const std::string& what, const std::string& map, const Evaluatio
   o.log_path = e.log;
   o.truth_path = e.truth;
   o.params_path = Source("maps/params/sick_lms2xx.xml");
-  if (start == Start::kFirstTruePose) o.initial_pose = FirstPose(e.truth);
+  if (start == Start::kFirstTruePose) o.initial_pose = testing::FirstTumPose(e.truth);
   o.out_tum = temp / "estimate.tum";
   const auto report = replay::RunReplay(o);
   // Scans before the one tracking started from are not tracked, so not scored.
@@ -237,7 +223,7 @@ TEST_P(RealTracking, ChoosesTheLasersPresetWithoutAParameterFile) {
   o.map_path = Source(std::string("maps/real/") + r.name + ".xml");
   o.log_path = e.log;
   o.truth_path = e.truth;
-  o.initial_pose = FirstPose(e.truth);
+  o.initial_pose = testing::FirstTumPose(e.truth);
   o.out_tum = temp / "chosen.tum";
   const auto chosen = replay::RunReplay(o);
   std::cout << r.name << ": parameters " << chosen.parameters << std::endl;

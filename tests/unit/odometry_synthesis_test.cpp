@@ -102,14 +102,19 @@ TEST(OdometrySynthesis, RestampingRespectsSpeedTurnRateAndMinimumStep) {
   EXPECT_DOUBLE_EQ(RestampedTime(1.0, {0, 0, 0}, {0, 0, 0}, 0.5, 0.5, 0.1), 1.1);
 }
 
-TEST(SynthesiseOdometryCommand, WritesAnEvaluationLogAndTheTruth) {
-  const testing::TempDir dir;
+// A corrected log of five scans 0.1 m and 1 s apart along x.
+std::string CorrectedDrive(const testing::TempDir& dir) {
   std::ostringstream log;
   for (int i = 0; i < 5; ++i) {
     log << "FLASER 3 1.0 1.5 2.0 " << 0.1 * i << " 0 0 " << 0.1 * i << " 0 0 " << i << ".0 host "
         << i << ".0\n";
   }
-  const auto in = dir.Write("corrected.log", log.str());
+  return dir.Write("corrected.log", log.str());
+}
+
+TEST(SynthesiseOdometryCommand, WritesAnEvaluationLogAndTheTruth) {
+  const testing::TempDir dir;
+  const auto in = CorrectedDrive(dir);
   auto r = testing::RunCli({"synthesise-odometry", "--log", in, "--out", dir / "eval.log",
                             "--truth", dir / "truth.tum", "--scale-error", "0.1"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -130,12 +135,7 @@ TEST(SynthesiseOdometryCommand, WritesAnEvaluationLogAndTheTruth) {
 // the odometry of that moment; the truth keeps the scan's pose at the new stamp.
 TEST(SynthesiseOdometryCommand, WritesALaserStampedLate) {
   const testing::TempDir dir;
-  std::ostringstream log;
-  for (int i = 0; i < 5; ++i) {
-    log << "FLASER 3 1.0 1.5 2.0 " << 0.1 * i << " 0 0 " << 0.1 * i << " 0 0 " << i << ".0 host "
-        << i << ".0\n";
-  }
-  const auto in = dir.Write("corrected.log", log.str());
+  const auto in = CorrectedDrive(dir);
   auto r = testing::RunCli({"synthesise-odometry", "--log", in, "--out", dir / "eval.log",
                             "--truth", dir / "truth.tum", "--scan-latency", "0.25"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
