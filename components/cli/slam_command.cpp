@@ -70,8 +70,8 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
 // Each scan's odometric laser pose at the moment it was taken, the latency
 // printed where there is one; the log's points de-skewed to that moment
 // where it gives its beam timing (it was read without de-skewing).
-std::vector<geometry::Pose2D> TakeScansAsTaken(map_building::PosedScanLog& log,
-                                               const slam_core::SlamOptions& options) {
+std::vector<geometry::Pose2D> OdometryAndPointsAsTaken(map_building::PosedScanLog& log,
+                                                       const slam_core::SlamOptions& options) {
   std::vector<double> stamps;
   std::vector<geometry::Pose2D> odometry;
   std::vector<std::vector<Eigen::Vector2d>> points;
@@ -183,7 +183,8 @@ int SlamCommand(const Invocation& inv) {
       break;
     }
     const geometry::Pose2D unmount = geometry::Inverse(mount);
-    const std::vector<geometry::Pose2D> laser_odometry = TakeScansAsTaken(log, slam_options);
+    const std::vector<geometry::Pose2D> laser_odometry =
+        OdometryAndPointsAsTaken(log, slam_options);
     // SLAM in the laser's frame: its odometric pose and its own readings.
     slam_core::Slam slam(slam_options);
     for (size_t i = 0; i < log.scans.size(); ++i) {

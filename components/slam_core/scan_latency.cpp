@@ -34,7 +34,9 @@ std::string NotIncreasing(const std::vector<double>& stamps) {
 // (but the log's last): odometry that was not updated, because the robot
 // stood still or because its messages stalled, as MIT CSAIL's do for 0.8 s
 // before a single 85 deg step; its motion is then spread over the stall
-// instead of put into the last interval.
+// instead of put into the last interval. So is a sample stamped no later
+// than the one kept before it (the callers that need increasing stamps
+// refuse others first).
 class OdometryTrack {
  public:
   OdometryTrack(const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry) {
@@ -43,6 +45,7 @@ class OdometryTrack {
                           odometry[i].y == odometry[i - 1].y &&
                           odometry[i].theta == odometry[i - 1].theta;
       if (repeat && i + 1 < odometry.size()) continue;
+      if (!stamps_.empty() && !(stamps[i] > stamps_.back())) continue;
       heading_.push_back(poses_.empty()
                              ? odometry[i].theta
                              : heading_.back() +
@@ -51,6 +54,9 @@ class OdometryTrack {
       poses_.push_back(odometry[i]);
     }
   }
+
+  // Whether it holds two samples or more (else it tells no motion).
+  bool Moves() const { return stamps_.size() >= 2; }
 
   geometry::Pose2D PoseAt(double t) const {
     const auto [j, f] = Locate(t);
@@ -170,10 +176,9 @@ std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
     double latency_s) {
   CheckSizes(stamps, odometry.size());
   CheckTimes(points, point_times);
-  if (point_times.empty() || odometry.size() < 2) return points;
-  if (const std::string why = NotIncreasing(stamps); !why.empty())
-    throw std::invalid_argument("scan latency: " + why);
+  if (point_times.empty()) return points;
   const OdometryTrack track(stamps, odometry);
+  if (!track.Moves()) return points;
   std::vector<std::vector<Eigen::Vector2d>> out;
   out.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i)

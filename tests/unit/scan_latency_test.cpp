@@ -164,6 +164,13 @@ TEST(ScanLatency, DeskewedPointsAreThoseOfTheFirstBeamsFrame) {
   EXPECT_EQ(DeskewedPoints(stamps, odometry, points, {}, 0.0)[0][0], points[0][0]) << "no times";
   EXPECT_THROW(DeskewedPoints(stamps, odometry, points, {{0.1, 0.2}, {0.0}}, 0.0),
                std::invalid_argument);
+  // Stamps that do not increase (a recording's repeated stamp): the sample
+  // is left out, the scans still de-skewed by the others.
+  const std::vector<double> repeated = {0.0, 1.0, 1.0};
+  const std::vector<geometry::Pose2D> three = {{0, 0, 0}, {0, 0, 1.0}, {0, 0, 5.0}};
+  const auto kept = DeskewedPoints(repeated, three, {{{2.0, 0.0}}, {{2.0, 0.0}}, {{2.0, 0.0}}},
+                                   {{0.1}, {0.0}, {0.0}}, 0.0);
+  EXPECT_NEAR(kept[0][0].y(), 2.0 * std::sin(0.1), 1e-12);
 }
 
 TEST(ScanLatency, OdometryTakenEarlierAlongItsSteps) {

@@ -99,9 +99,9 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
 // The points of each scan (laser frame) moved into the laser's frame at its
 // first beam, taken at its stamp less `latency_s`: each by the odometric
 // motion from then to when it was measured, `point_times` later (thesis 3.6,
-// EQ 45), odometry linear between its samples. Unchanged without times.
-// Throws std::invalid_argument as OdometryBefore does, or when the times do
-// not fit the points.
+// EQ 45), odometry linear between its samples (those stamped no later than
+// the one before left out). Unchanged without times. Throws
+// std::invalid_argument when the sizes or the times do not fit the points.
 std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
     const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry,
     const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& point_times,
