@@ -32,8 +32,8 @@ const Subcommand kSubcommands[] = {
      "from DDS into a CARMEN log"},
     {"slam", structloc::cli::SlamCommand,
      "--log RAW.log --poses-out POSES.tum [--out WORLD.xml] [--plot P.png] [--relations R] "
-     "[--truth T.tum] [--params P.xml] [--scans F:L]  the robot's path (and its wall map, "
-     "checked) from raw odometry and scans; Ctrl-C keeps what is done"},
+     "[--truth T.tum] [--params P.xml] [--slam-params S.xml] [--scans F:L]  the robot's path "
+     "(and its wall map, checked) from raw odometry and scans; Ctrl-C keeps what is done"},
     {"simulate", structloc::cli::SimulateCommand,
      "--scenario S.xml --out DIR [--seed N]  record a scenario without DDS"},
     {"replay", structloc::cli::ReplayCommand,
@@ -55,8 +55,9 @@ const Subcommand kSubcommands[] = {
      "and CAD drawings, export grids, check maps"},
     {"synthesise-odometry", structloc::cli::SynthesiseOdometryCommand,
      "--log CORRECTED.log --out EVAL.log --truth TRUTH.tum [--scale-error X] [--heading-drift "
-     "DEG_PER_M] [--noise-xy M] [--noise-theta DEG] [--seed N] [--restamp SPEED]  an evaluation "
-     "log with re-synthesised odometry from a corrected recording"},
+     "DEG_PER_M] [--noise-xy M] [--noise-theta DEG] [--seed N] [--restamp SPEED] "
+     "[--scan-latency S] ...  an evaluation log with re-synthesised odometry from a corrected "
+     "recording"},
 };
 
 void Usage(std::ostream& out) {
