@@ -97,9 +97,9 @@ std::vector<geometry::Pose2D> OdometryAndPointsAsTaken(map_building::PosedScanLo
         "pairs of consecutive scans; their matched rotations against odometry's %.2f deg RMS at "
         "the estimate, %.2f deg at none)\n",
         e.latency_s, 100.0 * options.latency.confidence, e.interval_low_s, e.interval_high_s,
-        e.shown ? "applied" : "none shown, none applied", e.pairs, kDeg * e.rms_at_estimate_rad,
+        e.Shown() ? "applied" : "none shown, none applied", e.pairs, kDeg * e.rms_at_estimate_rad,
         kDeg * e.rms_at_zero_rad);
-    if (e.shown)
+    if (e.Shown())
       std::printf(
           "  track this laser with it too: <tracking scan_latency_s=\"%.3f\"/> in the "
           "localisation parameters\n",

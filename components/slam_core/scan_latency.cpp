@@ -156,6 +156,18 @@ std::pair<size_t, size_t> BootstrapInterval(const LatencyCosts& costs,
 
 }  // namespace
 
+void ScanLatencyOptions::Validate() const {
+  if (!(step_s > 0)) throw std::invalid_argument("scan_latency: step_s must be > 0");
+  if (!(max_latency_s >= step_s))
+    throw std::invalid_argument("scan_latency: max_latency_s must be >= step_s");
+  if (!(rounds >= 1) || !(max_rounds >= rounds))
+    throw std::invalid_argument("scan_latency: rounds must be >= 1, max_rounds >= rounds");
+  if (!(confidence > 0) || !(confidence < 1))
+    throw std::invalid_argument("scan_latency: confidence must be within (0, 1)");
+  if (!(max_pairs >= 1) || !(resamples >= 1) || !(block_pairs >= 1))
+    throw std::invalid_argument("scan_latency: max_pairs, resamples and block_pairs must be >= 1");
+}
+
 std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
                                              const std::vector<geometry::Pose2D>& odometry,
                                              double latency_s) {
@@ -192,13 +204,7 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const ScanLatencyOptions& options,
                                         const ScanMatchOptions& match,
                                         const PointTimes& point_times) {
-  if (!(options.step_s > 0) || !(options.max_latency_s >= options.step_s) ||
-      !(options.max_pairs >= 1) || !(options.rounds >= 1) ||
-      !(options.max_rounds >= options.rounds) || !(options.confidence > 0) ||
-      !(options.confidence < 1) || !(options.resamples >= 1) || !(options.block_pairs >= 1))
-    throw std::invalid_argument(
-        "scan latency: step_s must be > 0, max_latency_s >= step_s, confidence within (0, 1), "
-        "max_pairs, rounds, resamples and block_pairs >= 1, max_rounds >= rounds");
+  options.Validate();
   CheckSizes(stamps, odometry.size());
   if (points.size() != odometry.size())
     throw std::invalid_argument("scan latency: " + std::to_string(points.size()) + " scans for " +
@@ -277,7 +283,6 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
   const auto [low, high] = BootstrapInterval(costs, options);
   estimate.interval_low_s = (static_cast<int>(low) - steps) * options.step_s;
   estimate.interval_high_s = (static_cast<int>(high) - steps) * options.step_s;
-  estimate.shown = estimate.interval_low_s > 0.0 || estimate.interval_high_s < 0.0;
   estimate.pairs = pairs.size();
   estimate.rms_at_zero_rad = rms(pairs, 0.0);
   estimate.rms_at_estimate_rad = rms(pairs, estimate.latency_s);

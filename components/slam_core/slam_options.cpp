@@ -207,10 +207,7 @@ void SlamOptions::Validate() const {
       throw std::invalid_argument(std::string(section) +
                                   ": first_pair_distance_m must be at most 20 normal_radius_m");
   }
-  if (!(latency.max_latency_s >= latency.step_s))
-    throw std::invalid_argument("scan_latency: max_latency_s must be >= step_s");
-  if (!(latency.max_rounds >= latency.rounds))
-    throw std::invalid_argument("scan_latency: max_rounds must be >= rounds");
+  latency.Validate();
   if (estimate_scan_latency && scan_latency_s != 0.0)
     throw std::invalid_argument(
         "scan_latency: latency_s is " + config::FormatNumber(scan_latency_s) +

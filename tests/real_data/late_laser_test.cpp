@@ -54,7 +54,7 @@ TEST(LateLaser, TheLogShowsTheLatencyAndTrackingWithItMeetsTheBars) {
   slam_core::AsTaken({}, stamps, odometry, points, {}, &estimate);
   std::cout << "estimate " << estimate.latency_s << " s, interval " << estimate.interval_low_s
             << " to " << estimate.interval_high_s << " s" << std::endl;
-  EXPECT_TRUE(estimate.shown);
+  EXPECT_TRUE(estimate.Shown());
   EXPECT_NEAR(estimate.latency_s, kLatencyS, 0.06);
 
   const auto track = [&](double latency_s) {

@@ -103,7 +103,7 @@ TEST(SlamOnRealLogs, MitsLaserIsStampedLateAndTheLogShowsIt) {
   const slam_core::SlamOptions options;
   slam_core::ScanLatencyEstimate latency;
   const auto taken = slam_core::AsTaken(options, stamps, odometry, points, {}, &latency).odometry;
-  EXPECT_TRUE(latency.shown) << latency.interval_low_s << " to " << latency.interval_high_s;
+  EXPECT_TRUE(latency.Shown()) << latency.interval_low_s << " to " << latency.interval_high_s;
   EXPECT_GT(latency.latency_s, 0.05);
   EXPECT_LT(latency.latency_s, 0.25);
   EXPECT_LT(latency.rms_at_estimate_rad, 0.75 * latency.rms_at_zero_rad);

@@ -93,7 +93,7 @@ TEST(ScanLatency, FoundFromTheScansAndOdometry) {
     const Recording r = Record(latency);
     const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
     EXPECT_NEAR(e.latency_s, latency, 0.01);
-    EXPECT_TRUE(e.shown) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
+    EXPECT_TRUE(e.Shown()) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
     EXPECT_EQ(e.Applied(), e.latency_s);
     EXPECT_NEAR(e.interval_low_s, latency, 0.015);
     EXPECT_NEAR(e.interval_high_s, latency, 0.015);
@@ -106,7 +106,7 @@ TEST(ScanLatency, NoneWhereThereIsNone) {
   const Recording r = Record(0.0);
   const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
   EXPECT_NEAR(e.latency_s, 0.0, 0.01);
-  EXPECT_FALSE(e.shown) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
+  EXPECT_FALSE(e.Shown()) << "interval " << e.interval_low_s << " to " << e.interval_high_s;
   EXPECT_EQ(e.Applied(), 0.0);
 }
 
@@ -121,7 +121,7 @@ TEST(ScanLatency, NoneAppliedWhereNoisyOdometryDoesNotShowOne) {
   const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
   EXPECT_LE(e.interval_low_s, 0.0);
   EXPECT_GE(e.interval_high_s, 0.0);
-  EXPECT_FALSE(e.shown);
+  EXPECT_FALSE(e.Shown());
   EXPECT_EQ(e.Applied(), 0.0) << "estimate " << e.latency_s;
 }
 
@@ -147,7 +147,7 @@ TEST(ScanLatency, ScansThatSweepAreDeskewedToTheirFirstBeam) {
   EXPECT_NEAR(as_they_are.latency_s, kLatencyS - 0.05, 0.02) << "the sweep's middle";
   const auto deskewed = EstimateScanLatency(r.stamps, r.odometry, r.points, {}, {}, times);
   EXPECT_NEAR(deskewed.latency_s, kLatencyS, 0.01);
-  EXPECT_TRUE(deskewed.shown);
+  EXPECT_TRUE(deskewed.Shown());
   EXPECT_LT(deskewed.rms_at_estimate_rad, as_they_are.rms_at_estimate_rad);
 }
 
@@ -219,7 +219,7 @@ TEST(ScanLatency, ALogWithoutTurnsDoesNotTellIt) {
   for (auto& pose : r.odometry) pose = {};
   const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
   EXPECT_EQ(e.pairs, 0u);
-  EXPECT_FALSE(e.shown);
+  EXPECT_FALSE(e.Shown());
   EXPECT_EQ(e.Applied(), 0.0);
   EXPECT_NE(e.untold.find("no turn"), std::string::npos) << e.untold;
 }
@@ -228,7 +228,7 @@ TEST(ScanLatency, StampsThatDoNotIncreaseTellNone) {
   Recording r = Record(0.1);
   r.stamps[40] = r.stamps[39];
   const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);
-  EXPECT_FALSE(e.shown);
+  EXPECT_FALSE(e.Shown());
   EXPECT_EQ(e.Applied(), 0.0);
   EXPECT_NE(e.untold.find("scan 40's stamp"), std::string::npos) << e.untold;
 }

@@ -50,6 +50,10 @@ struct ScanLatencyOptions {
   int resamples = 200;
   int block_pairs = 10;
   uint32_t seed = 1;
+
+  // Throws std::invalid_argument naming what is out of range ("scan_latency:
+  // ..."), the keys that must agree with each other included.
+  void Validate() const;
 };
 
 struct ScanLatencyEstimate {
@@ -58,8 +62,8 @@ struct ScanLatencyEstimate {
   // latency_s when the interval excludes 0 (the recording shows one), else 0.
   double interval_low_s = 0.0;
   double interval_high_s = 0.0;
-  bool shown = false;
-  double Applied() const { return shown ? latency_s : 0.0; }
+  bool Shown() const { return interval_low_s > 0.0 || interval_high_s < 0.0; }
+  double Applied() const { return Shown() ? latency_s : 0.0; }
   size_t pairs = 0;    // consecutive scans whose matches entered
   std::string untold;  // why the log does not tell the latency (no pairs), else empty
   // The matched rotations against odometry's, RMS over those pairs, at no
