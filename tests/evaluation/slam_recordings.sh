@@ -13,9 +13,14 @@
 #             RMSE <= 50 mm, max <= 200 mm), also after an alignment that
 #             scales the estimate (how much of the error is scale).
 # The corrected poses are GMapping's, not ground truth: on these logs they
-# are themselves off by centimetres. Last, how well the corrected poses and
+# are themselves off by centimetres. Then the same log localised on the map
+# of maps/real/ (built on the corrected poses) too, and the three paths
+# (that one, the one on the map slam built, the SLAM path) judged by
+# relations over 1, 5 and 20 m of travel drawn from the corrected poses
+# (structloc_relative_error): what a robot navigating by the map suffers,
+# apart from the map's global shape. Last, how well the corrected poses and
 # the SLAM path each fit the raw scans step by step, with no reference
-# (structloc_path_scan_fit: scans 1-1.5 m apart, the mean distance of one's
+# (structloc_path_scan_fit: scans 1-1.5 m and 0.1-0.3 m apart, the mean distance of one's
 # points from the other's surfaces, and the scale of the path's steps the
 # scans prefer), and how straight the map built on each is against the
 # building's axes (structloc_map_straightness: the shipped map of maps/real/,
@@ -55,6 +60,23 @@ for name in freiburg_079 intel; do
   scaled=$(sed -n 's/^estimate vs truth after one alignment with scale (\([0-9.]*\)): position RMSE \([0-9.]*\) mm, max \([0-9.]*\) mm.*/\1, \2 \/ \3/p' <<<"$report")
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
   printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$path" "$as_is" "$aligned" "$scaled" "$lost" "$seconds"
+  # The same log on the map of maps/real/ (built on the corrected poses), for the relations below.
+  "$structloc" replay --map "$root/maps/real/$name.xml" --log "$log" --truth "$truth" \
+    --params "$params" --initial-pose "$(first_pose "$truth")" \
+    --out "$out/$name.shipped.tum" >/dev/null 2>&1
+done
+echo
+echo "Relations over 1, 5 and 20 m of travel drawn from the corrected poses (structloc_relative_error):"
+relative="$(dirname "$structloc")/../tests/structloc_relative_error"
+for name in freiburg_079 intel; do
+  for path in shipped localised slam; do
+    case $path in
+      shipped) echo "  $name, localised on the map built on the corrected poses (maps/real/):" ;;
+      localised) echo "  $name, localised on the map slam built:" ;;
+      slam) echo "  $name, the SLAM path:" ;;
+    esac
+    "$relative" "$out/$name.$path.tum" "$out/$name.truth.tum" 1 5 20 | sed 's/^/    /'
+  done
 done
 echo
 echo "Steps against the raw scans (structloc_path_scan_fit):"
@@ -63,6 +85,8 @@ for name in freiburg_079 intel; do
   for path in truth slam; do
     printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
     "$fit" "$out/$name.raw.log" "$out/$name.$path.tum"
+    printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
+    "$fit" "$out/$name.raw.log" "$out/$name.$path.tum" 0.1 0.3
   done
 done
 echo

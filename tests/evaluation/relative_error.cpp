@@ -1,0 +1,80 @@
+// Kuemmerle et al. 2009's relation metric with the relations drawn from a
+// reference path instead of verified by hand: from every pose of the
+// reference, the relation to the first pose at least D metres of travel
+// later, for each D asked, judged on an estimate (replay::CompareRelations:
+// mean and standard deviation of the translation and rotation errors). Short
+// D measure what a robot navigating by a map suffers, long D the map's
+// global shape, which one alignment of the whole path mixes with the rest.
+// Used to ask whether localisation on a self-built map is as good locally as
+// on the map built on the reference poses, and from what distance the two
+// part (issue 41).
+//   structloc_relative_error ESTIMATE.tum REFERENCE.tum [D_M ...] (default 1 5 20)
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <vector>
+
+#include "structloc/log_formats/relations_reader.hpp"
+#include "structloc/log_formats/tum_reader.hpp"
+#include "structloc/replay/relation_error.hpp"
+
+namespace {
+
+using structloc::log_formats::Relation;
+using structloc::log_formats::StampedPose;
+
+// From each reference pose, the relation to the first one at least
+// `distance_m` of travel later.
+std::vector<Relation> RelationsOver(const std::vector<StampedPose>& reference, double distance_m) {
+  std::vector<double> travelled(reference.size(), 0.0);
+  for (size_t i = 1; i < reference.size(); ++i) {
+    travelled[i] = travelled[i - 1] +
+                   (reference[i].pose.Translation() - reference[i - 1].pose.Translation()).norm();
+  }
+  std::vector<Relation> relations;
+  size_t j = 0;
+  for (size_t i = 0; i < reference.size(); ++i) {
+    while (j < reference.size() && travelled[j] - travelled[i] < distance_m) ++j;
+    if (j == reference.size()) break;
+    relations.push_back({reference[i].stamp, reference[j].stamp,
+                         structloc::geometry::Between(reference[i].pose, reference[j].pose)});
+  }
+  return relations;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr,
+                 "usage: structloc_relative_error ESTIMATE.tum REFERENCE.tum [D_M ...] "
+                 "(default 1 5 20)\n");
+    return 2;
+  }
+  try {
+    std::vector<double> distances;
+    for (int a = 3; a < argc; ++a) distances.push_back(std::atof(argv[a]));
+    if (distances.empty()) distances = {1.0, 5.0, 20.0};
+    for (double d : distances) {
+      if (!(d > 0)) throw std::invalid_argument("every D_M must be > 0");
+    }
+    const auto estimate = structloc::log_formats::ReadTum(argv[1]);
+    const auto reference = structloc::log_formats::ReadTum(argv[2]);
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    for (double d : distances) {
+      // The stamps are the same log's: matched within a millisecond.
+      const auto e =
+          structloc::replay::CompareRelations(estimate, RelationsOver(reference, d), 1e-3);
+      std::printf(
+          "over %g m: %.1f +- %.1f mm, %.2f +- %.2f deg (%zu relations, %zu not in the "
+          "estimate)\n",
+          d, 1e3 * e.translation_mean_m, 1e3 * e.translation_std_m, e.rotation_mean_rad / kDeg,
+          e.rotation_std_rad / kDeg, e.used, e.missing);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "structloc_relative_error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
