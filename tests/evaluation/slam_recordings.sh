@@ -20,12 +20,12 @@
 # (structloc_relative_error): what a robot navigating by the map suffers,
 # apart from the map's global shape. Last, how well the corrected poses and
 # the SLAM path each fit the raw scans step by step, with no reference
-# (structloc_path_scan_fit: scans 1-1.5 m and 0.1-0.3 m apart, the mean distance of one's
-# points from the other's surfaces, and the scale of the path's steps the
-# scans prefer), and how straight the map built on each is against the
-# building's axes (structloc_map_straightness: the shipped map of maps/real/,
-# built on the corrected poses, and the one slam built). Outputs (paths,
-# maps, pictures) go to OUT_DIR.
+# (structloc_path_scan_fit: scans 1-1.5 m and 0.1-0.3 m apart, the mean
+# distance of one's points from the other's surfaces, and the scale of the
+# path's steps the scans prefer), and how straight the map built on each is
+# against the building's axes (structloc_map_straightness: the shipped map
+# of maps/real/, built on the corrected poses, and the one slam built).
+# Outputs (paths, maps, pictures) go to OUT_DIR.
 #
 # Usage: tests/evaluation/slam_recordings.sh [OUT_DIR] [BUILD_DIR] [DATA_DIR]
 #        (defaults: slam_evaluation, build, ../shared/data); SLAM_PARAMS=FILE
@@ -61,9 +61,12 @@ for name in freiburg_079 intel; do
   lost=$(sed -n 's/^lost: .*the longest \([0-9.]*\) s).*/\1/p' <<<"$report")
   printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$path" "$as_is" "$aligned" "$scaled" "$lost" "$seconds"
   # The same log on the map of maps/real/ (built on the corrected poses), for the relations below.
-  "$structloc" replay --map "$root/maps/real/$name.xml" --log "$log" --truth "$truth" \
+  if ! "$structloc" replay --map "$root/maps/real/$name.xml" --log "$log" --truth "$truth" \
     --params "$params" --initial-pose "$(first_pose "$truth")" \
-    --out "$out/$name.shipped.tum" >/dev/null 2>&1
+    --out "$out/$name.shipped.tum" >"$out/$name.shipped.txt" 2>&1; then
+    cat "$out/$name.shipped.txt" >&2
+    exit 1
+  fi
 done
 echo
 echo "Relations over 1, 5 and 20 m of travel drawn from the corrected poses (structloc_relative_error):"
@@ -83,10 +86,12 @@ echo "Steps against the raw scans (structloc_path_scan_fit):"
 fit="$(dirname "$structloc")/../tests/structloc_path_scan_fit"
 for name in freiburg_079 intel; do
   for path in truth slam; do
-    printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
-    "$fit" "$out/$name.raw.log" "$out/$name.$path.tum"
-    printf '  %s, %s: ' "$name" "$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
-    "$fit" "$out/$name.raw.log" "$out/$name.$path.tum" 0.1 0.3
+    label="$([ $path = truth ] && echo "corrected poses" || echo "SLAM path")"
+    for apart in "1.0 1.5" "0.1 0.3"; do
+      printf '  %s, %s: ' "$name" "$label"
+      # shellcheck disable=SC2086 # the two distances, split on purpose
+      "$fit" "$out/$name.raw.log" "$out/$name.$path.tum" $apart
+    done
   done
 done
 echo
