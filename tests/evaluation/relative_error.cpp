@@ -9,7 +9,6 @@
 // on the map built on the reference poses, and from what distance the two
 // part (issue 41).
 //   structloc_relative_error ESTIMATE.tum REFERENCE.tum [D_M ...] (default 1 5 20)
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
