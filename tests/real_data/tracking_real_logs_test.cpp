@@ -46,11 +46,7 @@ const Recording kFreiburg{"freiburg_079", "freiburg-079-corrected.log.gz", "719:
 const Recording kIntel{"intel", "intel-corrected.log.gz", "182:", "0:182", true};
 
 std::string SharedData(const std::string& name) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/../shared/data/" + name;
-}
-
-std::string Source(const std::string& path) {
-  return std::string(STRUCTLOC_SOURCE_DIR) + "/" + path;
+  return testing::SourcePath("../shared/data/" + name);
 }
 
 struct Evaluation {
@@ -101,7 +97,7 @@ void ExpectBars(const std::string& what, const std::string& map, const Evaluatio
   o.map_path = map;
   o.log_path = e.log;
   o.truth_path = e.truth;
-  o.params_path = Source("maps/params/sick_lms2xx.xml");
+  o.params_path = testing::SourcePath("maps/params/sick_lms2xx.xml");
   if (start == Start::kFirstTruePose) o.initial_pose = testing::FirstTumPose(e.truth);
   o.out_tum = temp / "estimate.tum";
   const auto report = replay::RunReplay(o);
@@ -148,7 +144,7 @@ TEST_P(RealTracking, MeetsTheBarsOnTheShippedMap) {
   const auto& r = GetParam();
   ASSERT_TRUE(std::filesystem::exists(SharedData(r.log))) << kMissing << SharedData(r.log);
   const testing::TempDir temp;
-  const std::string map = Source(std::string("maps/real/") + r.name + ".xml");
+  const std::string map = testing::SourcePath(std::string("maps/real/") + r.name + ".xml");
   ExpectBars(std::string(r.name) + ", perfect odometry", map, Synthesise(temp, r, "", false),
              0.030);
   ExpectBars(std::string(r.name) + ", perturbed odometry", map, Synthesise(temp, r, "", true),
@@ -207,8 +203,8 @@ TEST_P(RealTracking, StartsWithoutAnInitialPoseAndMeetsTheBars) {
   ASSERT_TRUE(std::filesystem::exists(SharedData(r.log))) << kMissing << SharedData(r.log);
   const testing::TempDir temp;
   ExpectBars(std::string(r.name) + ", shipped map, perturbed odometry, no initial pose",
-             Source(std::string("maps/real/") + r.name + ".xml"), Synthesise(temp, r, "", true),
-             0.050, Start::kGlobally);
+             testing::SourcePath(std::string("maps/real/") + r.name + ".xml"),
+             Synthesise(temp, r, "", true), 0.050, Start::kGlobally);
 }
 
 // Without --params, replay takes the preset the scans' geometry names: the
@@ -220,7 +216,7 @@ TEST_P(RealTracking, ChoosesTheLasersPresetWithoutAParameterFile) {
   const testing::TempDir temp;
   const Evaluation e = Synthesise(temp, r, r.test_part, true);
   replay::ReplayOptions o;
-  o.map_path = Source(std::string("maps/real/") + r.name + ".xml");
+  o.map_path = testing::SourcePath(std::string("maps/real/") + r.name + ".xml");
   o.log_path = e.log;
   o.truth_path = e.truth;
   o.initial_pose = testing::FirstTumPose(e.truth);
@@ -230,7 +226,7 @@ TEST_P(RealTracking, ChoosesTheLasersPresetWithoutAParameterFile) {
   EXPECT_EQ(chosen.parameters.rfind("maps/params/sick_lms2xx.xml, chosen from the first scan", 0),
             0u)
       << chosen.parameters;
-  o.params_path = Source("maps/params/sick_lms2xx.xml");
+  o.params_path = testing::SourcePath("maps/params/sick_lms2xx.xml");
   o.out_tum = temp / "given.tum";
   const auto given = replay::RunReplay(o);
   ASSERT_TRUE(chosen.estimate_error && given.estimate_error);
