@@ -112,19 +112,30 @@ std::vector<Eigen::Vector2d> Joined(const std::vector<std::vector<Eigen::Vector2
   return all;
 }
 
-// The face cells' centres, found by cell: lines are walked across the grid
-// instead of testing every face cell against every line.
+// The face cells, found by cell: lines are walked across the grid instead of
+// testing every face cell against every line. The cells are marked in an
+// image (255) that Hough's proposals are drawn from; a cell's point is its
+// centre. Blocks of kBlock x kBlock cells without a face cell are stepped over
+// (a grid the face-cell limit lets through leaves most of them empty).
 class FaceCells {
  public:
-  explicit FaceCells(const OccupancyGrid& grid) : grid_(grid), index_(grid.cells.size(), -1) {}
+  explicit FaceCells(const OccupancyGrid& grid)
+      : grid_(grid),
+        centre_(grid),
+        image_(grid.height, grid.width, CV_8UC1, cv::Scalar(0)),
+        blocks_((grid.height + kBlock - 1) / kBlock, (grid.width + kBlock - 1) / kBlock, CV_8UC1,
+                cv::Scalar(0)) {}
   void Add(int column, int row) {
-    index_[Key(column, row)] = static_cast<int>(points_.size());
-    points_.push_back(grid_.CellCentre(column, row));
+    image_.at<uint8_t>(row, column) = 255;
+    blocks_.at<uint8_t>(row / kBlock, column / kBlock) = 1;
+    ++count_;
   }
-  const std::vector<Eigen::Vector2d>& Points() const { return points_; }
+  size_t Count() const { return count_; }
+  const cv::Mat& Image() const { return image_; }
   long long KeyOf(const Eigen::Vector2d& p) const {
     const Eigen::Vector2i cell = grid_.CellOf(p);
-    return static_cast<long long>(Key(cell.x(), cell.y()));
+    return static_cast<long long>(static_cast<size_t>(cell.y()) * static_cast<size_t>(grid_.width) +
+                                  static_cast<size_t>(cell.x()));
   }
   // Face cells whose centre is at most `distance` from the line, its work
   // spent from `budget`.
@@ -139,16 +150,31 @@ class FaceCells {
     const int steps = by_column ? grid_.width : grid_.height;
     const int across_size = by_column ? grid_.height : grid_.width;
     const double major = by_column ? n.x() : n.y(), minor = by_column ? n.y() : n.x();
-    std::vector<Eigen::Vector2d> near;
-    for (int i = 0; i < steps; ++i) {
+    const double spread = d / std::abs(minor) + 1.0;
+    // The cells across step i that may lie within `distance` (not clipped to the grid).
+    const auto across = [&](int i) {
       const double centre = (r - major * (i + 0.5)) / minor - 0.5;
-      const double spread = d / std::abs(minor) + 1.0;
-      const int lo = std::max(0, static_cast<int>(std::floor(centre - spread)));
-      const int hi = std::min(across_size - 1, static_cast<int>(std::ceil(centre + spread)));
-      for (int j = lo; j <= hi; ++j) {
-        const int at = index_[by_column ? Key(i, j) : Key(j, i)];
-        if (at >= 0 && line.Distance(points_[static_cast<size_t>(at)]) <= distance)
-          near.push_back(points_[static_cast<size_t>(at)]);
+      return std::pair<int, int>(static_cast<int>(std::floor(centre - spread)),
+                                 static_cast<int>(std::ceil(centre + spread)));
+    };
+    std::vector<Eigen::Vector2d> near;
+    for (int first = 0; first < steps; first += kBlock) {
+      // The band of a block's steps, stepped over when its blocks hold no face cell.
+      const int last = std::min(steps, first + kBlock) - 1;
+      const auto [first_lo, first_hi] = across(first);
+      const auto [last_lo, last_hi] = across(last);
+      if (!AnyInBlocks(by_column, first, std::max(0, std::min(first_lo, last_lo)),
+                       std::min(across_size - 1, std::max(first_hi, last_hi))))
+        continue;
+      for (int i = first; i <= last; ++i) {
+        const auto [unclipped_lo, unclipped_hi] = across(i);
+        const int lo = std::max(0, unclipped_lo), hi = std::min(across_size - 1, unclipped_hi);
+        for (int j = lo; j <= hi; ++j) {
+          const int column = by_column ? i : j, row = by_column ? j : i;
+          if (image_.at<uint8_t>(row, column) == 0) continue;
+          const Eigen::Vector2d point = centre_(column, row);
+          if (line.Distance(point) <= distance) near.push_back(point);
+        }
       }
     }
     budget.Spend(near.size(), static_cast<size_t>(steps));
@@ -156,13 +182,22 @@ class FaceCells {
   }
 
  private:
-  size_t Key(int column, int row) const {
-    return static_cast<size_t>(row) * static_cast<size_t>(grid_.width) +
-           static_cast<size_t>(column);
+  static constexpr int kBlock = 16;
+  // Whether a face cell may lie in the blocks of column (by_column) or row
+  // `i`, from `lo` to `hi` across (none when lo > hi).
+  bool AnyInBlocks(bool by_column, int i, int lo, int hi) const {
+    for (int block = lo / kBlock; block <= hi / kBlock; ++block) {
+      if (by_column ? blocks_.at<uint8_t>(block, i / kBlock)
+                    : blocks_.at<uint8_t>(i / kBlock, block))
+        return true;
+    }
+    return false;
   }
   const OccupancyGrid& grid_;
-  std::vector<int> index_;
-  std::vector<Eigen::Vector2d> points_;
+  CellCentres centre_;
+  cv::Mat image_;
+  cv::Mat blocks_;  // per block of cells, 1 when it holds a face cell
+  size_t count_ = 0;
 };
 
 // A circle through a blob's boundary cells, refitted once without the cells
@@ -222,9 +257,10 @@ std::vector<BlobGroup> GroupsOfBlobs(const cv::Mat& mask, const cv::Mat& labels,
   std::vector<Extent> extents(static_cast<size_t>(groups));
   std::vector<int> group_of(static_cast<size_t>(count), 0);
   for (int r = 0; r < labels.rows; ++r) {
+    const uint8_t* occupied = mask.ptr<uint8_t>(r);
     for (int c = 0; c < labels.cols; ++c) {
+      if (occupied[c] == 0) continue;  // background, label 0
       const int label = labels.at<int>(r, c);
-      if (label == 0) continue;
       const int g = group_labels.at<int>(r, c);
       group_of[static_cast<size_t>(label)] = g;
       auto& e = extents[static_cast<size_t>(g)];
@@ -327,9 +363,11 @@ cv::Mat OccupiedMask(const OccupancyGrid& grid, const CellKinds& kinds,
                      const GridVectoriseOptions& options, size_t& occupied) {
   cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
   for (int r = 0; r < grid.height; ++r) {
+    const int8_t* cells = &grid.cells[static_cast<size_t>(r) * static_cast<size_t>(grid.width)];
+    uint8_t* out = mask.ptr<uint8_t>(r);
     for (int c = 0; c < grid.width; ++c) {
-      if (!kinds.Occupied(c, r)) continue;
-      mask.at<uint8_t>(r, c) = 255;
+      if (cells[c] < options.occupied_min_value) continue;
+      out[c] = 255;
       ++occupied;
     }
   }
@@ -340,8 +378,8 @@ cv::Mat OccupiedMask(const OccupancyGrid& grid, const CellKinds& kinds,
   // Hough's time grows with the face cells: bounded before any blob is made.
   size_t all_faces = 0;
   for (int r = 0; r < grid.height; ++r) {
-    for (int c = 0; c < grid.width; ++c)
-      all_faces += mask.at<uint8_t>(r, c) != 0 && kinds.Face(c, r);
+    const uint8_t* in = mask.ptr<uint8_t>(r);
+    for (int c = 0; c < grid.width; ++c) all_faces += in[c] != 0 && kinds.Face(c, r);
   }
   if (all_faces > options.max_face_cells) {
     OverBudget("the grid has " + std::to_string(all_faces) + " occupied cells next to open space",
@@ -398,13 +436,17 @@ PillarBoundaries PillarShapedBoundaries(const OccupancyGrid& grid, const CellKin
     out.slot[static_cast<size_t>(i)] = static_cast<int>(out.cells.size());
     out.cells.emplace_back();
   }
-  for (int r = 0; r < grid.height; ++r) {
-    for (int c = 0; c < grid.width; ++c) {
-      const int slot = out.slot[static_cast<size_t>(found.labels.at<int>(r, c))];
-      if (slot < 0) continue;
-      if (!kinds.Occupied(c - 1, r) || !kinds.Occupied(c + 1, r) || !kinds.Occupied(c, r - 1) ||
-          !kinds.Occupied(c, r + 1))
-        out.cells[static_cast<size_t>(slot)].push_back(grid.CellCentre(c, r));
+  for (int i = 1; i < found.Count(); ++i) {
+    const int slot = out.slot[static_cast<size_t>(i)];
+    if (slot < 0) continue;
+    const Blob& blob = found.blobs[static_cast<size_t>(i)];
+    for (int r = blob.bottom; r < blob.bottom + blob.height; ++r) {
+      for (int c = blob.left; c < blob.left + blob.width; ++c) {
+        if (found.labels.at<int>(r, c) != i) continue;
+        if (!kinds.Occupied(c - 1, r) || !kinds.Occupied(c + 1, r) || !kinds.Occupied(c, r - 1) ||
+            !kinds.Occupied(c, r + 1))
+          out.cells[static_cast<size_t>(slot)].push_back(grid.CellCentre(c, r));
+      }
     }
   }
   return out;
@@ -512,13 +554,12 @@ std::optional<Candidate> Refit(const cv::Vec4i& s, const OccupancyGrid& grid,
 // line wins (not simply the most cells: a line slanting across a thick
 // wall's two faces collects as many cells as either face, but few of them
 // lie on it). Those that lost are marked dropped.
-std::vector<Candidate> WallCandidates(const OccupancyGrid& grid, const cv::Mat& faces,
-                                      const FaceCells& face_cells,
+std::vector<Candidate> WallCandidates(const OccupancyGrid& grid, const FaceCells& face_cells,
                                       const GridVectoriseOptions& options) {
   const double res = grid.resolution_m;
   std::vector<cv::Vec4i> proposals;
-  if (!face_cells.Points().empty()) {
-    cv::HoughLinesP(faces, proposals, 1.0, CV_PI / 720.0, options.hough_votes,
+  if (face_cells.Count() > 0) {
+    cv::HoughLinesP(face_cells.Image(), proposals, 1.0, CV_PI / 720.0, options.hough_votes,
                     options.min_wall_length_m / res, options.max_gap_m / res);
   }
   auto length = [](const cv::Vec4i& s) { return std::hypot(s[2] - s[0], s[3] - s[1]); };
@@ -604,17 +645,17 @@ GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOp
   const std::vector<bool> is_wall = ClassifyBlobs(grid, mask, found, boundaries, options, out);
 
   // Face cells of the wall blobs: the points the walls are fitted to.
-  cv::Mat faces(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
   FaceCells face_cells(grid);
   for (int r = 0; r < grid.height; ++r) {
+    const uint8_t* occupied = mask.ptr<uint8_t>(r);
     for (int c = 0; c < grid.width; ++c) {
-      if (!is_wall[static_cast<size_t>(found.labels.at<int>(r, c))] || !kinds.Face(c, r)) continue;
-      faces.at<uint8_t>(r, c) = 255;
-      face_cells.Add(c, r);
+      if (occupied[c] != 0 && is_wall[static_cast<size_t>(found.labels.at<int>(r, c))] &&
+          kinds.Face(c, r))
+        face_cells.Add(c, r);
     }
   }
-  out.face_cells = face_cells.Points().size();
-  AppendWallPieces(WallCandidates(grid, faces, face_cells, options), out.walls);
+  out.face_cells = face_cells.Count();
+  AppendWallPieces(WallCandidates(grid, face_cells, options), out.walls);
   // Refused before the corners are joined (the slowest step on such grids):
   // no world could hold these walls.
   if (out.walls.size() > world_model::WorldLimits::kDefaultMaxWalls)

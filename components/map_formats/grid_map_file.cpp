@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -287,6 +288,11 @@ OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions
   const int channels = image.channels();
   const int colour = channels >= 3 ? 3 : 1;  // grey+alpha has one grey channel
   const bool has_alpha = channels == 2 || channels == 4;
+  // The value of an opaque pixel by its grey level, each found on first use
+  // (raw mode refuses some levels, only when the image holds them).
+  constexpr int kNotYet = INT_MIN;
+  std::array<int, 256> opaque;
+  opaque.fill(kNotYet);
   for (int y = 0; y < image.rows; ++y) {
     const uint8_t* row = image.ptr<uint8_t>(y);
     for (int x = 0; x < image.cols; ++x) {
@@ -295,8 +301,16 @@ OccupancyGrid LoadGridMap(const std::string& yaml_path, const GridMapReadOptions
       for (int c = 0; c < colour; ++c) sum += px[c];
       const int grey = (sum + colour / 2) / colour;
       const int alpha = has_alpha ? px[channels - 1] : 255;
+      int8_t value;
+      if (alpha == 255) {
+        int& known = opaque[static_cast<size_t>(grey)];
+        if (known == kNotYet) known = CellValue(yaml, grey, alpha, yaml_path);
+        value = static_cast<int8_t>(known);
+      } else {
+        value = CellValue(yaml, grey, alpha, yaml_path);
+      }
       // Image row 0 is the top of the map; grid row 0 the bottom.
-      grid.At(x, image.rows - 1 - y) = CellValue(yaml, grey, alpha, yaml_path);
+      grid.At(x, image.rows - 1 - y) = value;
     }
   }
   return grid;

@@ -46,12 +46,7 @@ struct OccupancyGrid {
                  static_cast<size_t>(column)];
   }
   // Centre of a cell in the map frame.
-  Eigen::Vector2d CellCentre(int column, int row) const {
-    const double gx = (column + 0.5) * resolution_m;
-    const double gy = (row + 0.5) * resolution_m;
-    const double c = std::cos(origin.z()), s = std::sin(origin.z());
-    return {origin.x() + c * gx - s * gy, origin.y() + s * gx + c * gy};
-  }
+  Eigen::Vector2d CellCentre(int column, int row) const;
   // The cell holding a map-frame point (may be outside the grid: check Contains).
   Eigen::Vector2i CellOf(const Eigen::Vector2d& p) const {
     const double c = std::cos(origin.z()), s = std::sin(origin.z());
@@ -60,5 +55,26 @@ struct OccupancyGrid {
             static_cast<int>(std::floor((-s * dx + c * dy) / resolution_m))};
   }
 };
+
+// Centres of many cells of one grid, its rotation's cosine and sine taken
+// once (the same values as OccupancyGrid::CellCentre, which uses it).
+class CellCentres {
+ public:
+  explicit CellCentres(const OccupancyGrid& grid)
+      : grid_(grid), cos_(std::cos(grid.origin.z())), sin_(std::sin(grid.origin.z())) {}
+  Eigen::Vector2d operator()(int column, int row) const {
+    const double gx = (column + 0.5) * grid_.resolution_m;
+    const double gy = (row + 0.5) * grid_.resolution_m;
+    return {grid_.origin.x() + cos_ * gx - sin_ * gy, grid_.origin.y() + sin_ * gx + cos_ * gy};
+  }
+
+ private:
+  const OccupancyGrid& grid_;
+  double cos_, sin_;
+};
+
+inline Eigen::Vector2d OccupancyGrid::CellCentre(int column, int row) const {
+  return CellCentres(*this)(column, row);
+}
 
 }  // namespace structloc::map_building
