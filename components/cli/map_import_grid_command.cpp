@@ -89,7 +89,7 @@ std::vector<config::OptionSpec> Specs(const map_building::GridVectoriseOptions& 
        "refitting the wall proposals may gather at most this many face cells, each counted "
        "every time (default " +
            std::to_string(defaults.max_refit_work) +
-           "; the real recordings' grids need under 200000)"},
+           "; the real recordings' grids need under 300000)"},
   };
 }
 

@@ -95,10 +95,10 @@ cv::Mat Noise(int rows, int cols) {
   return out(cv::Rect(0, 0, cols, rows)).clone();
 }
 
-// Free space crossed by a wall every 200 cells.
-cv::Mat Building(int size) {
+// Free space crossed by a wall every `spacing` cells.
+cv::Mat Building(int size, int spacing = 200) {
   cv::Mat image(size, size, CV_8UC1, cv::Scalar(254));
-  for (int k = 0; k < size; k += 200) {
+  for (int k = 0; k < size; k += spacing) {
     image.row(k).setTo(0);
     image.col(k).setTo(0);
   }
@@ -282,13 +282,25 @@ TEST(ReaderBombs, GridPngOfAGigaCell) {
            "is too large: 40000 x 40000 cells"});
 }
 
+// Refused by the face-cell limit before Hough's proposals.
 TEST(ReaderBombs, GridOfNoise800) {
   const TempDir dir;
   const std::string yaml = GridYaml(dir, "noise", Noise(800, 800));
   Explode({{yaml, dir / "noise.png"},
            {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
            2,
-           "is it noise rather than a map?"});
+           "max_face_cells"});
+}
+
+// The largest square of noise the face-cell limit lets through (about
+// 97 000 face cells): refused by the refits' bound.
+TEST(ReaderBombs, GridOfNoise460) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "noise", Noise(460, 460));
+  Explode({{yaml, dir / "noise.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           2,
+           "max_refit_work"});
 }
 
 TEST(ReaderBombs, GridOfNoise2000) {
@@ -301,23 +313,24 @@ TEST(ReaderBombs, GridOfNoise2000) {
 }
 
 // The slowest grid the limits let through to the wall refits: the largest
-// grid, walls across it, and a patch of noise just small enough to pass the
-// face-cell limit.
+// grid, walls across it every 1000 cells, and a patch of noise just small
+// enough to pass the face-cell limit (97 843 of 100 000), refused by the refits' bound.
 TEST(ReaderBombs, LargestGridWithAPatchOfNoise) {
   const TempDir dir;
-  cv::Mat image = Building(4000);
-  Noise(500, 500).copyTo(image(cv::Rect(0, 0, 500, 500)));
+  cv::Mat image = Building(4000, 1000);
+  Noise(380, 380).copyTo(image(cv::Rect(0, 0, 380, 380)));
   const std::string yaml = GridYaml(dir, "patch", image);
   Explode({{yaml, dir / "patch.png"},
            {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
            2,
-           "is it noise rather than a map?"});
+           "max_refit_work"});
 }
 
-// The largest clean grid the limits allow imports in full.
+// The largest grid, with as many walls as the face-cell limit allows on a
+// 400-cell (20 m) spacing (79 800 face cells), imports in full.
 TEST(ReaderBombs, LargestCleanGridImports) {
   const TempDir dir;
-  const std::string yaml = GridYaml(dir, "building", Building(4000));
+  const std::string yaml = GridYaml(dir, "building", Building(4000, 400));
   Explode({{yaml, dir / "building.png"},
            {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
            0,
