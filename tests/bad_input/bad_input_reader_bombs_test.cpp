@@ -115,6 +115,17 @@ void ExplodeDxf(const std::string& text, const std::string& says) {
            says});
 }
 
+// A grid `image` (a PNG and its YAML) given to `structloc map import --grid`:
+// it ends with `exit_code`, saying `says`.
+void ImportGrid(const cv::Mat& image, int exit_code, const std::string& says) {
+  const TempDir dir;
+  const std::string yaml = GridYaml(dir, "grid", image);
+  Explode({{yaml, dir / "grid.png"},
+           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
+           exit_code,
+           says});
+}
+
 TEST(ReaderBombs, LaunchFileWithAnAttributeOf60000Characters) {
   const TempDir dir;
   const std::string path =
@@ -284,57 +295,32 @@ TEST(ReaderBombs, GridPngOfAGigaCell) {
 
 // Refused by the face-cell limit before Hough's proposals.
 TEST(ReaderBombs, GridOfNoise800) {
-  const TempDir dir;
-  const std::string yaml = GridYaml(dir, "noise", Noise(800, 800));
-  Explode({{yaml, dir / "noise.png"},
-           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
-           2,
-           "max_face_cells"});
+  ImportGrid(Noise(800, 800), 2, "max_face_cells");
 }
 
 // The largest square of noise the face-cell limit lets through (about
 // 97 000 face cells): refused by the refits' bound.
 TEST(ReaderBombs, GridOfNoise460) {
-  const TempDir dir;
-  const std::string yaml = GridYaml(dir, "noise", Noise(460, 460));
-  Explode({{yaml, dir / "noise.png"},
-           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
-           2,
-           "max_refit_work"});
+  ImportGrid(Noise(460, 460), 2, "max_refit_work");
 }
 
 TEST(ReaderBombs, GridOfNoise2000) {
-  const TempDir dir;
-  const std::string yaml = GridYaml(dir, "noise", Noise(2000, 2000));
-  Explode({{yaml, dir / "noise.png"},
-           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
-           2,
-           "is it noise rather than a map?"});
+  ImportGrid(Noise(2000, 2000), 2, "is it noise rather than a map?");
 }
 
 // The slowest grid the limits let through to the wall refits: the largest
 // grid, walls across it every 1000 cells, and a patch of noise just small
 // enough to pass the face-cell limit (97 843 of 100 000), refused by the refits' bound.
 TEST(ReaderBombs, LargestGridWithAPatchOfNoise) {
-  const TempDir dir;
   cv::Mat image = Building(4000, 1000);
   Noise(380, 380).copyTo(image(cv::Rect(0, 0, 380, 380)));
-  const std::string yaml = GridYaml(dir, "patch", image);
-  Explode({{yaml, dir / "patch.png"},
-           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
-           2,
-           "max_refit_work"});
+  ImportGrid(image, 2, "max_refit_work");
 }
 
-// The largest grid, with as many walls as the face-cell limit allows on a
-// 400-cell (20 m) spacing (79 800 face cells), imports in full.
+// The largest grid, with walls across it every 400 cells (20 m; 79 800 face
+// cells of the 100 000 allowed), imports in full.
 TEST(ReaderBombs, LargestCleanGridImports) {
-  const TempDir dir;
-  const std::string yaml = GridYaml(dir, "building", Building(4000, 400));
-  Explode({{yaml, dir / "building.png"},
-           {"map", "import", "--grid", yaml, "--out", dir / "o.xml"},
-           0,
-           "wrote"});
+  ImportGrid(Building(4000, 400), 0, "wrote");
 }
 
 }  // namespace
