@@ -186,6 +186,7 @@ class FaceCells {
   // Whether a face cell may lie in the blocks of column (by_column) or row
   // `i`, from `lo` to `hi` across (none when lo > hi).
   bool AnyInBlocks(bool by_column, int i, int lo, int hi) const {
+    if (lo > hi) return false;
     for (int block = lo / kBlock; block <= hi / kBlock; ++block) {
       if (by_column ? blocks_.at<uint8_t>(block, i / kBlock)
                     : blocks_.at<uint8_t>(i / kBlock, block))
@@ -363,7 +364,8 @@ cv::Mat OccupiedMask(const OccupancyGrid& grid, const CellKinds& kinds,
                      const GridVectoriseOptions& options, size_t& occupied) {
   cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
   for (int r = 0; r < grid.height; ++r) {
-    const int8_t* cells = &grid.cells[static_cast<size_t>(r) * static_cast<size_t>(grid.width)];
+    const int8_t* cells =
+        grid.cells.data() + static_cast<size_t>(r) * static_cast<size_t>(grid.width);
     uint8_t* out = mask.ptr<uint8_t>(r);
     for (int c = 0; c < grid.width; ++c) {
       if (cells[c] < options.occupied_min_value) continue;
@@ -636,6 +638,11 @@ void AppendWallPieces(const std::vector<Candidate>& candidates, std::vector<Fitt
 
 GridVectorisation VectoriseGrid(const OccupancyGrid& grid, const GridVectoriseOptions& options) {
   CheckOptions(options);
+  if (grid.width < 0 || grid.height < 0 ||
+      grid.cells.size() != static_cast<size_t>(grid.width) * static_cast<size_t>(grid.height))
+    throw std::invalid_argument("the grid's cells (" + std::to_string(grid.cells.size()) +
+                                ") do not match its " + std::to_string(grid.width) + " x " +
+                                std::to_string(grid.height) + " cells");
   GridVectorisation out;
   out.cells = grid.cells.size();
   const CellKinds kinds(grid, options);

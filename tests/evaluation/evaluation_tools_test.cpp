@@ -31,6 +31,13 @@ testing::CliResult RunTool(const std::string& tool, const std::vector<std::strin
   return testing::RunExecutable("../tests/" + tool, args);
 }
 
+// `text` from the first `label` on (a failure naming the text when it has none).
+std::string From(const std::string& text, const std::string& label) {
+  const size_t at = text.find(label);
+  EXPECT_NE(at, std::string::npos) << label << " is not in\n" << text;
+  return at == std::string::npos ? std::string() : text.substr(at);
+}
+
 // The number after `label` in `text` (NaN when it is not there).
 double NumberAfter(const std::string& text, const std::string& label) {
   const size_t at = text.find(label);
@@ -83,7 +90,7 @@ TEST(RelativeError, AScaledPathShowsItsScaleAtEveryDistance) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NEAR(NumberAfter(run.output, "over 1 m: "), 10.0, 0.5) << run.output;
   for (const std::string over : {"over 1 m", "over 5 m", "over 20 m"}) {
-    const std::string from = run.output.substr(run.output.find(over));
+    const std::string from = From(run.output, over);
     EXPECT_NEAR(NumberAfter(from, "length ratio "), 1.01, 1e-4) << over << "\n" << run.output;
   }
 }
@@ -103,7 +110,7 @@ TEST(RelativeError, ABentPathIsOffButNotScaled) {
                            {WriteTum(dir, "bent.tum", bent), WriteTum(dir, "ref.tum", reference)});
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NEAR(NumberAfter(run.output, "length ratio "), 1.0, 2e-3) << run.output;
-  const std::string over5 = run.output.substr(run.output.find("over 5 m"));
+  const std::string over5 = From(run.output, "over 5 m");
   EXPECT_GT(NumberAfter(over5, "over 5 m: "), 50.0) << run.output;
 }
 
@@ -154,8 +161,8 @@ TEST(MapStraightness, ATurnedWallIsFoundInItsBand) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NEAR(NumberAfter(run.output, "axes at "), 0.5, 0.01) << run.output;
   EXPECT_NE(run.output.find("75 % of 80 m of walls"), std::string::npos) << run.output;
-  const std::string first = run.output.substr(run.output.find("x    0.0 to   25.0 m"));
-  const std::string second = run.output.substr(run.output.find("x   25.0 to   50.0 m"));
+  const std::string first = From(run.output, "x    0.0 to   25.0 m");
+  const std::string second = From(run.output, "x   25.0 to   50.0 m");
   EXPECT_NEAR(NumberAfter(second, "mean deviation ") - NumberAfter(first, "mean deviation "), 1.0,
               0.02)
       << run.output;

@@ -48,8 +48,9 @@ std::vector<Relation> RelationsOver(const std::vector<StampedPose>& reference, d
   return relations;
 }
 
-// The median of |estimated translation| / |reference translation| over the
-// relations whose reference translation is at least `min_length_m`; NaN when none.
+// The median (the upper of the middle two for an even count) of
+// |estimated translation| / |reference translation| over the relations
+// whose reference translation is at least `min_length_m`; NaN when none.
 double MedianLengthRatio(const std::vector<StampedPose>& estimate,
                          const std::vector<Relation>& relations, double min_length_m) {
   std::vector<double> ratios;

@@ -32,14 +32,15 @@ std::string FixedPgm() {
 // as a small one for seconds under the sanitizers, and a long run (10^6
 // executions) collected such inputs until it crawled at 45 per second. The
 // refusal of a too-large image is still reached, at the lower limit.
-// The vectoriser's work bounds are lowered likewise (a tenth), so that the
-// noise seed reaches their refusals in a fraction of a second.
+// The vectoriser's work bounds are lowered likewise (a tenth; the face-cell
+// bound, whose default is already low, a third), so that the noise seed
+// reaches their refusals in a fraction of a second.
 void Import(const std::string& yaml) {
   structloc::map_formats::GridMapReadOptions options;
   options.max_cells = size_t{1} << 20;
   const auto grid = structloc::map_formats::LoadGridMap(yaml, options);
   structloc::map_building::GridVectoriseOptions vectorise;
-  vectorise.max_face_cells /= 10;
+  vectorise.max_face_cells /= 3;
   vectorise.max_blobs /= 10;
   vectorise.max_refit_work /= 10;
   if (grid.cells.size() <= 200000) (void)structloc::map_building::VectoriseGrid(grid, vectorise);

@@ -359,6 +359,20 @@ TEST(GridImport, AGridWithoutOccupiedCellsIsNothingToImport) {
   }
 }
 
+// A grid assembled by hand whose cells do not match its size is refused
+// before any cell is read.
+TEST(GridImport, AGridWhoseCellsDoNotMatchItsSizeIsRefused) {
+  OccupancyGrid grid(10, 10, 0.05, {0, 0, 0}, OccupancyGrid::kOccupied);
+  grid.cells.resize(50);
+  try {
+    map_building::VectoriseGrid(grid, {});
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("do not match its 10 x 10 cells"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GridImport, CircleFitIsExactOnACircle) {
   std::vector<Eigen::Vector2d> points;
   for (int i = 0; i < 12; ++i)

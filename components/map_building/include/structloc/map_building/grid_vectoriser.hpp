@@ -53,7 +53,7 @@ struct GridVectoriseOptions {
   double min_pillar_roundness = 0.7;  // bounding box: short side / long side
   size_t max_speck_cells = 2;         // blobs this small are noise, counted apart
   CornerJoinOptions corners{0.15, 0.5};
-  // Work bounds, so that a noisy or hostile grid is refused in well under a
+  // Work bounds, so that a noisy or hostile grid is refused within about a
   // second instead of running for minutes (a 45 kB PNG of noise asked for
   // hours). A grid beyond one is refused naming the option. The grids of the
   // real recordings need 7 200 face cells and 290 000 of refit work; Freiburg
@@ -80,10 +80,10 @@ struct GridVectorisation {
   size_t short_after_joining = 0;  // shortened below min_wall_length_m by that, dropped
 };
 
-// Throws std::invalid_argument when the grid has no occupied cell, when it
-// gives more walls than a world may hold (WorldLimits), when it needs more
-// work than a bound of the options allows, or when the options are out of
-// range (each naming the option).
+// Throws std::invalid_argument when the grid's cells do not match its size,
+// when it has no occupied cell, when it gives more walls than a world may
+// hold (WorldLimits), when it needs more work than a bound of the options
+// allows, or when the options are out of range (each naming the option).
 GridVectorisation VectoriseGrid(const map_building::OccupancyGrid& grid,
                                 const GridVectoriseOptions& options);
 
