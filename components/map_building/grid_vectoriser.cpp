@@ -134,8 +134,7 @@ class FaceCells {
   const cv::Mat& Image() const { return image_; }
   long long KeyOf(const Eigen::Vector2d& p) const {
     const Eigen::Vector2i cell = grid_.CellOf(p);
-    return static_cast<long long>(static_cast<size_t>(cell.y()) * static_cast<size_t>(grid_.width) +
-                                  static_cast<size_t>(cell.x()));
+    return static_cast<long long>(grid_.Index(cell.x(), cell.y()));
   }
   // Face cells whose centre is at most `distance` from the line, its work
   // spent from `budget`.
@@ -364,8 +363,7 @@ cv::Mat OccupiedMask(const OccupancyGrid& grid, const CellKinds& kinds,
                      const GridVectoriseOptions& options, size_t& occupied) {
   cv::Mat mask(grid.height, grid.width, CV_8UC1, cv::Scalar(0));
   for (int r = 0; r < grid.height; ++r) {
-    const int8_t* cells =
-        grid.cells.data() + static_cast<size_t>(r) * static_cast<size_t>(grid.width);
+    const int8_t* cells = grid.cells.data() + grid.Index(0, r);
     uint8_t* out = mask.ptr<uint8_t>(r);
     for (int c = 0; c < grid.width; ++c) {
       if (cells[c] < options.occupied_min_value) continue;

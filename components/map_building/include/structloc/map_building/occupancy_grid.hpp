@@ -37,14 +37,12 @@ struct OccupancyGrid {
   bool Contains(int column, int row) const {
     return column >= 0 && row >= 0 && column < width && row < height;
   }
-  int8_t At(int column, int row) const {
-    return cells[static_cast<size_t>(row) * static_cast<size_t>(width) +
-                 static_cast<size_t>(column)];
+  // Where cell (column, row) lies in `cells` (row-major from the bottom row).
+  size_t Index(int column, int row) const {
+    return static_cast<size_t>(row) * static_cast<size_t>(width) + static_cast<size_t>(column);
   }
-  int8_t& At(int column, int row) {
-    return cells[static_cast<size_t>(row) * static_cast<size_t>(width) +
-                 static_cast<size_t>(column)];
-  }
+  int8_t At(int column, int row) const { return cells[Index(column, row)]; }
+  int8_t& At(int column, int row) { return cells[Index(column, row)]; }
   // Centre of a cell in the map frame.
   Eigen::Vector2d CellCentre(int column, int row) const;
   // The cell holding a map-frame point (may be outside the grid: check Contains).
