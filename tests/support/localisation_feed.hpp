@@ -120,6 +120,10 @@ class LocalisationFeed {
     const auto dropped = Value("scans_dropped");
     return dropped.empty() ? 0u : std::stoul(dropped);
   }
+  // Scans answered: with a pose, or dropped for a newer one. The last poses
+  // may still be on their way and the dropped count comes with the
+  // diagnostics, about once a second: a test waits for what it expects.
+  size_t Answered() { return Poses() + ScansDropped(); }
   bool NonFinitePoseSeen() {
     std::lock_guard<std::mutex> lock(mutex_);
     return non_finite_pose_;
