@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace structloc::slam_core {
 namespace {
@@ -13,17 +14,22 @@ namespace {
 // at least this share of their number along it.
 constexpr double kPinnedShare = 0.05;
 
+using Cells = std::unordered_map<long long, std::vector<int>>;
+
+long long Key(long long cx, long long cy) {
+  return cx * 2000003LL + cy;
+}
+
 // Every point of `points` within `radius` of `centre`, through the cells.
 template <class Visit>
-void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, double cell_m,
-                 const Eigen::Vector2d& centre, double radius,
-                 long long (*key)(long long, long long), Visit visit) {
+void ForEachNear(const Cells& cells, double cell_m, const Eigen::Vector2d& centre, double radius,
+                 Visit visit) {
   const long long cx = static_cast<long long>(std::floor(centre.x() / cell_m));
   const long long cy = static_cast<long long>(std::floor(centre.y() / cell_m));
   const long long reach = static_cast<long long>(std::ceil(radius / cell_m));
   for (long long dx = -reach; dx <= reach; ++dx) {
     for (long long dy = -reach; dy <= reach; ++dy) {
-      const auto it = cells.find(key(cx + dx, cy + dy));
+      const auto it = cells.find(Key(cx + dx, cy + dy));
       if (it == cells.end()) continue;
       for (int i : it->second) visit(i);
     }
@@ -63,13 +69,13 @@ Eigen::Vector3d Step(const Eigen::Matrix3d& h, const Eigen::Vector3d& g, double 
 }  // namespace
 
 ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
-                                 const ScanMatchOptions& options)
-    : cell_m_(options.normal_radius_m) {
-  std::unordered_map<long long, std::vector<int>> all;
+                                 const ScanMatchOptions& options) {
+  const double cell_m = options.normal_radius_m;
+  Cells all;
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
-    all[Key(static_cast<long long>(std::floor(p.x() / cell_m_)),
-            static_cast<long long>(std::floor(p.y() / cell_m_)))]
+    all[Key(static_cast<long long>(std::floor(p.x() / cell_m)),
+            static_cast<long long>(std::floor(p.y() / cell_m)))]
         .push_back(static_cast<int>(i));
   }
   const double r2 = options.normal_radius_m * options.normal_radius_m;
@@ -78,7 +84,7 @@ ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
     int n = 0;
-    ForEachNear(all, cell_m_, c, options.normal_radius_m, &Key, [&](int j) {
+    ForEachNear(all, cell_m, c, options.normal_radius_m, [&](int j) {
       const Eigen::Vector2d d = points[j] - c;
       if (d.squaredNorm() > r2) return;
       mean += points[j];
@@ -91,26 +97,14 @@ ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
     // A surface: spread along one direction, thin across it.
     if (!(eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1))) continue;
-    const int k = static_cast<int>(points_.size());
     points_.push_back(c);
     normals_.push_back(eigen.eigenvectors().col(0).normalized());
-    cells_[Key(static_cast<long long>(std::floor(c.x() / cell_m_)),
-               static_cast<long long>(std::floor(c.y() / cell_m_)))]
-        .push_back(k);
   }
+  tree_ = PointTree(points_);
 }
 
 int ReferencePoints::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
-  int best = -1;
-  double best_d2 = max_distance_m * max_distance_m;
-  ForEachNear(cells_, cell_m_, p, max_distance_m, &Key, [&](int i) {
-    const double d2 = (points_[i] - p).squaredNorm();
-    if (d2 <= best_d2) {
-      best_d2 = d2;
-      best = i;
-    }
-  });
-  return best;
+  return tree_.Nearest(p, max_distance_m);
 }
 
 ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,

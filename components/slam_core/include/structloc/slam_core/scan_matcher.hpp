@@ -8,10 +8,10 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <unordered_map>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
+#include "structloc/slam_core/point_tree.hpp"
 
 namespace structloc::slam_core {
 
@@ -57,11 +57,9 @@ class ReferencePoints {
   size_t Size() const { return points_.size(); }
 
  private:
-  static long long Key(long long cx, long long cy) { return cx * 2000003LL + cy; }
   std::vector<Eigen::Vector2d> points_;
   std::vector<Eigen::Vector2d> normals_;
-  double cell_m_;
-  std::unordered_map<long long, std::vector<int>> cells_;
+  PointTree tree_;
 };
 
 ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,
