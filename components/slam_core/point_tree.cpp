@@ -48,32 +48,4 @@ int PointTree::Build(int begin, int end) {
   return index;
 }
 
-int PointTree::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
-  int best = -1;
-  double best_d2 = max_distance_m * max_distance_m;
-  if (!nodes_.empty()) Search(0, p, &best_d2, &best);
-  return best;
-}
-
-void PointTree::Search(int index, const Eigen::Vector2d& p, double* best_d2, int* best) const {
-  const Node& node = nodes_[index];
-  if (node.left < 0) {
-    for (int k = node.begin; k < node.end; ++k) {
-      const double d2 = (points_[k] - p).squaredNorm();
-      if (d2 < *best_d2 || (d2 == *best_d2 && (*best < 0 || ids_[k] < *best))) {
-        *best_d2 = d2;
-        *best = ids_[k];
-      }
-    }
-    return;
-  }
-  // The side of the split holding `p` first; the other only if a point
-  // there can be as near as the best so far (ties kept for the lowest index).
-  const double across = p(node.axis) - node.split;
-  const int near = across < 0 ? node.left : node.right;
-  const int far = across < 0 ? node.right : node.left;
-  Search(near, p, best_d2, best);
-  if (across * across <= *best_d2) Search(far, p, best_d2, best);
-}
-
 }  // namespace structloc::slam_core

@@ -5,7 +5,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace structloc::slam_core {
 namespace {
@@ -14,16 +13,14 @@ namespace {
 // at least this share of their number along it.
 constexpr double kPinnedShare = 0.05;
 
-using Cells = std::unordered_map<long long, std::vector<int>>;
-
 long long Key(long long cx, long long cy) {
   return cx * 2000003LL + cy;
 }
 
 // Every point of `points` within `radius` of `centre`, through the cells.
 template <class Visit>
-void ForEachNear(const Cells& cells, double cell_m, const Eigen::Vector2d& centre, double radius,
-                 Visit visit) {
+void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, double cell_m,
+                 const Eigen::Vector2d& centre, double radius, Visit visit) {
   const long long cx = static_cast<long long>(std::floor(centre.x() / cell_m));
   const long long cy = static_cast<long long>(std::floor(centre.y() / cell_m));
   const long long reach = static_cast<long long>(std::ceil(radius / cell_m));
@@ -69,42 +66,48 @@ Eigen::Vector3d Step(const Eigen::Matrix3d& h, const Eigen::Vector3d& g, double 
 }  // namespace
 
 ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
-                                 const ScanMatchOptions& options) {
-  const double cell_m = options.normal_radius_m;
-  Cells all;
+                                 const ScanMatchOptions& options)
+    : points_(points),
+      normal_radius_m_(options.normal_radius_m),
+      tree_(points),
+      surface_(points.size(), Surface::kUnknown),
+      normals_(points.size(), Eigen::Vector2d::Zero()) {
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
-    all[Key(static_cast<long long>(std::floor(p.x() / cell_m)),
-            static_cast<long long>(std::floor(p.y() / cell_m)))]
+    cells_[Key(static_cast<long long>(std::floor(p.x() / normal_radius_m_)),
+               static_cast<long long>(std::floor(p.y() / normal_radius_m_)))]
         .push_back(static_cast<int>(i));
   }
-  const double r2 = options.normal_radius_m * options.normal_radius_m;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d& c = points[i];
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-    int n = 0;
-    ForEachNear(all, cell_m, c, options.normal_radius_m, [&](int j) {
-      const Eigen::Vector2d d = points[j] - c;
-      if (d.squaredNorm() > r2) return;
-      mean += points[j];
-      scatter += points[j] * points[j].transpose();
-      ++n;
-    });
-    if (n < 4) continue;  // too few neighbours for a line
-    mean /= n;
-    const Eigen::Matrix2d covariance = scatter / n - mean * mean.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
-    // A surface: spread along one direction, thin across it.
-    if (!(eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1))) continue;
-    points_.push_back(c);
-    normals_.push_back(eigen.eigenvectors().col(0).normalized());
-  }
-  tree_ = PointTree(points_);
+}
+
+bool ReferencePoints::OnSurface(int i) const {
+  if (surface_[i] != Surface::kUnknown) return surface_[i] == Surface::kLine;
+  surface_[i] = Surface::kNone;
+  const Eigen::Vector2d& c = points_[i];
+  const double r2 = normal_radius_m_ * normal_radius_m_;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  int n = 0;
+  ForEachNear(cells_, normal_radius_m_, c, normal_radius_m_, [&](int j) {
+    const Eigen::Vector2d d = points_[j] - c;
+    if (d.squaredNorm() > r2) return;
+    mean += points_[j];
+    scatter += points_[j] * points_[j].transpose();
+    ++n;
+  });
+  if (n < 4) return false;  // too few neighbours for a line
+  mean /= n;
+  const Eigen::Matrix2d covariance = scatter / n - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
+  // A surface: spread along one direction, thin across it.
+  if (!(eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1))) return false;
+  normals_[i] = eigen.eigenvectors().col(0).normalized();
+  surface_[i] = Surface::kLine;
+  return true;
 }
 
 int ReferencePoints::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
-  return tree_.Nearest(p, max_distance_m);
+  return tree_.Nearest(p, max_distance_m, [this](int i) { return OnSurface(i); });
 }
 
 ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,

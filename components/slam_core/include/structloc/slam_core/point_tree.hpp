@@ -19,7 +19,19 @@ class PointTree {
   // The index (into the points given) of the point nearest to `p` within
   // `max_distance_m`, a point at exactly that distance included; of points
   // equally near, the one of the lowest index; -1 when there is none.
-  int Nearest(const Eigen::Vector2d& p, double max_distance_m) const;
+  int Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
+    return Nearest(p, max_distance_m, [](int) { return true; });
+  }
+  // The same among the points `accept(index)` takes; it is asked only of a
+  // point that would be the nearest so far, so an expensive test (whether a
+  // point lies on a surface) runs for few points.
+  template <class Accept>
+  int Nearest(const Eigen::Vector2d& p, double max_distance_m, Accept accept) const {
+    int best = -1;
+    double best_d2 = max_distance_m * max_distance_m;
+    if (!nodes_.empty()) Search(0, p, accept, &best_d2, &best);
+    return best;
+  }
 
  private:
   struct Node {
@@ -29,7 +41,29 @@ class PointTree {
     double split = 0.0;         // left holds coordinates <= split, right >=
   };
   int Build(int begin, int end);
-  void Search(int node, const Eigen::Vector2d& p, double* best_d2, int* best) const;
+  template <class Accept>
+  void Search(int index, const Eigen::Vector2d& p, Accept& accept, double* best_d2,
+              int* best) const {
+    const Node& node = nodes_[index];
+    if (node.left < 0) {
+      for (int k = node.begin; k < node.end; ++k) {
+        const double d2 = (points_[k] - p).squaredNorm();
+        const bool nearer = d2 < *best_d2 || (d2 == *best_d2 && (*best < 0 || ids_[k] < *best));
+        if (nearer && accept(ids_[k])) {
+          *best_d2 = d2;
+          *best = ids_[k];
+        }
+      }
+      return;
+    }
+    // The side of the split holding `p` first; the other only if a point
+    // there can be as near as the best so far (ties kept for the lowest index).
+    const double across = p(node.axis) - node.split;
+    const int near = across < 0 ? node.left : node.right;
+    const int far = across < 0 ? node.right : node.left;
+    Search(near, p, accept, best_d2, best);
+    if (across * across <= *best_d2) Search(far, p, accept, best_d2, best);
+  }
 
   std::vector<Eigen::Vector2d> points_;  // in the tree's order
   std::vector<int> ids_;                 // each one's index in the points given

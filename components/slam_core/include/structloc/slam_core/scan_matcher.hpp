@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <unordered_map>
 #include <vector>
 
 #include "structloc/geometry/pose2d.hpp"
@@ -46,20 +47,31 @@ struct ScanMatch {
 };
 
 // Reference points with the direction of the surface through each, indexed
-// for nearest-neighbour lookups.
+// for nearest-neighbour lookups. A point's surface (the line through its
+// neighbours within normal_radius_m, or none where they do not lie along one)
+// is found the first time a lookup needs it: an ICP touches a fraction of a
+// submap's points, and finding every point's neighbours was most of a loop
+// closure's work.
 class ReferencePoints {
  public:
   ReferencePoints(const std::vector<Eigen::Vector2d>& points, const ScanMatchOptions& options);
   // The nearest point with a surface within `max_distance_m` of `p` (-1: none).
   int Nearest(const Eigen::Vector2d& p, double max_distance_m) const;
   const Eigen::Vector2d& Point(int i) const { return points_[i]; }
+  // Of a point Nearest gave.
   const Eigen::Vector2d& Normal(int i) const { return normals_[i]; }
-  size_t Size() const { return points_.size(); }
 
  private:
+  enum class Surface : signed char { kUnknown, kNone, kLine };
+  bool OnSurface(int i) const;
+
   std::vector<Eigen::Vector2d> points_;
-  std::vector<Eigen::Vector2d> normals_;
+  double normal_radius_m_;
+  // The points by cells normal_radius_m wide, for a point's neighbours.
+  std::unordered_map<long long, std::vector<int>> cells_;
   PointTree tree_;
+  mutable std::vector<Surface> surface_;
+  mutable std::vector<Eigen::Vector2d> normals_;
 };
 
 ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,
