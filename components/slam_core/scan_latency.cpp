@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "parallel_for.hpp"
+
 namespace structloc::slam_core {
 namespace {
 
@@ -203,7 +205,7 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
                                         const ScanLatencyOptions& options,
                                         const ScanMatchOptions& match,
-                                        const PointTimes& point_times) {
+                                        const PointTimes& point_times, int threads) {
   options.Validate();
   CheckSizes(stamps, odometry.size());
   if (points.size() != odometry.size())
@@ -253,14 +255,19 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
        (!point_times.empty() && round < options.max_rounds && moved > 0.5 * options.step_s);
        ++round) {
     const double from = estimate.latency_s;
-    pairs.clear();
-    for (const size_t i : telling) {
+    std::vector<ScanMatch> matches(telling.size());
+    ParallelFor(telling.size(), threads, [&](size_t t) {
+      const size_t i = telling[t];
       const ReferencePoints reference(at(i, from), match);
       const geometry::Pose2D guess =
           geometry::Between(track.PoseAt(stamps[i] - from), track.PoseAt(stamps[i + 1] - from));
-      const ScanMatch m = MatchScan(reference, at(i + 1, from), guess, match);
+      matches[t] = MatchScan(reference, at(i + 1, from), guess, match);
+    });
+    pairs.clear();
+    for (size_t t = 0; t < telling.size(); ++t) {
+      const ScanMatch& m = matches[t];
       if (m.inlier_share >= options.min_share && m.rms_m <= options.max_rms_m)
-        pairs.push_back({i, m.pose.theta});
+        pairs.push_back({telling[t], m.pose.theta});
     }
     if (pairs.empty()) {
       estimate = {};

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel_for.hpp"
+
 namespace structloc::slam_core {
 namespace {
 
@@ -130,20 +132,27 @@ void Slam::CloseLoops(int k) {
   std::sort(near.begin(), near.end());
   if (near.size() > static_cast<size_t>(options_.loop_candidates))
     near.resize(options_.loop_candidates);
-  const size_t edges_before = edges_.size();
-  for (const auto& [distance, j] : near) {
-    ++stats_.loops_tried;
+  // Each candidate matched against its own submap, on `threads` threads; the
+  // loops close in the candidates' order.
+  std::vector<ScanMatch> matches(near.size());
+  ParallelFor(near.size(), options_.threads, [&](size_t i) {
+    const int j = near[i].second;
     const ReferencePoints reference(
         Reference(j - options_.loop_submap_keyframes, j + options_.loop_submap_keyframes, j),
         options_.loop_match);
-    const ScanMatch match = MatchScan(reference, keyframes_[k].points,
-                                      geometry::Between(poses_[j], poses_[k]), options_.loop_match);
+    matches[i] = MatchScan(reference, keyframes_[k].points, geometry::Between(poses_[j], poses_[k]),
+                           options_.loop_match);
+  });
+  const size_t edges_before = edges_.size();
+  for (size_t i = 0; i < near.size(); ++i) {
+    ++stats_.loops_tried;
+    const ScanMatch& match = matches[i];
     if (!match.constrained || match.inlier_share < options_.loop_min_share ||
         match.rms_m > options_.loop_max_rms_m) {
       continue;
     }
     PoseGraphEdge edge;
-    edge.from = j;
+    edge.from = near[i].second;
     edge.to = k;
     edge.measured = match.pose;
     edge.information = Information(match.covariance);
@@ -175,8 +184,8 @@ ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stam
   ScansAsTaken taken;
   taken.latency_s = options.scan_latency_s;
   if (options.estimate_scan_latency) {
-    const ScanLatencyEstimate e =
-        EstimateScanLatency(stamps, odometry, points, options.latency, options.match, point_times);
+    const ScanLatencyEstimate e = EstimateScanLatency(stamps, odometry, points, options.latency,
+                                                      options.match, point_times, options.threads);
     taken.latency_s = e.Applied();
     if (estimate) *estimate = e;
   }

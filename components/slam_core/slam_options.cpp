@@ -178,6 +178,14 @@ Table ScanLatencySection() {
   return t;
 }
 
+Table RunSection() {
+  Table t("run", "how the work is done (the results do not depend on it)");
+  t.Number("threads", &O::threads, Range::Closed(1, 256), "",
+           "independent matches (a keyframe's loop candidates, the latency estimate's pairs) "
+           "run on this many threads at once");
+  return t;
+}
+
 config::OptionFile<O> SlamOptionFile() {
   const auto step = [](auto& o) -> auto& {
     return o.match;
@@ -191,7 +199,7 @@ config::OptionFile<O> SlamOptionFile() {
        MatchSection("step_match", "the ICP of a keyframe against the keyframes before it", step),
        LoopsSection(),
        MatchSection("loop_match", "the ICP of a keyframe against a place seen long ago", loop),
-       GraphSection(), WallsSection(), ScanLatencySection()});
+       GraphSection(), WallsSection(), ScanLatencySection(), RunSection()});
 }
 
 }  // namespace

@@ -102,6 +102,19 @@ TEST(ScanLatency, FoundFromTheScansAndOdometry) {
   }
 }
 
+TEST(ScanLatency, TheSameOnOneThreadOrSeveral) {
+  const Recording r = Record(0.1237);
+  const auto one = EstimateScanLatency(r.stamps, r.odometry, r.points, {}, {}, {}, 1);
+  for (const int threads : {2, 5}) {
+    const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points, {}, {}, {}, threads);
+    EXPECT_EQ(e.latency_s, one.latency_s) << threads << " threads";
+    EXPECT_EQ(e.interval_low_s, one.interval_low_s);
+    EXPECT_EQ(e.interval_high_s, one.interval_high_s);
+    EXPECT_EQ(e.pairs, one.pairs);
+    EXPECT_EQ(e.rms_at_estimate_rad, one.rms_at_estimate_rad);
+  }
+}
+
 TEST(ScanLatency, NoneWhereThereIsNone) {
   const Recording r = Record(0.0);
   const auto e = EstimateScanLatency(r.stamps, r.odometry, r.points);

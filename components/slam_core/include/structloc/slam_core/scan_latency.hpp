@@ -92,13 +92,14 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
 // says why in `untold`. Throws std::invalid_argument when the sizes differ
 // or for options out of range.
 // With `point_times`, the scans are de-skewed at each round's latency
-// (DeskewedPoints), so that the estimate is that of the first beam.
+// (DeskewedPoints), so that the estimate is that of the first beam. The pairs
+// are matched on `threads` threads at once (the estimate does not depend on it).
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
                                         const std::vector<geometry::Pose2D>& odometry,
                                         const std::vector<std::vector<Eigen::Vector2d>>& points,
                                         const ScanLatencyOptions& options = {},
                                         const ScanMatchOptions& match = {},
-                                        const PointTimes& point_times = {});
+                                        const PointTimes& point_times = {}, int threads = 1);
 
 // The points of each scan (laser frame) moved into the laser's frame at its
 // first beam, taken at its stamp less `latency_s`: each by the odometric
