@@ -256,7 +256,7 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
        ++round) {
     const double from = estimate.latency_s;
     std::vector<ScanMatch> matches(telling.size());
-    ParallelFor(telling.size(), threads, [&](size_t t) {
+    ParallelFor(telling.size(), threads, [&](size_t t, size_t) {
       const size_t i = telling[t];
       const ReferencePoints reference(at(i, from), match);
       const geometry::Pose2D guess =

@@ -27,7 +27,9 @@ void Slam::Add(const SlamScan& scan) {
     const geometry::Pose2D odometry = geometry::Between(keyframes_.back().odometry, scan.odometry);
     if (odometry.Translation().norm() < options_.keyframe_distance_m &&
         std::abs(odometry.theta) < options_.keyframe_angle_rad) {
-      scans_.push_back({scan.stamp, keyframes_.size() - 1, MatchStep(scan).Pose()});
+      travel_since_loop_m_ += odometry.Translation().norm();
+      scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
+      pending_.push_back({scans_.size() - 1, odometry, scan.points});
       return;
     }
   }
@@ -35,26 +37,45 @@ void Slam::Add(const SlamScan& scan) {
   scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
 }
 
-Slam::Step Slam::MatchStep(const SlamScan& scan) {
+Slam::Step Slam::Judge(const geometry::Pose2D& odometry, const ScanMatch& match) const {
   Step out;
-  const geometry::Pose2D& step = out.odometry =
-      geometry::Between(keyframes_.back().odometry, scan.odometry);
-  const int last = static_cast<int>(keyframes_.size()) - 1;
-  if (!reference_) {
-    reference_ = std::make_unique<ReferencePoints>(
-        Reference(last - options_.submap_keyframes + 1, last, last), options_.match);
-  }
-  out.match = MatchScan(*reference_, scan.points, step, options_.match);
-  const double travel = step.Translation().norm();
-  travel_since_loop_m_ += travel;
-  const geometry::Pose2D correction = geometry::Between(step, out.match.pose);
+  out.odometry = odometry;
+  out.match = match;
+  const double travel = odometry.Translation().norm();
+  const geometry::Pose2D correction = geometry::Between(odometry, match.pose);
   const bool agrees =
-      out.match.inlier_share >= options_.min_match_share &&
+      match.inlier_share >= options_.min_match_share &&
       correction.Translation().norm() <=
           options_.max_match_correction_m + options_.max_match_correction_share * travel;
-  out.taken = agrees && out.match.constrained;
-  out.partial = agrees && !out.match.constrained && options_.partial_matches;
+  out.taken = agrees && match.constrained;
+  out.partial = agrees && !match.constrained && options_.partial_matches;
   return out;
+}
+
+Slam::Step Slam::MatchSteps(const SlamScan* keyframe) {
+  const size_t count = pending_.size() + (keyframe ? 1 : 0);
+  if (keyframes_.empty() || count == 0) return {};
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  const geometry::Pose2D odometry =
+      keyframe ? geometry::Between(keyframes_.back().odometry, keyframe->odometry)
+               : geometry::Pose2D{};
+  std::vector<ReferencePoints> references;
+  references.emplace_back(Reference(last - options_.submap_keyframes + 1, last, last),
+                          options_.match);
+  // A copy for each further thread: a reference finds its points' surfaces
+  // as lookups need them (not thread-safe), and the copies find the same.
+  while (references.size() < std::min(count, static_cast<size_t>(options_.threads)))
+    references.push_back(references.front());
+  std::vector<ScanMatch> matches(count);
+  ParallelFor(count, options_.threads, [&](size_t i, size_t worker) {
+    const bool pending = i < pending_.size();
+    matches[i] = MatchScan(references[worker], pending ? pending_[i].points : keyframe->points,
+                           pending ? pending_[i].odometry : odometry, options_.match);
+  });
+  for (size_t i = 0; i < pending_.size(); ++i)
+    scans_[pending_[i].scan].offset = Judge(pending_[i].odometry, matches[i]).Pose();
+  pending_.clear();
+  return keyframe ? Judge(odometry, matches.back()) : Step{};
 }
 
 std::vector<Eigen::Vector2d> Slam::Reference(int first, int last, int frame) const {
@@ -75,10 +96,10 @@ void Slam::AddKeyframe(const SlamScan& scan) {
   }
   const int last = static_cast<int>(keyframes_.size()) - 1;
   // The step as the keyframes before see it, else as odometry counted it.
-  const Step matched = MatchStep(scan);
+  const Step matched = MatchSteps(&scan);
   const geometry::Pose2D& step = matched.odometry;
   const double travel = step.Translation().norm();
-  reference_.reset();  // the next keyframe's submap ends with this one
+  travel_since_loop_m_ += travel;
   PoseGraphEdge edge;
   edge.from = last;
   edge.to = last + 1;
@@ -135,7 +156,7 @@ void Slam::CloseLoops(int k) {
   // Each candidate matched against its own submap, on `threads` threads; the
   // loops close in the candidates' order.
   std::vector<ScanMatch> matches(near.size());
-  ParallelFor(near.size(), options_.threads, [&](size_t i) {
+  ParallelFor(near.size(), options_.threads, [&](size_t i, size_t) {
     const int j = near[i].second;
     const ReferencePoints reference(
         Reference(j - options_.loop_submap_keyframes, j + options_.loop_submap_keyframes, j),
@@ -172,6 +193,7 @@ void Slam::Optimise() {
 }
 
 void Slam::Finish() {
+  MatchSteps(nullptr);
   Optimise();
   if (options_.walls.enabled)
     stats_.walls = RefineWithWalls(poses_, segments_, edges_, options_.walls, options_.graph);

@@ -9,7 +9,10 @@
 // optimised with Ceres (PoseGraph) after each loop closed and at the end,
 // then, where enabled, refined with the walls the keyframes see (RefineWithWalls).
 // Scans between keyframes are matched against their keyframe's submap too
-// (odometry's step where that fails), without entering the graph. DDS-free.
+// (odometry's step where that fails), without entering the graph: when the
+// next keyframe is, beside its match, so that both cores work (the same
+// submap, so the same result). Independent matches run on `threads` threads;
+// the results do not depend on how many. DDS-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -166,7 +169,12 @@ class Slam {
     bool partial = false;  // with partial_matches: passes the gates, pins not every direction
     geometry::Pose2D Pose() const { return taken ? match.pose : odometry; }
   };
-  Step MatchStep(const SlamScan& scan);
+  // Whether `match` of the step `odometry` from the last keyframe is taken.
+  Step Judge(const geometry::Pose2D& odometry, const ScanMatch& match) const;
+  // The scans since the last keyframe (pending_, whose offsets it fills) and
+  // the new `keyframe`'s step (none at Finish: nullptr), all matched against
+  // the last keyframe's submap, on `threads` threads.
+  Step MatchSteps(const SlamScan* keyframe);
   // The points of keyframes first..last (clamped) in the frame of keyframe `frame`.
   std::vector<Eigen::Vector2d> Reference(int first, int last, int frame) const;
   void CloseLoops(int k);
@@ -182,8 +190,15 @@ class Slam {
   // Every scan's odometric distance from its keyframe, summed since a loop
   // last closed (see loop_radius_per_m).
   double travel_since_loop_m_ = 0.0;
-  // The last keyframe's reference (its submap, in its frame), built once.
-  std::unique_ptr<ReferencePoints> reference_;
+  // The scans since the last keyframe, matched when the next keyframe is
+  // (or at Finish) against the same submap: odometry's step from the
+  // keyframe and the points, for the offset of scans_[scan].
+  struct PendingScan {
+    size_t scan;
+    geometry::Pose2D odometry;
+    std::vector<Eigen::Vector2d> points;
+  };
+  std::vector<PendingScan> pending_;
   SlamStats stats_;
 };
 
