@@ -181,8 +181,8 @@ Table ScanLatencySection() {
 Table RunSection() {
   Table t("run", "how the work is done (the results do not depend on it)");
   t.Number("threads", &O::threads, Range::Closed(1, 256), "",
-           "independent matches (a keyframe's loop candidates, the latency estimate's pairs) "
-           "run on this many threads at once");
+           "independent matches (a keyframe's loop candidates, the scans between keyframes, the "
+           "latency estimate's pairs) run on this many threads at once");
   return t;
 }
 

@@ -81,8 +81,9 @@ struct SlamOptions {
   // interval holds none), which then replaces scan_latency_s.
   bool estimate_scan_latency = true;
   ScanLatencyOptions latency;
-  // Independent matches (a keyframe's loop candidates, the latency estimate's
-  // pairs) run on this many threads at once; the results do not depend on it.
+  // Independent matches (a keyframe's loop candidates, the scans between
+  // keyframes, the latency estimate's pairs) run on this many threads at
+  // once; the results do not depend on it.
   int threads = 2;
 
   // Throws std::invalid_argument naming the section and key of a value out of
