@@ -1,8 +1,8 @@
-// Independent pieces of work on a few threads, for the SLAM front end's loop
-// candidates and the latency estimate's pairs (each an ICP against its own
-// reference): each piece writes its own result, which the caller then reads
-// in order, so the outcome does not depend on the number of threads or on
-// which thread ran what. DDS-free.
+// Independent pieces of work on a few threads, for the SLAM front end's
+// matches (a keyframe's loop candidates, the scans between keyframes, the
+// latency estimate's pairs): each piece writes its own result, which the
+// caller then reads in order, so the outcome does not depend on the number of
+// threads or on which thread ran what. DDS-free.
 #pragma once
 
 #include <algorithm>

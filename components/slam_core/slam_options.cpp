@@ -64,8 +64,7 @@ Table MatchSection(const char* name, const char* description, Part part) {
            "... shrinking to this over the first half of the iterations; a scan's share "
            "explained counts its points this close to a surface");
   t.Number("normal_radius_m", &M::normal_radius_m, Range::Closed(0.02, 5), "m",
-           "the reference points within this radius give a point's surface direction (also "
-           "the cell of their index: first_pair_distance_m at most 20 of them)");
+           "the reference points within this radius give a point's surface direction");
   t.Number("point_sigma_m", &M::point_sigma_m, Range::Positive(), "m",
            "a point's noise across its surface (range noise, wall roughness); the Huber loss "
            "starts at twice this");
@@ -210,10 +209,6 @@ void SlamOptions::Validate() const {
     if (!(m->first_pair_distance_m >= m->last_pair_distance_m))
       throw std::invalid_argument(std::string(section) +
                                   ": first_pair_distance_m must be >= last_pair_distance_m");
-    // Each pairing looks through (2 first / normal_radius + 1)^2 cells.
-    if (!(m->first_pair_distance_m <= 20 * m->normal_radius_m))
-      throw std::invalid_argument(std::string(section) +
-                                  ": first_pair_distance_m must be at most 20 normal_radius_m");
   }
   latency.Validate();
   if (estimate_scan_latency && scan_latency_s != 0.0)

@@ -85,13 +85,6 @@ TEST(SlamOptions, ABadFileIsRefusedNamingItsLineSectionAndKey) {
             "<loop_match iterations=\"30\" first_pair_distance_m=\"0.1\"",
             "loop_match: first_pair_distance_m must be >= last_pair_distance_m"},
            {"max_radius_m=\"8\"", "max_radius_m=\"1\"", "loops: max_radius_m must be >= radius_m"},
-           {"<loop_match iterations=\"30\" first_pair_distance_m=\"2\" "
-            "last_pair_distance_m=\"0.15\"\n"
-            "              normal_radius_m=\"0.25\"",
-            "<loop_match iterations=\"30\" first_pair_distance_m=\"2\" "
-            "last_pair_distance_m=\"0.15\"\n"
-            "              normal_radius_m=\"0.05\"",
-            "loop_match: first_pair_distance_m must be at most 20 normal_radius_m"},
            {"<step_match iterations=\"30\" first_pair_distance_m=\"1\" "
             "last_pair_distance_m=\"0.2\"\n"
             "              normal_radius_m=\"0.25\"",

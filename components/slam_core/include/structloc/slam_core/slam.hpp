@@ -17,7 +17,6 @@
 
 #include <Eigen/Core>
 #include <cstddef>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
