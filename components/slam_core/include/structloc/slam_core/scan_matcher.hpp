@@ -51,7 +51,8 @@ struct ScanMatch {
 // neighbours within normal_radius_m, or none where they do not lie along one)
 // is found the first time a lookup needs it: an ICP touches a fraction of a
 // submap's points, and finding every point's neighbours was most of a loop
-// closure's work.
+// closure's work. So a lookup changes what the reference holds: one thread at
+// a time (a copy for each further thread finds the same).
 class ReferencePoints {
  public:
   ReferencePoints(const std::vector<Eigen::Vector2d>& points, const ScanMatchOptions& options);
