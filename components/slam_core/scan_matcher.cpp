@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace structloc::slam_core {
 namespace {
@@ -107,7 +108,18 @@ bool ReferencePoints::OnSurface(int i) const {
 }
 
 int ReferencePoints::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
-  return tree_.Nearest(p, max_distance_m, [this](int i) { return OnSurface(i); });
+  // Of points equally near, the one a search through the cells (x, then y,
+  // then the points of a cell in order), keeping the last of equals, ends
+  // with: the matches this gives are those such a search gave.
+  const auto last_in_cells = [this](int a, int b) {
+    const auto cell = [this](int i) {
+      return std::tuple(std::floor(points_[i].x() / normal_radius_m_),
+                        std::floor(points_[i].y() / normal_radius_m_), i);
+    };
+    return cell(a) > cell(b);
+  };
+  return tree_.Nearest(
+      p, max_distance_m, [this](int i) { return OnSurface(i); }, last_in_cells);
 }
 
 ScanMatch MatchScan(const ReferencePoints& reference, const std::vector<Eigen::Vector2d>& points,

@@ -10,6 +10,10 @@
 namespace structloc::slam_core {
 namespace {
 
+// The scans since the last keyframe held for matching at most (a few MB at
+// most of their points).
+constexpr size_t kMaxPendingScans = 64;
+
 Eigen::Matrix3d Information(const Eigen::Matrix3d& covariance) {
   return covariance.inverse();
 }
@@ -30,6 +34,9 @@ void Slam::Add(const SlamScan& scan) {
       travel_since_loop_m_ += odometry.Translation().norm();
       scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
       pending_.push_back({scans_.size() - 1, odometry, scan.points});
+      // A robot standing still adds no keyframe: its scans are matched in
+      // batches meanwhile (against the same submap, so as they would be).
+      if (pending_.size() >= kMaxPendingScans) MatchSteps(nullptr);
       return;
     }
   }
@@ -64,8 +71,9 @@ Slam::Step Slam::MatchSteps(const SlamScan* keyframe) {
                           options_.match);
   // A copy for each further thread: a reference finds its points' surfaces
   // as lookups need them (not thread-safe), and the copies find the same.
-  while (references.size() < std::min(count, static_cast<size_t>(options_.threads)))
-    references.push_back(references.front());
+  const size_t workers = ParallelWorkers(count, options_.threads);
+  references.reserve(workers);
+  while (references.size() < workers) references.push_back(references.front());
   std::vector<ScanMatch> matches(count);
   ParallelFor(count, options_.threads, [&](size_t i, size_t worker) {
     const bool pending = i < pending_.size();

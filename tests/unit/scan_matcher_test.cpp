@@ -88,5 +88,23 @@ TEST(ScanMatcher, AlongACorridorAHeldMatchKeepsTheGuessAlongIt) {
       << "not held, the jamb alone pulls the match along the corridor";
 }
 
+// Of two reference points equally near, the one a search through cells of
+// normal_radius_m (x, then y, then the points of a cell in order, the last of
+// equals kept) ended with is the one given, so that matches are those that
+// search gave: along a wall of points every 1/16 m, a query midway between two
+// gets the later one, within one cell and across a cell's edge alike.
+TEST(ScanMatcher, OfPointsEquallyNearTheReferenceGivesTheOneTheCellSearchGave) {
+  std::vector<Eigen::Vector2d> wall;
+  for (int k = 0; k < 64; ++k) wall.emplace_back(k / 16.0, 0.0);
+  const ReferencePoints reference(wall, ScanMatchOptions{});
+  for (int k = 0; k + 1 < 64; ++k) {
+    for (const double y : {0.0, 0.125, -0.0625}) {
+      const Eigen::Vector2d midway((k + 0.5) / 16.0, y);
+      EXPECT_EQ(reference.Nearest(midway, 0.2), k + 1)
+          << "between points " << k << " and " << k + 1;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace structloc::slam_core

@@ -1,10 +1,13 @@
 // Slam's threads (SlamOptions::threads): a robot drives three laps of a
 // circle in a room with a cupboard, its odometry turning half a degree per
 // metre too far, so that loops close on every lap. The keyframes' loop
-// candidates are matched on one thread or several; the path must be the same
-// to the last bit, and the loops must have closed.
+// candidates and the scans between keyframes are matched on one thread or
+// several; the path must be the same to the last bit, and the loops must have
+// closed. It stands still first, so that scans wait for a keyframe longer
+// than Slam holds them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -14,6 +17,7 @@ namespace structloc::slam_core {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kStillScans = 150;
 
 // Points every 5 cm along the walls of an 8 x 5 m room and a 1 x 0.6 m
 // cupboard in it (no symmetry to confuse a match), in the frame of a laser at
@@ -50,8 +54,9 @@ Laps DriveLaps(int threads) {
   geometry::Pose2D odometry, last_truth;
   const double radius = 1.5, step = 0.1;
   const int scans = static_cast<int>(3 * 2 * kPi * radius / step);
-  for (int i = 0; i <= scans; ++i) {
-    const double a = i * step / radius;
+  // It stands still for the first kStillScans (no keyframe is added meanwhile).
+  for (int i = 0; i <= kStillScans + scans; ++i) {
+    const double a = std::max(0, i - kStillScans) * step / radius;
     const geometry::Pose2D truth{radius * std::sin(a), -radius * std::cos(a), a};
     if (i > 0) {
       geometry::Pose2D moved = geometry::Between(last_truth, truth);
@@ -68,6 +73,10 @@ Laps DriveLaps(int threads) {
 TEST(SlamThreads, ThePathIsTheSameOnOneThreadOrSeveral) {
   const Laps one = DriveLaps(1);
   EXPECT_GT(one.stats.loops_closed, 10u);
+  for (int i = 0; i <= kStillScans; ++i) {
+    EXPECT_NEAR(one.path[i].pose.x, 0.0, 0.01) << "standing still, scan " << i;
+    EXPECT_NEAR(one.path[i].pose.y, 0.0, 0.01) << "standing still, scan " << i;
+  }
   for (const int threads : {2, 3}) {
     const Laps several = DriveLaps(threads);
     EXPECT_EQ(several.stats.loops_tried, one.stats.loops_tried);

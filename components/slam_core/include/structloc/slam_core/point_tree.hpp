@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace structloc::slam_core {
@@ -24,12 +25,14 @@ class PointTree {
   }
   // The same among the points `accept(index)` takes; it is asked only of a
   // point that would be the nearest so far, so an expensive test (whether a
-  // point lies on a surface) runs for few points.
-  template <class Accept>
-  int Nearest(const Eigen::Vector2d& p, double max_distance_m, Accept accept) const {
+  // point lies on a surface) runs for few points. Of points equally near,
+  // the one `prefer(a, b)` puts first (true: a before b).
+  template <class Accept, class Prefer = std::less<int>>
+  int Nearest(const Eigen::Vector2d& p, double max_distance_m, Accept accept,
+              Prefer prefer = {}) const {
     int best = -1;
     double best_d2 = max_distance_m * max_distance_m;
-    if (!nodes_.empty()) Search(0, p, accept, &best_d2, &best);
+    if (!nodes_.empty()) Search(0, p, accept, prefer, &best_d2, &best);
     return best;
   }
 
@@ -41,14 +44,15 @@ class PointTree {
     double split = 0.0;         // left holds coordinates <= split, right >=
   };
   int Build(int begin, int end);
-  template <class Accept>
-  void Search(int index, const Eigen::Vector2d& p, Accept& accept, double* best_d2,
+  template <class Accept, class Prefer>
+  void Search(int index, const Eigen::Vector2d& p, Accept& accept, Prefer& prefer, double* best_d2,
               int* best) const {
     const Node& node = nodes_[index];
     if (node.left < 0) {
       for (int k = node.begin; k < node.end; ++k) {
         const double d2 = (points_[k] - p).squaredNorm();
-        const bool nearer = d2 < *best_d2 || (d2 == *best_d2 && (*best < 0 || ids_[k] < *best));
+        const bool nearer =
+            d2 < *best_d2 || (d2 == *best_d2 && (*best < 0 || prefer(ids_[k], *best)));
         if (nearer && accept(ids_[k])) {
           *best_d2 = d2;
           *best = ids_[k];
@@ -57,12 +61,12 @@ class PointTree {
       return;
     }
     // The side of the split holding `p` first; the other only if a point
-    // there can be as near as the best so far (ties kept for the lowest index).
+    // there can be as near as the best so far (ties kept for `prefer`).
     const double across = p(node.axis) - node.split;
     const int near = across < 0 ? node.left : node.right;
     const int far = across < 0 ? node.right : node.left;
-    Search(near, p, accept, best_d2, best);
-    if (across * across <= *best_d2) Search(far, p, accept, best_d2, best);
+    Search(near, p, accept, prefer, best_d2, best);
+    if (across * across <= *best_d2) Search(far, p, accept, prefer, best_d2, best);
   }
 
   std::vector<Eigen::Vector2d> points_;  // in the tree's order

@@ -141,7 +141,9 @@ class Slam {
   void Add(const SlamScan& scan);
   // The final optimisation.
   void Finish();
-  // The robot pose of every scan added, in the frame of the first scan's odometry.
+  // The robot pose of every scan added, in the frame of the first scan's
+  // odometry; after Finish (the scans since the last keyframe are matched
+  // with the next keyframe or by Finish).
   std::vector<log_formats::StampedPose> Trajectory() const;
   const SlamStats& Stats() const { return stats_; }
   const std::vector<PoseGraphEdge>& Edges() const { return edges_; }
@@ -191,8 +193,9 @@ class Slam {
   // last closed (see loop_radius_per_m).
   double travel_since_loop_m_ = 0.0;
   // The scans since the last keyframe, matched when the next keyframe is
-  // (or at Finish) against the same submap: odometry's step from the
-  // keyframe and the points, for the offset of scans_[scan].
+  // (or at Finish, or when kMaxPendingScans wait) against the same submap:
+  // odometry's step from the keyframe and the points, for the offset of
+  // scans_[scan].
   struct PendingScan {
     size_t scan;
     geometry::Pose2D odometry;
