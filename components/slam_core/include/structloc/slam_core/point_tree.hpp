@@ -30,10 +30,9 @@ class PointTree {
   template <class Accept, class Prefer = std::less<int>>
   int Nearest(const Eigen::Vector2d& p, double max_distance_m, Accept accept,
               Prefer prefer = {}) const {
-    int best = -1;
-    double best_d2 = max_distance_m * max_distance_m;
-    if (!nodes_.empty()) Search(0, p, accept, prefer, &best_d2, &best);
-    return best;
+    Query<Accept, Prefer> query{p, accept, prefer, max_distance_m * max_distance_m, -1};
+    if (!nodes_.empty()) Search(0, query);
+    return query.best;
   }
 
  private:
@@ -44,29 +43,36 @@ class PointTree {
     double split = 0.0;         // left holds coordinates <= split, right >=
   };
   int Build(int begin, int end);
+  // One search's question and its best answer so far, passed down as one
+  // reference (the recursion stays light).
   template <class Accept, class Prefer>
-  void Search(int index, const Eigen::Vector2d& p, Accept& accept, Prefer& prefer, double* best_d2,
-              int* best) const {
+  struct Query {
+    const Eigen::Vector2d& p;
+    Accept& accept;
+    Prefer& prefer;
+    double best_d2;
+    int best;
+  };
+  template <class Q>
+  void Search(int index, Q& q) const {
     const Node& node = nodes_[index];
     if (node.left < 0) {
       for (int k = node.begin; k < node.end; ++k) {
-        const double d2 = (points_[k] - p).squaredNorm();
+        const double d2 = (points_[k] - q.p).squaredNorm();
         const bool nearer =
-            d2 < *best_d2 || (d2 == *best_d2 && (*best < 0 || prefer(ids_[k], *best)));
-        if (nearer && accept(ids_[k])) {
-          *best_d2 = d2;
-          *best = ids_[k];
+            d2 < q.best_d2 || (d2 == q.best_d2 && (q.best < 0 || q.prefer(ids_[k], q.best)));
+        if (nearer && q.accept(ids_[k])) {
+          q.best_d2 = d2;
+          q.best = ids_[k];
         }
       }
       return;
     }
     // The side of the split holding `p` first; the other only if a point
     // there can be as near as the best so far (ties kept for `prefer`).
-    const double across = p(node.axis) - node.split;
-    const int near = across < 0 ? node.left : node.right;
-    const int far = across < 0 ? node.right : node.left;
-    Search(near, p, accept, prefer, best_d2, best);
-    if (across * across <= *best_d2) Search(far, p, accept, prefer, best_d2, best);
+    const double across = q.p(node.axis) - node.split;
+    Search(across < 0 ? node.left : node.right, q);
+    if (across * across <= q.best_d2) Search(across < 0 ? node.right : node.left, q);
   }
 
   std::vector<Eigen::Vector2d> points_;  // in the tree's order
