@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pose_graph_problem.hpp"
+#include "serial_openmp_scope.hpp"
 
 namespace structloc::slam_core {
 namespace {
@@ -99,6 +100,7 @@ ceres::Solver::Summary Solve(const PoseGraphOptions& options, ceres::Problem& pr
   solver.max_num_iterations = options.max_iterations;
   solver.num_threads = 1;
   ceres::Solver::Summary result;
+  const SerialOpenMpScope one_thread_for_cholmod;
   ceres::Solve(solver, &problem, &result);
   return result;
 }
