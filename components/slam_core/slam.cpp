@@ -27,7 +27,9 @@ Slam::Slam(const SlamOptions& options) : options_(options) {
 
 void Slam::Add(const SlamScan& scan) {
   ++stats_.scans;
-  if (!keyframes_.empty()) {
+  if (keyframes_.empty()) {
+    KeepKeyframe(scan, scan.odometry);
+  } else {
     const geometry::Pose2D odometry = geometry::Between(keyframes_.back().odometry, scan.odometry);
     if (odometry.Translation().norm() < options_.keyframe_distance_m &&
         std::abs(odometry.theta) < options_.keyframe_angle_rad) {
@@ -39,8 +41,8 @@ void Slam::Add(const SlamScan& scan) {
       if (pending_.size() >= kMaxPendingScans) MatchSteps(nullptr);
       return;
     }
+    AddKeyframe(scan, odometry);
   }
-  AddKeyframe(scan);
   scans_.push_back({scan.stamp, keyframes_.size() - 1, geometry::Pose2D{}});
 }
 
@@ -59,13 +61,10 @@ Slam::Step Slam::Judge(const geometry::Pose2D& odometry, const ScanMatch& match)
   return out;
 }
 
-Slam::Step Slam::MatchSteps(const SlamScan* keyframe) {
+Slam::Step Slam::MatchSteps(const SlamScan* keyframe, const geometry::Pose2D& odometry) {
   const size_t count = pending_.size() + (keyframe ? 1 : 0);
   if (keyframes_.empty() || count == 0) return {};
   const int last = static_cast<int>(keyframes_.size()) - 1;
-  const geometry::Pose2D odometry =
-      keyframe ? geometry::Between(keyframes_.back().odometry, keyframe->odometry)
-               : geometry::Pose2D{};
   std::vector<ReferencePoints> references;
   references.emplace_back(Reference(last - options_.submap_keyframes + 1, last, last),
                           options_.match);
@@ -97,15 +96,10 @@ std::vector<Eigen::Vector2d> Slam::Reference(int first, int last, int frame) con
   return points;
 }
 
-void Slam::AddKeyframe(const SlamScan& scan) {
-  if (keyframes_.empty()) {
-    KeepKeyframe(scan, scan.odometry);
-    return;
-  }
+void Slam::AddKeyframe(const SlamScan& scan, const geometry::Pose2D& step) {
   const int last = static_cast<int>(keyframes_.size()) - 1;
   // The step as the keyframes before see it, else as odometry counted it.
-  const Step matched = MatchSteps(&scan);
-  const geometry::Pose2D& step = matched.odometry;
+  const Step matched = MatchSteps(&scan, step);
   const double travel = step.Translation().norm();
   travel_since_loop_m_ += travel;
   PoseGraphEdge edge;

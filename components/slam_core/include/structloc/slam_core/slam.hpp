@@ -158,7 +158,8 @@ class Slam {
     size_t keyframe;
     geometry::Pose2D offset;  // its pose in the keyframe's frame
   };
-  void AddKeyframe(const SlamScan& scan);
+  // A keyframe after the first, `step` from the last one by odometry.
+  void AddKeyframe(const SlamScan& scan, const geometry::Pose2D& step);
   // Appends the keyframe with its first estimate (and its segments).
   void KeepKeyframe(const SlamScan& scan, const geometry::Pose2D& estimate);
   // The step from the last keyframe to `scan`: the match against the
@@ -174,9 +175,10 @@ class Slam {
   // Whether `match` of the step `odometry` from the last keyframe is taken.
   Step Judge(const geometry::Pose2D& odometry, const ScanMatch& match) const;
   // The scans since the last keyframe (pending_, whose offsets it fills) and
-  // the new `keyframe`'s step (none at Finish: nullptr), all matched against
-  // the last keyframe's submap, on `threads` threads.
-  Step MatchSteps(const SlamScan* keyframe);
+  // the new `keyframe`'s step, `odometry` by odometry (no keyframe at Finish:
+  // nullptr), all matched against the last keyframe's submap, on `threads`
+  // threads.
+  Step MatchSteps(const SlamScan* keyframe, const geometry::Pose2D& odometry = {});
   // The points of keyframes first..last (clamped) in the frame of keyframe `frame`.
   std::vector<Eigen::Vector2d> Reference(int first, int last, int frame) const;
   void CloseLoops(int k);
