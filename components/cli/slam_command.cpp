@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <utility>
 
 #include "file_names.hpp"
 #include "map_check_findings.hpp"
@@ -69,24 +70,26 @@ void PrintTruthErrors(const char* what, const std::vector<log_formats::StampedPo
 
 // Each scan's odometric laser pose at the moment it was taken, the latency
 // printed where there is one; the log's points de-skewed to that moment
-// where it gives its beam timing (it was read without de-skewing).
+// where it gives its beam timing (it was read without de-skewing). The points
+// are moved out of the log and back, not copied: a long log's points are
+// most of what slam holds.
 std::vector<geometry::Pose2D> OdometryAndPointsAsTaken(map_building::PosedScanLog& log,
                                                        const slam_core::SlamOptions& options) {
   std::vector<double> stamps;
   std::vector<geometry::Pose2D> odometry;
   std::vector<std::vector<Eigen::Vector2d>> points;
   slam_core::PointTimes times;
-  for (const auto& s : log.scans) {
+  for (auto& s : log.scans) {
     stamps.push_back(s.stamp);
     odometry.push_back(s.laser_pose);
-    points.push_back(s.points);
+    points.push_back(std::move(s.points));
     if (log.time_increment_s > 0.0) {
       auto& t = times.emplace_back();
       for (const uint32_t beam : s.point_beams) t.push_back(log.time_increment_s * beam);
     }
   }
   slam_core::ScanLatencyEstimate e;
-  auto taken = slam_core::AsTaken(options, stamps, odometry, points, times, &e);
+  auto taken = slam_core::AsTaken(options, stamps, odometry, std::move(points), times, &e);
   for (size_t i = 0; i < log.scans.size(); ++i) log.scans[i].points = std::move(taken.points[i]);
   if (!times.empty()) log.deskewed = log.scans.size();
   if (options.estimate_scan_latency && !e.untold.empty()) {

@@ -186,18 +186,16 @@ std::vector<geometry::Pose2D> OdometryBefore(const std::vector<double>& stamps,
 
 std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
     const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry,
-    const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& point_times,
+    std::vector<std::vector<Eigen::Vector2d>> points, const PointTimes& point_times,
     double latency_s) {
   CheckSizes(stamps, odometry.size());
   CheckTimes(points, point_times);
   if (point_times.empty()) return points;
   const OdometryTrack track(stamps, odometry);
   if (!track.Moves()) return points;
-  std::vector<std::vector<Eigen::Vector2d>> out;
-  out.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i)
-    out.push_back(Deskewed(track, stamps[i] - latency_s, points[i], point_times[i]));
-  return out;
+    points[i] = Deskewed(track, stamps[i] - latency_s, points[i], point_times[i]);
+  return points;
 }
 
 ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,

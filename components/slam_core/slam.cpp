@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "parallel_for.hpp"
 
@@ -203,7 +204,7 @@ void Slam::Finish() {
 
 ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stamps,
                      const std::vector<geometry::Pose2D>& odometry,
-                     const std::vector<std::vector<Eigen::Vector2d>>& points,
+                     std::vector<std::vector<Eigen::Vector2d>> points,
                      const PointTimes& point_times, ScanLatencyEstimate* estimate) {
   ScansAsTaken taken;
   taken.latency_s = options.scan_latency_s;
@@ -214,7 +215,7 @@ ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stam
     if (estimate) *estimate = e;
   }
   taken.odometry = OdometryBefore(stamps, odometry, taken.latency_s);
-  taken.points = DeskewedPoints(stamps, odometry, points, point_times, taken.latency_s);
+  taken.points = DeskewedPoints(stamps, odometry, std::move(points), point_times, taken.latency_s);
   return taken;
 }
 

@@ -105,11 +105,13 @@ ScanLatencyEstimate EstimateScanLatency(const std::vector<double>& stamps,
 // first beam, taken at its stamp less `latency_s`: each by the odometric
 // motion from then to when it was measured, `point_times` later (thesis 3.6,
 // EQ 45), odometry linear between its samples (those stamped no later than
-// the one before left out). Unchanged without times. Throws
-// std::invalid_argument when the sizes or the times do not fit the points.
+// the one before left out). Unchanged without times. Takes the points to
+// return them (a caller done with its own moves them in: no second copy of
+// a long log's points). Throws std::invalid_argument when the sizes or the
+// times do not fit the points.
 std::vector<std::vector<Eigen::Vector2d>> DeskewedPoints(
     const std::vector<double>& stamps, const std::vector<geometry::Pose2D>& odometry,
-    const std::vector<std::vector<Eigen::Vector2d>>& points, const PointTimes& point_times,
+    std::vector<std::vector<Eigen::Vector2d>> points, const PointTimes& point_times,
     double latency_s);
 
 }  // namespace structloc::slam_core

@@ -101,11 +101,12 @@ struct ScansAsTaken {
   double latency_s = 0.0;
 };
 
-// `estimate` receives the estimate, when made. Throws std::invalid_argument
-// as OdometryBefore, EstimateScanLatency and DeskewedPoints do.
+// `estimate` receives the estimate, when made. Takes the points to return
+// them, as DeskewedPoints does. Throws std::invalid_argument as
+// OdometryBefore, EstimateScanLatency and DeskewedPoints do.
 ScansAsTaken AsTaken(const SlamOptions& options, const std::vector<double>& stamps,
                      const std::vector<geometry::Pose2D>& odometry,
-                     const std::vector<std::vector<Eigen::Vector2d>>& points,
+                     std::vector<std::vector<Eigen::Vector2d>> points,
                      const PointTimes& point_times = {}, ScanLatencyEstimate* estimate = nullptr);
 
 // A <slam_params> file (`structloc params --slam` lists its keys); throws
