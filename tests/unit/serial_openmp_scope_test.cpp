@@ -19,6 +19,7 @@ int TeamSizeAskingForFour() {
 }
 
 TEST(SerialOpenMpScope, RegionsInsideRunOnTheCallingThreadAlone) {
+  omp_set_dynamic(0);  // a region gets the threads it asks for (OMP_DYNAMIC aside)
   const int levels = omp_get_max_active_levels();
   {
     const SerialOpenMpScope scope;
