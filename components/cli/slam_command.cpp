@@ -85,6 +85,7 @@ std::vector<geometry::Pose2D> OdometryAndPointsAsTaken(map_building::PosedScanLo
     points.push_back(std::move(s.points));
     if (log.time_increment_s > 0.0) {
       auto& t = times.emplace_back();
+      t.reserve(s.point_beams.size());
       for (const uint32_t beam : s.point_beams) t.push_back(log.time_increment_s * beam);
     }
   }

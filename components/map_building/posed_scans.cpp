@@ -80,12 +80,22 @@ PosedScanLog ReadPosedScans(const std::string& log_path, const PosedScanOptions&
       scan.robot_pose = record.robot_pose;
     scan.angular_resolution = record.angular_resolution;
     scan.beams = record.ranges.size();
-    scan.points.reserve(record.ranges.size());
+    const auto in_range = [&](double r) {
+      return std::isfinite(r) && r >= options.min_range_m && r <= options.max_range_m &&
+             r < record.max_range;
+    };
+    // Room for the readings kept, counted first: grown by doubling, the
+    // vectors would hold up to twice what they need, for every scan of a
+    // long log.
+    const auto kept =
+        static_cast<size_t>(std::count_if(record.ranges.begin(), record.ranges.end(), in_range));
+    scan.points.reserve(kept);
+    scan.ranges.reserve(kept);
+    scan.point_beams.reserve(kept);
     for (size_t i = 0; i < record.ranges.size(); ++i) {
       const double r = record.ranges[i];
       ++log.readings;
-      if (!std::isfinite(r) || r < options.min_range_m || r > options.max_range_m ||
-          r >= record.max_range) {
+      if (!in_range(r)) {
         ++log.out_of_range;
         continue;
       }
