@@ -5,7 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <utility>
 
 namespace structloc::slam_core {
 namespace {
@@ -13,6 +13,12 @@ namespace {
 // A position direction counts as pinned when the pairs' normal matrix holds
 // at least this share of their number along it.
 constexpr double kPinnedShare = 0.05;
+
+// The cell of `p` in a grid of squares `cell_m` wide: (column, row).
+std::pair<long long, long long> CellOf(const Eigen::Vector2d& p, double cell_m) {
+  return {static_cast<long long>(std::floor(p.x() / cell_m)),
+          static_cast<long long>(std::floor(p.y() / cell_m))};
+}
 
 long long Key(long long cx, long long cy) {
   return cx * 2000003LL + cy;
@@ -22,8 +28,7 @@ long long Key(long long cx, long long cy) {
 template <class Visit>
 void ForEachNear(const std::unordered_map<long long, std::vector<int>>& cells, double cell_m,
                  const Eigen::Vector2d& centre, double radius, Visit visit) {
-  const long long cx = static_cast<long long>(std::floor(centre.x() / cell_m));
-  const long long cy = static_cast<long long>(std::floor(centre.y() / cell_m));
+  const auto [cx, cy] = CellOf(centre, cell_m);
   const long long reach = static_cast<long long>(std::ceil(radius / cell_m));
   for (long long dx = -reach; dx <= reach; ++dx) {
     for (long long dy = -reach; dy <= reach; ++dy) {
@@ -74,10 +79,8 @@ ReferencePoints::ReferencePoints(const std::vector<Eigen::Vector2d>& points,
       surface_(points.size(), Surface::kUnknown),
       normals_(points.size(), Eigen::Vector2d::Zero()) {
   for (size_t i = 0; i < points.size(); ++i) {
-    const auto& p = points[i];
-    cells_[Key(static_cast<long long>(std::floor(p.x() / normal_radius_m_)),
-               static_cast<long long>(std::floor(p.y() / normal_radius_m_)))]
-        .push_back(static_cast<int>(i));
+    const auto [cx, cy] = CellOf(points[i], normal_radius_m_);
+    cells_[Key(cx, cy)].push_back(static_cast<int>(i));
   }
 }
 
@@ -112,11 +115,8 @@ int ReferencePoints::Nearest(const Eigen::Vector2d& p, double max_distance_m) co
   // then the points of a cell in order), keeping the last of equals, ends
   // with: the matches this gives are those such a search gave.
   const auto last_in_cells = [this](int a, int b) {
-    const auto cell = [this](int i) {
-      return std::tuple(std::floor(points_[i].x() / normal_radius_m_),
-                        std::floor(points_[i].y() / normal_radius_m_), i);
-    };
-    return cell(a) > cell(b);
+    return std::pair(CellOf(points_[a], normal_radius_m_), a) >
+           std::pair(CellOf(points_[b], normal_radius_m_), b);
   };
   return tree_.Nearest(
       p, max_distance_m, [this](int i) { return OnSurface(i); }, last_in_cells);
