@@ -1,6 +1,7 @@
 // The evaluation tools behind issue 41's figures (structloc_relative_error,
-// structloc_map_straightness, structloc_path_scan_fit) run on inputs whose
-// answers are known: an exact path, the same path scaled or bent, a square
+// structloc_map_straightness, structloc_path_scan_fit, structloc_revisit_fit)
+// run on inputs whose answers are known: an exact path, the same path scaled
+// or bent, a square
 // map and one with a turned wall, so that a figure the docs quote from them
 // is a figure they can get right.
 #include <gtest/gtest.h>
@@ -189,6 +190,37 @@ TEST(PathScanFit, FindsAPathScaledAgainstItsScans) {
   EXPECT_GT(NumberAfter(off.output, "earlier scan by "),
             NumberAfter(exact.output, "earlier scan by "))
       << exact.output << off.output;
+}
+
+TEST(RevisitFit, PrefersTheExactPathToOneBentBetweenPasses) {
+  // Two loops of a tour, driven the same way round: each place seen twice
+  // alike.
+  const TempDir dir;
+  simulation_core::RecordScenario(
+      simulation_core::LoadScenario(testing::SourcePath("maps/scenarios/symmetric_office.xml")),
+      dir.Path());
+  // The truth turned about its first pose by an angle growing along the log
+  // (1 deg in all): each step nearly exact, the passes of one place apart.
+  const auto truth = log_formats::ReadTum(dir / "truth.tum");
+  ASSERT_FALSE(truth.empty());
+  log_formats::TumWriter bent(dir / "bent.tum");
+  const Pose2D first = truth.front().pose;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const double turn = (kPi / 180.0) * static_cast<double>(i) / static_cast<double>(truth.size());
+    const Pose2D from_first = geometry::Between(first, truth[i].pose);
+    bent.Pose(truth[i].stamp,
+              geometry::Compose(first, geometry::Compose({0.0, 0.0, turn}, from_first)));
+  }
+  bent.Close();
+  const auto fit =
+      RunTool("structloc_revisit_fit", {dir / "run.clf", dir / "truth.tum", dir / "bent.tum"});
+  ASSERT_EQ(fit.exit_code, 0) << fit.output;
+  const double pairs = NumberAfter(fit.output, "");
+  const double exact = NumberAfter(fit.output, "earlier scan by A ");
+  const double off = NumberAfter(fit.output, "mm, B ");
+  EXPECT_GE(pairs, 10.0) << fit.output;
+  EXPECT_LT(exact, off) << fit.output;
+  EXPECT_GT(NumberAfter(fit.output, "A fits better in "), 0.8 * pairs) << fit.output;
 }
 
 }  // namespace

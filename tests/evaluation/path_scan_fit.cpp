@@ -13,7 +13,6 @@
 // PATH.tum holds robot poses at the log's laser stamps (as `structloc slam
 // --poses-out`, `structloc replay --out` and `synthesise-odometry --truth-out`
 // write them); the log's laser lines give the laser's mounting.
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -21,53 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "structloc/log_formats/tum_reader.hpp"
-#include "structloc/map_building/posed_scans.hpp"
-#include "structloc/world_model/point_grid.hpp"
-
-namespace {
-
-using structloc::geometry::Pose2D;
-using Points = std::vector<Eigen::Vector2d>;
-
-constexpr double kCapM = 0.1;         // a point farther than this from the other scan counts this
-constexpr double kNeighbourM = 0.15;  // a neighbour farther than this is another surface
-
-// The earlier scan, its points indexed for the nearest one.
-class EarlierScan {
- public:
-  explicit EarlierScan(const Points& points) : points_(points), grid_(kCapM) {
-    for (size_t i = 0; i < points.size(); ++i) grid_.Insert(points[i], i);
-  }
-  // Distance from q to the line through its nearest point and that point's
-  // neighbour in beam order (to the point itself without one), at most kCapM.
-  double Distance(const Eigen::Vector2d& q) const {
-    double best = kCapM;
-    int nearest = -1;
-    grid_.ForEachNear(q, [&](size_t i) {
-      const double d = (points_[i] - q).norm();
-      if (d < best) best = d, nearest = static_cast<int>(i);
-    });
-    if (nearest < 0) return kCapM;
-    for (const int j : {nearest + 1, nearest - 1}) {
-      if (j < 0 || j >= static_cast<int>(points_.size())) continue;
-      const Eigen::Vector2d along = points_[j] - points_[nearest];
-      if (along.norm() > kNeighbourM || along.norm() == 0.0) continue;
-      const Eigen::Vector2d normal(-along.y(), along.x());
-      return std::abs(normal.normalized().dot(q - points_[nearest]));
-    }
-    return best;
-  }
-
- private:
-  const Points& points_;
-  structloc::world_model::PointGrid grid_;  // cells of kCapM: every point within it is found
-};
-
-}  // namespace
+#include "scan_surface_fit.hpp"
 
 int main(int argc, char** argv) {
   namespace geometry = structloc::geometry;
+  using geometry::Pose2D;
   if (argc < 3) {
     std::fprintf(stderr, "usage: structloc_path_scan_fit LOG PATH.tum [MIN_M=1.0] [MAX_M=1.5]\n");
     return 2;
@@ -76,21 +33,8 @@ int main(int argc, char** argv) {
     const double min_m = argc > 3 ? std::atof(argv[3]) : 1.0;
     const double max_m = argc > 4 ? std::atof(argv[4]) : 1.5;
     const auto log = structloc::map_building::ReadPosedScans(argv[1], {});
-    const auto path = structloc::log_formats::ReadTum(argv[2]);
-    Pose2D mount;
-    for (const auto& s : log.scans) {
-      if (s.robot_pose) {
-        mount = geometry::Between(*s.robot_pose, s.laser_pose);
-        break;
-      }
-    }
-    // The laser's pose on the path at each scan, where the path has one.
-    std::vector<std::optional<Pose2D>> laser(log.scans.size());
-    for (size_t i = 0; i < log.scans.size(); ++i) {
-      if (const auto* p = structloc::log_formats::Nearest(path, log.scans[i].stamp, 1e-3)) {
-        laser[i] = geometry::Compose(p->pose, mount);
-      }
-    }
+    const auto laser =
+        structloc::evaluation::LaserPosesOnPath(log, structloc::log_formats::ReadTum(argv[2]));
     constexpr int kScales = 17;  // 0.98 .. 1.02
     auto scale_of = [](int k) { return 0.98 + 0.0025 * k; };
     std::vector<double> mean_at(kScales, 0.0);
@@ -104,12 +48,10 @@ int main(int argc, char** argv) {
       while (j < log.scans.size() && (!laser[j] || apart(j) < min_m)) ++j;
       if (j >= log.scans.size() || apart(j) > max_m || log.scans[j].points.empty()) continue;
       const Pose2D step = geometry::Between(*laser[i], *laser[j]);
-      const EarlierScan earlier(log.scans[i].points);
+      const structloc::evaluation::EarlierScan earlier(log.scans[i].points);
       for (int k = 0; k < kScales; ++k) {
         const Pose2D scaled{step.x * scale_of(k), step.y * scale_of(k), step.theta};
-        double sum = 0.0;
-        for (const auto& q : log.scans[j].points) sum += earlier.Distance(scaled.Apply(q));
-        mean_at[k] += sum / static_cast<double>(log.scans[j].points.size());
+        mean_at[k] += earlier.MeanDistance(log.scans[j].points, scaled);
       }
       ++pairs;
     }
@@ -132,8 +74,9 @@ int main(int argc, char** argv) {
         "%zu scan pairs %.1f-%.1f m apart: points off the earlier scan by %.2f mm on average "
         "(capped at %.0f mm); the scans fit the path's translations best scaled by %.4f "
         "(%.2f mm)%s\n",
-        pairs, min_m, max_m, 1e3 * mean_at[unscaled] / static_cast<double>(pairs), 1e3 * kCapM,
-        preferred, 1e3 * mean_at[best] / static_cast<double>(pairs),
+        pairs, min_m, max_m, 1e3 * mean_at[unscaled] / static_cast<double>(pairs),
+        1e3 * structloc::evaluation::kCapM, preferred,
+        1e3 * mean_at[best] / static_cast<double>(pairs),
         best == 0 || best == kScales - 1 ? " (at the end of the range tried: 0.98-1.02)" : "");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "structloc_path_scan_fit: %s\n", e.what());

@@ -22,7 +22,10 @@
 # the SLAM path each fit the raw scans step by step, with no reference
 # (structloc_path_scan_fit: scans 1-1.5 m and 0.1-0.3 m apart, the mean
 # distance of one's points from the other's surfaces, and the scale of the
-# path's steps the scans prefer), and how straight the map built on each is
+# path's steps the scans prefer) and where the robot passed a place again
+# (structloc_revisit_fit: scans 10 m of travel or more apart that both paths
+# put within 1 m and 30 deg, the same mean distance: a path bent at the scale
+# of rooms fits there the worse), and how straight the map built on each is
 # against the building's axes (structloc_map_straightness: the shipped map
 # of maps/real/, built on the corrected poses, and the one slam built).
 # Outputs (paths, maps, pictures) go to OUT_DIR.
@@ -93,6 +96,15 @@ for name in freiburg_079 intel; do
       "$fit" "$out/$name.raw.log" "$out/$name.$path.tum" $apart
     done
   done
+done
+echo
+echo "Places passed again after 10 m or more, against the raw scans (structloc_revisit_fit):"
+revisit="$(dirname "$structloc")/../tests/structloc_revisit_fit"
+for name in freiburg_079 intel; do
+  printf '  %s, A the SLAM path, B the corrected poses: ' "$name"
+  "$revisit" "$out/$name.raw.log" "$out/$name.slam.tum" "$out/$name.truth.tum"
+  printf '  %s, A localised on the map slam built, B on the map of maps/real/: ' "$name"
+  "$revisit" "$out/$name.raw.log" "$out/$name.localised.tum" "$out/$name.shipped.tum"
 done
 echo
 echo "Walls against the building's axes (structloc_map_straightness):"
