@@ -218,8 +218,12 @@ TEST(RevisitFit, PrefersTheExactPathToOneBentBetweenPasses) {
   const double pairs = NumberAfter(fit.output, "");
   const double exact = NumberAfter(fit.output, "earlier scan by A ");
   const double off = NumberAfter(fit.output, "mm, B ");
+  const double best = NumberAfter(fit.output, "poses near them ");
   EXPECT_GE(pairs, 10.0) << fit.output;
   EXPECT_LT(exact, off) << fit.output;
+  // The exact path is about as good as the scans allow, the bent one not.
+  EXPECT_LE(best, exact) << fit.output;
+  EXPECT_LT(exact - best, 0.2 * (off - best)) << fit.output;
   EXPECT_GT(NumberAfter(fit.output, "A fits better in "), 0.8 * pairs) << fit.output;
 }
 

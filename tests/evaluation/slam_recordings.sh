@@ -24,8 +24,9 @@
 # distance of one's points from the other's surfaces, and the scale of the
 # path's steps the scans prefer) and where the robot passed a place again
 # (structloc_revisit_fit: scans 10 m of travel or more apart that both paths
-# put within 1 m and 30 deg, the same mean distance: a path bent at the scale
-# of rooms fits there the worse), and how straight the map built on each is
+# put within 1 m and 30 deg, the same mean distance beside the least that
+# relative poses near them give: a path bent at the scale of rooms fits there
+# the worse), and how straight the map built on each is
 # against the building's axes (structloc_map_straightness: the shipped map
 # of maps/real/, built on the corrected poses, and the one slam built).
 # Outputs (paths, maps, pictures) go to OUT_DIR.
