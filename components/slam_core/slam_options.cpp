@@ -37,8 +37,8 @@ Table StepsSection() {
   t.Flag("partial_matches", &O::partial_matches,
          "a match that passes those gates but does not pin every direction (along a corridor) "
          "enters beside odometry's step and places the keyframe, its ICP holding odometry's "
-         "position along the corridor; false: odometry's step alone (for odometry that drifts "
-         "in heading more than the walls let a match)");
+         "position along the corridor, so that the heading there comes from the walls; false: "
+         "odometry's step alone, the heading drifting with odometry's");
   t.Number("odometry_sigma_per_m", &O::odometry_sigma_per_m, Range::Positive(), "m/m",
            "odometry's noise per metre driven, where no match is taken");
   t.Number("odometry_sigma_per_rad", &O::odometry_sigma_per_rad, Range::NonNegative(), "",

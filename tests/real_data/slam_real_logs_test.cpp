@@ -150,7 +150,7 @@ TEST(SlamOnRealLogs, CtrlCPartOfTheWayWritesThePathAndMapSoFar) {
 // has the frame of the first odometry): the path beats odometry tenfold, and
 // the localisation is never lost and stays within the real-recording bar on
 // the largest error (200 mm). The bar on the RMSE (50 mm) is not asserted
-// (66.7 mm on Freiburg 079, 50.9 mm on Intel on 2026-12-01): the corrected
+// (66.7 mm on Freiburg 079, 56.7 mm on Intel on 2026-12-01): the corrected
 // poses it is judged against fit the scans worse than the SLAM path where the
 // robot came back, which is asserted instead, with no reference
 // (structloc_revisit_fit: the path's relative poses leave the scans' points

@@ -1,8 +1,9 @@
 // SLAM from raw odometry and scans (thesis 6.5.5: the robot maps its own
 // building): a keyframe every few decimetres of travel, matched against the
 // keyframes just before it (point-to-line ICP, ScanMatcher) for a relative
-// pose with its covariance, odometry's step where the match pins too little
-// (or, with partial_matches, odometry's step beside what the match pins);
+// pose with its covariance, odometry's step beside what the match pins where
+// it pins some directions only (partial_matches), odometry's step alone where
+// it fails;
 // loops closed by matching the new keyframe against places seen long ago
 // near where the graph puts it, accepted only where the match explains most
 // of the scan tightly, and entered through a robust loss; the pose graph
@@ -40,11 +41,12 @@ struct SlamOptions {
   double max_match_correction_m = 0.3;
   double max_match_correction_share = 0.5;
   // A match that passes those gates but pins some directions only (along a
-  // corridor) is dropped for odometry's step (false), or enters the graph
-  // beside it and places the keyframe (true), its ICP holding odometry's
-  // position along what it does not pin (ScanMatchOptions::hold_unpinned):
-  // for odometry that drifts in heading more than the walls let a match.
-  bool partial_matches = false;
+  // corridor) enters the graph beside odometry's step and places the
+  // keyframe (true), its ICP holding odometry's position along what it does
+  // not pin (ScanMatchOptions::hold_unpinned), so that the heading along a
+  // corridor comes from its walls; or it is dropped for odometry's step
+  // (false), and the heading there drifts with odometry's.
+  bool partial_matches = true;
   // Odometry's standard deviation (the edge where no match pins the step):
   // position per metre driven, heading per radian turned plus per metre
   // driven, never below the floors.
