@@ -1,9 +1,8 @@
 // The evaluation tools behind issue 41's figures (structloc_relative_error,
 // structloc_map_straightness, structloc_path_scan_fit, structloc_revisit_fit)
 // run on inputs whose answers are known: an exact path, the same path scaled
-// or bent, a square
-// map and one with a turned wall, so that a figure the docs quote from them
-// is a figure they can get right.
+// or bent, a square map and one with a turned wall, so that a figure the docs
+// quote from them is a figure they can get right.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -215,7 +214,7 @@ TEST(RevisitFit, PrefersTheExactPathToOneBentBetweenPasses) {
   const auto fit =
       RunTool("structloc_revisit_fit", {dir / "run.clf", dir / "truth.tum", dir / "bent.tum"});
   ASSERT_EQ(fit.exit_code, 0) << fit.output;
-  const double pairs = NumberAfter(fit.output, "");
+  const double pairs = NumberAfter(fit.output, "");  // the line starts with the count
   const double exact = NumberAfter(fit.output, "earlier scan by A ");
   const double off = NumberAfter(fit.output, "mm, B ");
   const double best = NumberAfter(fit.output, "poses near them ");

@@ -31,7 +31,8 @@ namespace {
 using structloc::geometry::Pose2D;
 using LaserPoses = std::vector<std::optional<Pose2D>>;
 
-constexpr double kMaxTurnRad = 0.5236;  // 30 deg: the two views still overlap mostly
+// 30 deg: a 180 deg laser's two views of the place still overlap mostly.
+constexpr double kMaxTurnRad = structloc::geometry::kPi / 6.0;
 
 // Cumulative distance the laser moved along `laser` up to each scan.
 std::vector<double> Travelled(const LaserPoses& laser) {
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
     double sum_a = 0.0, sum_b = 0.0, sum_best = 0.0;
     // From every third scan, the first later scan that revisits its place.
     for (size_t i = 0; i < log.scans.size(); i += 3) {
-      if (log.scans[i].points.empty()) continue;
+      if (!a[i] || !b[i] || log.scans[i].points.empty()) continue;
       size_t j = i + 1;
       while (j < log.scans.size() && !revisit(i, j)) ++j;
       if (j >= log.scans.size() || log.scans[j].points.empty()) continue;
