@@ -7,8 +7,8 @@
 // SLAM issue asks for, which it reaches when the scans' latency the log
 // shows is taken into account (scan_latency estimate="true", next test).
 // Stopped by Ctrl-C part of the way, `structloc slam` writes the path and
-// map of the scans it had. Intel and Freiburg 079
-// with re-synthesised odometry, judged by localising on the map slam built.
+// map of the scans it had. Intel and Freiburg 079 with re-synthesised
+// odometry, judged by localising on the map slam built.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -143,6 +143,13 @@ TEST(SlamOnRealLogs, CtrlCPartOfTheWayWritesThePathAndMapSoFar) {
   EXPECT_TRUE(std::filesystem::exists(world));
 }
 
+// `args` followed by `more`.
+std::vector<std::string> Appended(std::vector<std::string> args,
+                                  const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
 // A corrected recording with odometry re-synthesised with the real-recording
 // errors (as tests/evaluation/slam_recordings.sh makes it): slam maps the
 // building from the raw log, and the same log is localised on that map. Both
@@ -161,23 +168,11 @@ void MapsItselfAndLocalisesOnItsMap(const std::string& name,
   const std::string log = temp / "raw.log", truth_path = temp / "truth.tum",
                     path_out = temp / "path.tum", world = temp / "world.xml",
                     localised = temp / "localised.tum";
-  std::vector<std::string> synthesise = {"synthesise-odometry",
-                                         "--log",
-                                         testing::SourcePath("../shared/data/" + name + ".log.gz"),
-                                         "--out",
-                                         log,
-                                         "--truth",
-                                         truth_path,
-                                         "--scale-error",
-                                         "0.015",
-                                         "--heading-drift",
-                                         "0.3",
-                                         "--noise-xy",
-                                         "0.005",
-                                         "--noise-theta",
-                                         "0.1"};
-  synthesise.insert(synthesise.end(), restamp.begin(), restamp.end());
-  const auto synthesised = testing::RunCli(synthesise);
+  const auto synthesised = testing::RunCli(Appended(
+      {"synthesise-odometry", "--log", testing::SourcePath("../shared/data/" + name + ".log.gz"),
+       "--out", log, "--truth", truth_path, "--scale-error", "0.015", "--heading-drift", "0.3",
+       "--noise-xy", "0.005", "--noise-theta", "0.1"},
+      restamp));
   ASSERT_EQ(synthesised.exit_code, 0) << synthesised.output;
   const auto slam = testing::RunCli(
       {"slam", "--log", log, "--poses-out", path_out, "--out", world, "--truth", truth_path});
