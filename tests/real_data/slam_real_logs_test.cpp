@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "pose_argument.hpp"
 #include "structloc/log_formats/relations_reader.hpp"
 #include "structloc/log_formats/tum_reader.hpp"
 #include "structloc/map_building/posed_scans.hpp"
@@ -179,12 +180,10 @@ void MapsItselfAndLocalisesOnItsMap(const std::string& name,
   ASSERT_EQ(slam.exit_code, 0) << slam.output;
   const auto truth = log_formats::ReadTum(truth_path);
   ASSERT_FALSE(truth.empty());
-  const auto& start = truth.front().pose;
-  const auto replay = testing::RunCli(
-      {"replay", "--map", world, "--log", log, "--truth", truth_path, "--params",
-       testing::SourcePath("maps/params/sick_lms2xx.xml"), "--initial-pose",
-       std::to_string(start.x) + " " + std::to_string(start.y) + " " + std::to_string(start.theta),
-       "--out", localised});
+  const auto replay =
+      testing::RunCli({"replay", "--map", world, "--log", log, "--truth", truth_path, "--params",
+                       testing::SourcePath("maps/params/sick_lms2xx.xml"), "--initial-pose",
+                       testing::PoseArgument(truth.front().pose), "--out", localised});
   ASSERT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("lost: 0 scans"), std::string::npos) << replay.output;
 
